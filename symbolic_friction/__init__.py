@@ -1,0 +1,101 @@
+"""symbolic_friction: a machine-checked stability proof for a PID-controlled
+mass with Coulomb friction.
+
+Paper: A. Bisoffi, M. Da Lio, A. R. Teel, L. Zaccarian, *Global asymptotic
+stability of a PID control system with Coulomb friction*.
+
+The public API is listed in ``__all__``.  Light objects (parameters, errors)
+are imported eagerly; everything that needs numpy, sympy, scipy or cvxpy is
+imported on first use (PEP 562 ``__getattr__``), so that importing the
+package and ``symbolic-friction --help`` stay fast.
+"""
+
+from __future__ import annotations
+
+import importlib
+from typing import Any
+
+from ._errors import (
+    AssumptionError,
+    CertificateError,
+    CertificateFormatError,
+    InaccurateSolveError,
+    InfeasibleError,
+    InvalidNumberError,
+    NonFiniteError,
+    ParameterError,
+    SceneError,
+    SimulationError,
+    SolverError,
+    StaleFileError,
+    SymbolicFrictionError,
+)
+from ._parameters import TABLE_I, Parameters
+from ._rational import format_rational, to_rational
+
+__version__ = "0.1.0"
+
+# name -> private module that defines it (imported lazily on first access)
+_LAZY: dict[str, str] = {
+    # model (eq. CoC, xDot, A, distFromA, lyapLike, Vhat)
+    "z_to_x": "._coordinates",
+    "x_to_z": "._coordinates",
+    "system_matrix": "._coordinates",
+    "input_vector": "._coordinates",
+    "dz": "._attractor",
+    "distance_x": "._attractor",
+    "squared_distance_x": "._attractor",
+    "distance_z": "._attractor",
+    "in_attractor_x": "._attractor",
+    "attractor_bound_x": "._attractor",
+    "attractor_bound_z": "._attractor",
+    "lyapunov_matrix": "._lyapunov",
+    "V": "._lyapunov",
+    "V_k": "._lyapunov",
+    "V_hat": "._lyapunov",
+    "in_R": "._lyapunov",
+    # proof obligations
+    "Obligation": "._obligations._base",
+    "Outcome": "._obligations._base",
+    "Result": "._obligations._base",
+    "all_obligations": "._obligations",
+    "run_obligations": "._obligations",
+    # simulation
+    "Solution": "._simulation._base",
+    "SimulationMethod": "._simulation._base",
+}
+
+__all__ = [
+    "__version__",
+    "Parameters",
+    "TABLE_I",
+    "to_rational",
+    "format_rational",
+    "SymbolicFrictionError",
+    "ParameterError",
+    "InvalidNumberError",
+    "NonFiniteError",
+    "AssumptionError",
+    "SceneError",
+    "CertificateError",
+    "CertificateFormatError",
+    "SolverError",
+    "InfeasibleError",
+    "InaccurateSolveError",
+    "SimulationError",
+    "StaleFileError",
+    *_LAZY,
+]
+
+
+def __getattr__(name: str) -> Any:
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module 'symbolic_friction' has no attribute {name!r}")
+    value = getattr(importlib.import_module(module, __name__), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

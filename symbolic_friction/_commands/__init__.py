@@ -1,0 +1,1 @@
+"""Subcommands of the ``symbolic-friction`` CLI (stdlib-only imports at top level)."""

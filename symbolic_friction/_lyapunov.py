@@ -1,0 +1,135 @@
+"""The Lyapunov-like function ``V`` (eq. lyapLike), its smooth pieces ``V_k``
+(eq. subcasesAffine:Vs), the auxiliary ``V̂`` (eq. Vhat) and the regions
+``R``, ``R̂`` of Lemma 3.
+
+.. math::
+
+    V(x) = \\min_{f \\in f_c\\,\\mathrm{SGN}(v)}
+        (\\sigma, \\phi - f, v)^\\top P\\, (\\sigma, \\phi - f, v),\\qquad
+    P = \\begin{bmatrix} k_v/k_i & 0 & -1\\\\ 0 & 1 & 0\\\\ -1 & 0 & k_p\\end{bmatrix}.
+
+The minimum is in closed form: ``f = f_c sign(v)`` when ``v != 0`` and
+``f = sat_{f_c}(phi)`` (the projection of ``phi`` on ``[-f_c, f_c]``) when
+``v = 0``, because only the middle entry of the quadratic form depends on
+``f`` and ``P_22 = 1`` is decoupled from the rest.
+
+``V̂(x) = ½k₁σ² + ½k₂ dz(φ)² + k₃|σ||v| + ½k₄v²`` and
+``R = {v(φ - sign(v) f_c) ≥ 0}``, ``R̂ = ℝ³ \\ R``.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from ._attractor import dz
+from ._parameters import Parameters
+
+__all__ = [
+    "lyapunov_matrix_entries",
+    "lyapunov_matrix",
+    "quadratic_form",
+    "V",
+    "V_k",
+    "V_hat",
+    "vhat_matrix_entries",
+    "in_R",
+]
+
+
+def lyapunov_matrix_entries(k_p: Any, k_i: Any, k_v: Any) -> tuple[tuple[Any, ...], ...]:
+    """``P`` of eq. (lyapLikeP)."""
+    return ((k_v / k_i, 0, -1), (0, 1, 0), (-1, 0, k_p))
+
+
+def lyapunov_matrix(params: Parameters) -> np.ndarray:
+    """``P`` as a float array of shape (3, 3)."""
+    k_p, k_i, k_v, _ = params.as_floats()
+    return np.array(lyapunov_matrix_entries(k_p, k_i, k_v), dtype=float)
+
+
+def vhat_matrix_entries(k1: Any, k2: Any, k3: Any, k4: Any) -> tuple[tuple[Any, ...], ...]:
+    """The matrix ``K`` with ``V̂ = ½ wᵀ K w``, ``w = (|σ|, |dz(φ)|, |v|)`` (Lemma 3's proof)."""
+    return ((k1, 0, k3), (0, k2, 0), (k3, 0, k4))
+
+
+def quadratic_form(params: Parameters, sigma: Any, y: Any, v: Any) -> Any:
+    """``(σ, y, v) P (σ, y, v)ᵀ = (k_v/k_i)σ² - 2σv + k_p v² + y²``.
+
+    Works for exact scalars and for float arrays (vectorised)."""
+    if isinstance(sigma, np.ndarray) or isinstance(y, np.ndarray) or isinstance(v, np.ndarray):
+        k_p, k_i, k_v, _ = params.as_floats()
+    else:
+        k_p, k_i, k_v = params.k_p, params.k_i, params.k_v
+    return (k_v / k_i) * sigma**2 - 2 * sigma * v + k_p * v**2 + y**2
+
+
+def _split(x: Any) -> tuple[Any, Any, Any, bool]:
+    arr = np.asarray(x)
+    if arr.dtype == object and arr.ndim == 1:
+        return arr[0], arr[1], arr[2], True
+    arr = arr.astype(float)
+    return arr[..., 0], arr[..., 1], arr[..., 2], False
+
+
+def V(params: Parameters, x: Any) -> Any:
+    """Lyapunov-like function ``V(x)`` of eq. (lyapLike), in closed form.
+
+    Parameters
+    ----------
+    params : Parameters
+    x : array_like, shape (..., 3)
+        States ``(sigma, phi, v)``; a length-3 sequence of Fractions is
+        evaluated exactly.
+
+    Examples
+    --------
+    >>> from fractions import Fraction as F
+    >>> p = Parameters(k_p=3, k_i=4, k_v="6.4")
+    >>> V(p, [F(0), F(0), F(0)]), V(p, [0.0, 0.0, 1e-12]) > 0.99
+    (Fraction(0, 1), True)
+    """
+    sigma, phi, v, exact = _split(x)
+    if exact:
+        f_c = params.f_c
+        f = f_c if v > 0 else -f_c if v < 0 else min(max(phi, -f_c), f_c)
+        return quadratic_form(params, sigma, phi - f, v)
+    f_c = float(params.f_c)
+    f = np.where(v > 0, f_c, np.where(v < 0, -f_c, np.clip(phi, -f_c, f_c)))
+    return quadratic_form(params, sigma, phi - f, v)
+
+
+def V_k(params: Parameters, x: Any, k: int) -> Any:
+    """Smooth piece ``V_k`` of eq. (subcasesAffine:Vs), ``k ∈ {-1, 0, 1}``.
+
+    ``V_1 = |(σ, φ - f_c, v)|²_P``, ``V_0 = |(σ, 0, 0)|²_P``,
+    ``V_{-1} = |(σ, φ + f_c, v)|²_P``.
+    """
+    sigma, phi, v, exact = _split(x)
+    f_c = params.f_c if exact else float(params.f_c)
+    if k == 1:
+        return quadratic_form(params, sigma, phi - f_c, v)
+    if k == -1:
+        return quadratic_form(params, sigma, phi + f_c, v)
+    if k == 0:
+        return quadratic_form(params, sigma, phi * 0, v * 0)
+    raise ValueError(f"k must be -1, 0 or 1; got {k!r}")
+
+
+def V_hat(params: Parameters, x: Any, k: tuple[Any, Any, Any, Any]) -> Any:
+    """Auxiliary function ``V̂`` of eq. (Vhat) with constants ``k = (k1, k2, k3, k4)``."""
+    sigma, phi, v, exact = _split(x)
+    k1, k2, k3, k4 = k if exact else tuple(float(q) for q in k)
+    d = dz(phi, params.f_c if exact else float(params.f_c))
+    half = 1 / 2 if not exact else type(params.f_c)(1, 2)
+    return half * k1 * sigma**2 + half * k2 * d**2 + k3 * abs(sigma) * abs(v) + half * k4 * v**2
+
+
+def in_R(params: Parameters, x: Any) -> Any:
+    """Membership in ``R = {v (φ - sign(v) f_c) ≥ 0}`` (Lemma 3); ``R̂`` is the complement."""
+    sigma, phi, v, exact = _split(x)
+    if exact:
+        sgn = (v > 0) - (v < 0)
+        return v * (phi - sgn * params.f_c) >= 0
+    return v * (phi - np.sign(v) * float(params.f_c)) >= 0

@@ -1,0 +1,171 @@
+"""Normalised PID and friction parameters (paper §II-A, eq. (basic)) and
+Assumption 1.
+
+The paper normalises the physical model by the mass ``m``:
+
+.. math::
+
+    k_p = \\bar k_p/m,\\quad k_v = (\\bar k_d + \\alpha_v)/m,\\quad
+    k_i = \\bar k_i/m,\\quad f_c = \\bar f_c/m,
+
+and every result holds under **Assumption 1**: ``k_i > 0``, ``k_p > 0`` and
+``k_v k_p > k_i`` (with ``f_c > 0`` from the friction model).  The
+parameters are held as exact :class:`~fractions.Fraction` values; floats appear
+only at the numerical boundary (:meth:`Parameters.as_floats`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from fractions import Fraction
+from typing import ClassVar
+
+from ._errors import AssumptionError
+from ._rational import format_rational, to_rational
+
+__all__ = ["Parameters", "TABLE_I"]
+
+
+def _fmt(q: Fraction) -> str:
+    return format_rational(q)
+
+
+@dataclass(frozen=True)
+class Parameters:
+    """Normalised gains ``(k_p, k_i, k_v)`` and Coulomb level ``f_c``.
+
+    Parameters
+    ----------
+    k_p, k_i, k_v, f_c : int, Fraction, sympy Rational, str or float
+        Normalised proportional, integral and velocity gains and Coulomb
+        friction level.  Converted exactly with :func:`to_rational` (a float
+        through its decimal ``repr``).
+
+    Raises
+    ------
+    InvalidNumberError, NonFiniteError
+        If a value is not a finite number.
+    AssumptionError
+        If Assumption 1 (``k_i > 0``, ``k_p > 0``, ``k_v k_p > k_i``) or
+        ``f_c > 0`` is violated; the message gives the numbers.
+
+    Examples
+    --------
+    >>> p = Parameters(k_p=3, k_i=4, k_v="6.4", f_c=1)
+    >>> p.k_v
+    Fraction(32, 5)
+    >>> p.c
+    Fraction(152, 5)
+    """
+
+    k_p: Fraction
+    k_i: Fraction
+    k_v: Fraction
+    f_c: Fraction = field(default=Fraction(1))
+
+    _names: ClassVar[tuple[str, ...]] = ("k_p", "k_i", "k_v", "f_c")
+
+    def __post_init__(self) -> None:
+        for name in self._names:
+            object.__setattr__(self, name, to_rational(getattr(self, name), name=name))
+        k_p, k_i, k_v, f_c = self.k_p, self.k_i, self.k_v, self.f_c
+        if not k_i > 0:
+            raise AssumptionError(f"Assumption 1 needs k_i > 0; got k_i = {_fmt(k_i)}")
+        if not k_p > 0:
+            raise AssumptionError(f"Assumption 1 needs k_p > 0; got k_p = {_fmt(k_p)}")
+        if not k_v * k_p > k_i:
+            raise AssumptionError(
+                "Assumption 1 needs k_v·k_p > k_i; got "
+                f"{_fmt(k_v * k_p)} ≤ {_fmt(k_i)} (k_v = {_fmt(k_v)}, k_p = {_fmt(k_p)}, k_i = {_fmt(k_i)})"
+            )
+        if not f_c > 0:
+            raise AssumptionError(f"the Coulomb level needs f_c > 0; got f_c = {_fmt(f_c)}")
+
+    @classmethod
+    def from_physical(
+        cls,
+        *,
+        m: object,
+        k_p_bar: object,
+        k_i_bar: object,
+        k_d_bar: object,
+        alpha_v: object = 0,
+        f_c_bar: object,
+    ) -> "Parameters":
+        """Build normalised parameters from physical ones (paper §II-A).
+
+        Parameters
+        ----------
+        m : number, keyword-only
+            Mass, ``m > 0``.
+        k_p_bar, k_i_bar, k_d_bar : number, keyword-only
+            Physical PID gains.
+        alpha_v : number, keyword-only
+            Viscous friction coefficient, ``alpha_v >= 0`` (default 0).
+        f_c_bar : number, keyword-only
+            Coulomb friction force, ``f_c_bar > 0``.
+
+        Raises
+        ------
+        AssumptionError
+            If ``m <= 0``, ``alpha_v < 0`` or the normalised gains violate
+            Assumption 1 or ``f_c > 0``.
+
+        Examples
+        --------
+        >>> Parameters.from_physical(m=2, k_p_bar=6, k_i_bar=8, k_d_bar="12.3", alpha_v="0.5", f_c_bar=2).k_v
+        Fraction(32, 5)
+        """
+        m_q = to_rational(m, name="m")
+        if not m_q > 0:
+            raise AssumptionError(f"the mass needs m > 0; got m = {_fmt(m_q)}")
+        a_q = to_rational(alpha_v, name="alpha_v")
+        if a_q < 0:
+            raise AssumptionError(f"the viscous coefficient needs alpha_v ≥ 0; got alpha_v = {_fmt(a_q)}")
+        return cls(
+            k_p=to_rational(k_p_bar, name="k_p_bar") / m_q,
+            k_i=to_rational(k_i_bar, name="k_i_bar") / m_q,
+            k_v=(to_rational(k_d_bar, name="k_d_bar") + a_q) / m_q,
+            f_c=to_rational(f_c_bar, name="f_c_bar") / m_q,
+        )
+
+    @classmethod
+    def table_i(cls, case: str) -> "Parameters":
+        """The paper's Table I gains, ``case`` ``"a"`` or ``"b"``, with ``f_c = 1``.
+
+        >>> Parameters.table_i("b").k_p
+        Fraction(33, 50)
+        """
+        try:
+            return TABLE_I[case]
+        except KeyError:
+            raise AssumptionError(f"Table I has cases 'a' and 'b'; got {case!r}") from None
+
+    @property
+    def c(self) -> Fraction:
+        """Decrease rate ``c = 2(k_v k_p - k_i)`` of Lemma 2, item 2."""
+        return 2 * (self.k_v * self.k_p - self.k_i)
+
+    @property
+    def routh_margin(self) -> Fraction:
+        """``k_v k_p / k_i``; Assumption 1 holds iff this exceeds 1."""
+        return self.k_v * self.k_p / self.k_i
+
+    def as_floats(self) -> tuple[float, float, float, float]:
+        """``(k_p, k_i, k_v, f_c)`` as floats, for numerical code."""
+        return (float(self.k_p), float(self.k_i), float(self.k_v), float(self.f_c))
+
+    def as_strings(self) -> dict[str, str]:
+        """The four parameters as exact ``"p/q"`` strings (file format)."""
+        return {name: _fmt(getattr(self, name)) for name in self._names}
+
+    def __str__(self) -> str:
+        inner = ", ".join(f"{k}={v}" for k, v in self.as_strings().items())
+        return f"Parameters({inner})"
+
+
+TABLE_I: dict[str, Parameters] = {
+    "a": Parameters(k_v="6.4", k_p=3, k_i=4, f_c=1),
+    "b": Parameters(k_v="1.5", k_p="0.66", k_i="0.08", f_c=1),
+}
+"""Table I of the paper: case (a) complex roots, case (b) three real roots."""
