@@ -73,7 +73,8 @@ def to_rational(value: object, *, name: str = "value", binary: bool = False) -> 
     if isinstance(value, float):
         if not math.isfinite(value):
             raise NonFiniteError(f"{name} must be finite; got {value!r}")
-        return Fraction(value) if binary else Fraction(repr(value))
+        # float(...) first: numpy 2 scalars repr as 'np.float64(0.66)'.
+        return Fraction(value) if binary else Fraction(repr(float(value)))
     if isinstance(value, Decimal):
         if not value.is_finite():
             raise NonFiniteError(f"{name} must be finite; got {value!r}")
@@ -94,7 +95,7 @@ def to_rational(value: object, *, name: str = "value", binary: bool = False) -> 
     if type(value).__module__.startswith("sympy"):
         if getattr(value, "is_Rational", False):
             return Fraction(int(value.p), int(value.q))  # type: ignore[attr-defined]
-        if getattr(value, "is_finite", None) is False or getattr(value, "is_real", True) is None:
+        if getattr(value, "is_number", False) and not getattr(value, "is_finite", False):
             raise NonFiniteError(f"{name} must be finite; got {value!r}")
         if getattr(value, "is_Float", False):
             return to_rational(float(value), name=name, binary=binary)

@@ -1,0 +1,36 @@
+"""CLI start-up: fast and free of heavy imports (Standard 6)."""
+
+import subprocess
+import sys
+
+import pytest
+
+from symbolic_friction.cli import COMMANDS, build_parser, main
+
+HEAVY = ("sympy", "scipy", "cvxpy", "matplotlib", "clarabel")
+
+
+def test_help_imports_nothing_heavy():
+    code = (
+        "import sys, contextlib, io\n"
+        "from symbolic_friction.cli import main\n"
+        "with contextlib.redirect_stdout(io.StringIO()):\n"
+        "    try:\n        main(['--help'])\n    except SystemExit:\n        pass\n"
+        f"print(sorted(m for m in {HEAVY!r} if m in sys.modules))\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "[]"
+
+
+def test_every_command_has_help():
+    parser = build_parser()
+    text = parser.format_help()
+    for name in COMMANDS:
+        assert name in text
+
+
+def test_unknown_command_is_a_usage_error(capsys):
+    with pytest.raises(SystemExit) as exc:
+        main(["no-such-command"])
+    assert exc.value.code == 2
+    assert "invalid choice" in capsys.readouterr().err

@@ -1,0 +1,91 @@
+"""Parameters: exact storage, Assumption 1, physical constructor."""
+
+import dataclasses
+from fractions import Fraction
+
+import pytest
+
+from symbolic_friction import TABLE_I, AssumptionError, InvalidNumberError, NonFiniteError, Parameters
+
+
+def test_exact_storage_and_c():
+    p = Parameters(k_p=3, k_i=4, k_v="6.4", f_c=1)
+    assert (p.k_p, p.k_i, p.k_v, p.f_c) == (3, 4, Fraction(32, 5), 1)
+    assert p.c == 2 * (Fraction(32, 5) * 3 - 4)
+    assert p.as_strings() == {"k_p": "3", "k_i": "4", "k_v": "32/5", "f_c": "1"}
+
+
+def test_frozen():
+    p = TABLE_I["a"]
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        p.k_p = Fraction(1)  # type: ignore[misc]
+
+
+def test_table_i():
+    assert Parameters.table_i("b") == Parameters(k_v="1.5", k_p="0.66", k_i="0.08", f_c=1)
+    with pytest.raises(AssumptionError, match="Table I has cases 'a' and 'b'; got 'c'"):
+        Parameters.table_i("c")
+
+
+def test_assumption1_message_gives_numbers():
+    with pytest.raises(AssumptionError, match=r"Assumption 1 needs k_v·k_p > k_i; got 1 ≤ 3/2"):
+        Parameters(k_p=1, k_i="1.5", k_v=1)
+
+
+def test_assumption1_boundary_is_rejected():
+    with pytest.raises(AssumptionError, match="k_v·k_p > k_i; got 4 ≤ 4"):
+        Parameters(k_p=2, k_i=4, k_v=2)
+
+
+@pytest.mark.parametrize(("field", "value"), [("k_i", 0), ("k_i", -1), ("k_p", 0), ("k_p", "-0.5")])
+def test_positive_gains(field, value):
+    kwargs = {"k_p": 3, "k_i": 4, "k_v": "6.4", field: value}
+    with pytest.raises(AssumptionError, match=f"Assumption 1 needs {field} > 0; got {field} = "):
+        Parameters(**kwargs)
+
+
+@pytest.mark.parametrize("f_c", [0, "-1", Fraction(-1, 3)])
+def test_fc_positive(f_c):
+    with pytest.raises(AssumptionError, match="f_c > 0; got f_c = "):
+        Parameters(k_p=3, k_i=4, k_v="6.4", f_c=f_c)
+
+
+@pytest.mark.parametrize("bad", [float("nan"), float("inf"), "-inf"])
+def test_non_finite_gain(bad):
+    with pytest.raises(NonFiniteError, match="k_v must be finite"):
+        Parameters(k_p=3, k_i=4, k_v=bad)
+
+
+def test_non_numeric_gain():
+    with pytest.raises(InvalidNumberError, match="k_p must be a decimal"):
+        Parameters(k_p="three", k_i=4, k_v=7)
+
+
+def test_from_physical():
+    p = Parameters.from_physical(m=2, k_p_bar=6, k_i_bar=8, k_d_bar="12.3", alpha_v="0.5", f_c_bar=2)
+    assert p == Parameters(k_p=3, k_i=4, k_v="6.4", f_c=1)
+
+
+@pytest.mark.parametrize("m", [0, -1, "-0.1"])
+def test_from_physical_mass(m):
+    with pytest.raises(AssumptionError, match="the mass needs m > 0; got m = "):
+        Parameters.from_physical(m=m, k_p_bar=6, k_i_bar=8, k_d_bar=12, f_c_bar=2)
+
+
+def test_from_physical_alpha_v():
+    with pytest.raises(AssumptionError, match="alpha_v ≥ 0; got alpha_v = -1"):
+        Parameters.from_physical(m=1, k_p_bar=6, k_i_bar=8, k_d_bar=12, alpha_v=-1, f_c_bar=2)
+
+
+def test_from_physical_non_finite():
+    with pytest.raises(NonFiniteError, match="m must be finite"):
+        Parameters.from_physical(m=float("nan"), k_p_bar=6, k_i_bar=8, k_d_bar=12, f_c_bar=2)
+
+
+def test_from_physical_fc():
+    with pytest.raises(AssumptionError, match="f_c > 0; got f_c = 0"):
+        Parameters.from_physical(m=1, k_p_bar=6, k_i_bar=8, k_d_bar=12, f_c_bar=0)
+
+
+def test_routh_margin():
+    assert TABLE_I["a"].routh_margin == Fraction(32, 5) * 3 / 4
