@@ -1,17 +1,169 @@
-"""``symbolic-friction check``: placeholder until its issue lands."""
+"""``symbolic-friction check``: re-derive every proof obligation of the paper.
+
+The command is a list of *sections* (:data:`SECTIONS`).  Each section is a
+function ``(args) -> Section`` that does its work and returns its printable
+table, its JSON members and whether it is satisfied; ``run`` prints them in
+order and exits 0 only if every section is satisfied.  Further checks (for
+example the exact verification of every certificate under ``proofs/``) are
+added by appending a function to :data:`SECTIONS`.
+
+The obligations section runs every obligation from
+:func:`symbolic_friction._obligations.all_obligations`, lists the errata and
+compares ``<DIR>/obligations.md`` with what it would write now (``--write``
+regenerates it).
+
+Only the standard library is imported at module level (fast ``--help``).
+"""
 
 from __future__ import annotations
 
 import argparse
+import json
+import sys
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
 
-from .._errors import SymbolicFrictionError
-
-HELP = "(not implemented yet)"
+HELP = "re-derive the paper's proof obligations for symbolic gains; exit 0 only if all hold"
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    """No arguments yet."""
+    """``--json``, ``--write`` and ``--proofs DIR``."""
+    parser.add_argument("--json", action="store_true", help='print {"obligations": [...], "errata": [...]} as JSON instead of a table')
+    parser.add_argument("--write", action="store_true", help="regenerate DIR/obligations.md (atomically) instead of checking it")
+    parser.add_argument(
+        "--proofs",
+        metavar="DIR",
+        default="proofs",
+        help="directory of the committed proof files (default: proofs); if it does not exist the staleness check is skipped",
+    )
+
+
+@dataclass
+class Section:
+    """What one part of ``check`` found.
+
+    Attributes
+    ----------
+    title : str
+        Heading of the printed table.
+    columns : tuple of str
+        Column names of the printed table.
+    rows : list of tuple of str
+        Printed rows.
+    json : dict
+        Members merged into the ``--json`` object.
+    ok : bool
+        Whether this section is satisfied.
+    notes : list of str
+        Lines printed after the table (to stderr under ``--json``).
+    """
+
+    title: str
+    columns: tuple[str, ...]
+    rows: list[tuple[str, ...]]
+    json: dict[str, Any]
+    ok: bool
+    notes: list[str] = field(default_factory=list)
+
+
+def _short(text: str, width: int) -> str:
+    return text if len(text) <= width else text[: width - 1] + "…"
+
+
+def obligations_section(args: argparse.Namespace) -> Section:
+    """Run every obligation, list the errata and check or write the report."""
+    from .._obligations import all_errata, all_obligations
+    from .._obligations._base import FAILS, Result
+    from .._report import render_report, report_path, write_atomic
+
+    results: list[Result] = []
+    for ob in all_obligations():
+        start = time.perf_counter()
+        try:
+            results.append(ob.run())
+        except Exception as exc:  # a crashing check is reported as failing, never as holding
+            results.append(
+                Result(
+                    id=ob.id, paper=ob.paper, statement=ob.statement, method=ob.method, status=FAILS,
+                    seconds=time.perf_counter() - start, reason=f"error while checking: {type(exc).__name__}: {exc}",
+                )
+            )
+    errata = all_errata()
+    notes: list[str] = []
+    ok = all(r.holds for r in results)
+    for r in results:
+        if not r.holds:
+            notes.append(f"FAILS {r.id}: {r.reason}")
+    if errata:
+        notes.append("Errata (the paper's text is wrong here; the corrected statement was checked):")
+        for n, e in enumerate(errata, 1):
+            notes.append(f"  {n}. {e.where}: the paper says \"{e.paper_says}\"; correct: {e.correct} [checked by {e.checked_by}]")
+
+    text = render_report(results, errata)
+    proofs = Path(args.proofs)
+    target = report_path(proofs)
+    if args.write:
+        proofs.mkdir(parents=True, exist_ok=True)
+        write_atomic(target, text)
+        notes.append(f"wrote {target}")
+    elif not proofs.is_dir():
+        notes.append(f"note: {proofs} is not a directory; skipped the staleness check of {target}")
+    elif not target.is_file():
+        ok = False
+        notes.append(f"STALE: {target} is missing; run `symbolic-friction check --write` and commit it")
+    elif target.read_bytes() != text.encode("utf-8"):
+        ok = False
+        notes.append(f"STALE: {target} differs from what `check` derives now; run `symbolic-friction check --write` and commit it")
+
+    rows = [
+        (r.id, _short(r.paper, 36), _short(r.statement, 60), _short(r.method, 44), r.status, f"{r.seconds:.2f}")
+        for r in results
+    ]
+    total = sum(r.seconds for r in results)
+    held = sum(1 for r in results if r.holds)
+    notes.insert(0, f"{held} of {len(results)} obligations hold ({total:.1f} s)")
+    return Section(
+        title="Proof obligations",
+        columns=("id", "paper", "statement", "method", "status", "seconds"),
+        rows=rows,
+        json={"obligations": [r.as_json() for r in results], "errata": [e.as_json() for e in errata]},
+        ok=ok,
+        notes=notes,
+    )
+
+
+SECTIONS: list[Callable[[argparse.Namespace], Section]] = [obligations_section]
+"""The parts of ``check``, in order; append to extend the command."""
+
+
+def _format_table(section: Section) -> str:
+    widths = [len(c) for c in section.columns]
+    for row in section.rows:
+        widths = [max(w, len(cell)) for w, cell in zip(widths, row)]
+    line = "  ".join("-" * w for w in widths)
+    head = "  ".join(c.ljust(w) for c, w in zip(section.columns, widths))
+    body = ["  ".join(cell.ljust(w) for cell, w in zip(row, widths)).rstrip() for row in section.rows]
+    return "\n".join([section.title, head.rstrip(), line, *body])
 
 
 def run(args: argparse.Namespace) -> int:
-    raise SymbolicFrictionError("'check' is not implemented yet")
+    """Run every section; 0 if all are satisfied, 1 otherwise."""
+    sections = [make(args) for make in SECTIONS]
+    if args.json:
+        payload: dict[str, Any] = {}
+        for s in sections:
+            payload.update(s.json)
+        print(json.dumps(payload, indent=2, ensure_ascii=False))
+        for s in sections:
+            for note in s.notes:
+                print(note, file=sys.stderr)
+    else:
+        for s in sections:
+            print(_format_table(s))
+            print()
+            for note in s.notes:
+                print(note)
+    return 0 if all(s.ok for s in sections) else 1

@@ -1,17 +1,32 @@
-"""``symbolic-friction figures``: placeholder until its issue lands."""
+"""``symbolic-friction figures``: regenerate the paper's figures (and any other
+registered figure) as PNG files.
+
+The figures live in a registry (:mod:`symbolic_friction._figures`); matplotlib
+is imported only when a figure is drawn.  This module imports only the
+standard library at top level (Standard 6).
+"""
 
 from __future__ import annotations
 
 import argparse
 
-from .._errors import SymbolicFrictionError
-
-HELP = "(not implemented yet)"
+HELP = "regenerate the paper's figures (Fig. 2, 3a, 3b, 4, ...) as PNG files"
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    """No arguments yet."""
+    """``--out DIR [--only NAME ...] [--list]``."""
+    parser.add_argument("--out", default="figures", metavar="DIR", help="output directory (default: ./figures)")
+    parser.add_argument("--only", nargs="+", metavar="NAME", help="draw only these figures (see --list)")
+    parser.add_argument("--list", action="store_true", help="list the available figures and exit")
 
 
 def run(args: argparse.Namespace) -> int:
-    raise SymbolicFrictionError("'figures' is not implemented yet")
+    from .._figures import available_figures, make_figures
+
+    if args.list:
+        for spec in available_figures().values():
+            print(f"{spec.name:10s} {spec.description}")
+        return 0
+    for path in make_figures(args.out, args.only):
+        print(f"wrote {path}")
+    return 0

@@ -1,0 +1,450 @@
+"""The certificate of Lemma 2, Lemma 3 and Proposition 1 for one gain set, and
+its JSON file format ``symbolic-friction/certificate/v1``.
+
+A certificate holds, as exact rationals, the gains ``(k_p, k_i, k_v, f_c)``
+and the constants that instantiate
+
+* Lemma 2: ``c₁|x|²_𝒜 ≤ V(x)`` and ``V̇ ≤ -c v²`` with ``c = 2(k_v k_p - k_i)``;
+* Lemma 3: ``c₁|x|²_𝒜 ≤ V ≤ c₂|x|²_𝒜`` on ``R`` (eq. VandR),
+  ``ĉ₁|x|²_𝒜 ≤ V̂ ≤ ĉ₂|x|²_𝒜`` on ``R̂`` (eq. hatVandHatR) and
+  ``V̂° ≤ 0`` on ``R̂`` (eq. hatVdot) through ``k₁ … k₄``;
+* Proposition 1, eq. (stabState): ``|x(t)|_𝒜 ≤ κ|x(0)|_𝒜`` with
+  ``κ = √(c₂ĉ₂/(c₁ĉ₁))``, written as the decimal ``overshoot_bound ≥ κ``.
+
+This module only reads and writes the data: it checks the *form* of a file
+(JSON, schema, keys, exact rational strings, positivity) and raises
+:class:`~symbolic_friction.CertificateFormatError` naming the offending key.
+Whether the numbers *prove* anything is decided by :mod:`._certify.verify`.
+
+File format (keys sorted, two-space indentation, trailing newline; no
+timestamps, timings or third-party version numbers, so that regenerating a
+certificate gives a byte-identical file on any machine)::
+
+    {
+      "constants": {"c": "152/5", "c1": "1", "c1_hat": "1", ...},
+      "overshoot_bound": "3.69516",
+      "parameters": {"f_c": "1", "k_i": "4", "k_p": "3", "k_v": "32/5"},
+      "provenance": {...},
+      "schema": "symbolic-friction/certificate/v1"
+    }
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import tempfile
+from dataclasses import dataclass, field
+from fractions import Fraction
+from pathlib import Path
+from typing import Any
+
+from .._errors import CertificateFormatError
+from .._rational import format_rational
+
+__all__ = [
+    "SCHEMA",
+    "PARAMETER_NAMES",
+    "CONSTANT_NAMES",
+    "OBLIGATIONS",
+    "Provenance",
+    "Certificate",
+    "dumps",
+    "loads",
+    "load",
+    "atomic_write_text",
+    "load_certificate",
+    "loads_certificate",
+    "dumps_certificate",
+]
+
+SCHEMA = "symbolic-friction/certificate/v1"
+PARAMETER_NAMES: tuple[str, ...] = ("k_p", "k_i", "k_v", "f_c")
+CONSTANT_NAMES: tuple[str, ...] = ("k1", "k2", "k3", "k4", "c1", "c2", "c1_hat", "c2_hat", "c")
+OBLIGATIONS: tuple[str, ...] = (
+    "lemma2.P",
+    "lemma2.lower_bound",
+    "lemma2.dVdt",
+    "lemma3.R",
+    "lemma3.hatV_bounds",
+    "lemma3.hatV_derivative",
+    "prop1.stability_bound",
+)
+"""The proof obligations (ids of ``symbolic-friction check``) a certificate instantiates."""
+
+_TOP_KEYS = ("schema", "parameters", "constants", "overshoot_bound")
+_OPTIONAL_TOP_KEYS = ("provenance",)
+_PROVENANCE_KEYS = ("package", "package_version", "mode", "margin", "solver", "solver_status", "obligations", "label")
+_RATIONAL_RE = re.compile(r"^[+-]?\d+(/\d+)?$")
+_DECIMAL_RE = re.compile(r"^\d+(\.\d+)?$")
+
+
+def _rational_field(value: object, key: str) -> Fraction:
+    """Parse one exact rational string of the file format; must be positive."""
+    if isinstance(value, bool) or not isinstance(value, str):
+        kind = "float" if isinstance(value, float) else type(value).__name__
+        raise CertificateFormatError(
+            f"{key} must be a string holding an exact rational such as '32/5' or '4'; got the {kind} {value!r}"
+        )
+    if not _RATIONAL_RE.match(value):
+        raise CertificateFormatError(
+            f"{key} must be an exact rational string such as '32/5' or '4' (no decimals, no spaces); got {value!r}"
+        )
+    num, _, den = value.partition("/")
+    if den and int(den) == 0:
+        raise CertificateFormatError(f"{key} has a zero denominator: {value!r}")
+    q = Fraction(int(num), int(den) if den else 1)
+    if not q > 0:
+        raise CertificateFormatError(f"{key} must be positive; got {value!r}")
+    return q
+
+
+def _as_positive_fraction(value: object, key: str) -> Fraction:
+    """Constructor-side conversion: Fraction/int (or a file-format string) → positive Fraction."""
+    if isinstance(value, bool):
+        raise CertificateFormatError(f"{key} must be an exact rational; got the boolean {value!r}")
+    if isinstance(value, int):
+        value = Fraction(value)
+    if isinstance(value, Fraction):
+        if not value > 0:
+            raise CertificateFormatError(f"{key} must be positive; got {format_rational(value)}")
+        return value
+    return _rational_field(value, key)
+
+
+def _decimal_field(value: object, key: str) -> str:
+    if isinstance(value, bool) or not isinstance(value, str):
+        kind = "float" if isinstance(value, float) else type(value).__name__
+        raise CertificateFormatError(f"{key} must be a decimal string such as '3.69516'; got the {kind} {value!r}")
+    if not _DECIMAL_RE.match(value):
+        raise CertificateFormatError(f"{key} must be a plain decimal string such as '3.69516'; got {value!r}")
+    if not Fraction(value) > 0:
+        raise CertificateFormatError(f"{key} must be positive; got {value!r}")
+    return value
+
+
+@dataclass(frozen=True)
+class Provenance:
+    """How a certificate was found (informative; never part of the proof).
+
+    Attributes
+    ----------
+    mode : str
+        ``"feasible"``, ``"tightest"`` or any other label of the producer.
+    margin : Fraction
+        Relative margin imposed on the strict inequalities during the search.
+    solver, solver_status : str
+        Numerical solver and the status it reported for the candidate.
+    package_version : str
+        Version of :mod:`symbolic_friction` that wrote the file.
+    obligations : tuple of str
+        Ids of the proof obligations the certificate instantiates.
+    label : str
+        Free text, e.g. ``"Table I, case (a)"``.
+    package : str
+        Always ``"symbolic-friction"``.
+    """
+
+    mode: str
+    margin: Fraction
+    solver: str
+    solver_status: str
+    package_version: str
+    obligations: tuple[str, ...] = OBLIGATIONS
+    label: str = ""
+    package: str = "symbolic-friction"
+
+    def __post_init__(self) -> None:
+        for name in ("mode", "solver", "solver_status", "package_version", "label", "package"):
+            if not isinstance(getattr(self, name), str):
+                raise CertificateFormatError(
+                    f"provenance.{name} must be a string; got {type(getattr(self, name)).__name__}"
+                )
+        object.__setattr__(self, "margin", _as_positive_fraction(self.margin, "provenance.margin"))
+        obligations = self.obligations
+        if isinstance(obligations, str) or not all(isinstance(o, str) for o in obligations):
+            raise CertificateFormatError(f"provenance.obligations must be a list of strings; got {obligations!r}")
+        object.__setattr__(self, "obligations", tuple(obligations))
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready mapping (exact margin as a rational string)."""
+        return {
+            "package": self.package,
+            "package_version": self.package_version,
+            "mode": self.mode,
+            "margin": format_rational(self.margin),
+            "solver": self.solver,
+            "solver_status": self.solver_status,
+            "obligations": list(self.obligations),
+            "label": self.label,
+        }
+
+    @classmethod
+    def from_dict(cls, data: object) -> "Provenance":
+        """Parse the ``provenance`` object of a file, strictly."""
+        if not isinstance(data, dict):
+            raise CertificateFormatError(f"provenance must be a JSON object; got {type(data).__name__}")
+        _check_keys(data, required=_PROVENANCE_KEYS, optional=(), where="provenance")
+        if not isinstance(data["obligations"], list):
+            raise CertificateFormatError(
+                f"provenance.obligations must be a list of strings; got {type(data['obligations']).__name__}"
+            )
+        return cls(
+            mode=data["mode"],
+            margin=_rational_field(data["margin"], "provenance.margin"),
+            solver=data["solver"],
+            solver_status=data["solver_status"],
+            package_version=data["package_version"],
+            obligations=tuple(data["obligations"]),
+            label=data["label"],
+            package=data["package"],
+        )
+
+
+@dataclass(frozen=True)
+class Certificate:
+    """Exact constants claimed to prove Lemma 2, Lemma 3 and Proposition 1 for one gain set.
+
+    All numeric fields are positive :class:`~fractions.Fraction` values
+    (ints and exact rational strings such as ``"32/5"`` are accepted).  The
+    constructor checks the *form* only; :func:`~symbolic_friction.verify_certificate`
+    decides whether the inequalities hold.
+
+    Attributes
+    ----------
+    k_p, k_i, k_v, f_c : Fraction
+        Normalised gains and Coulomb level.
+    k1, k2, k3, k4 : Fraction
+        Coefficients of ``V̂`` (eq. Vhat).
+    c1, c2 : Fraction
+        Bounds of ``V`` (Lemma 2, eq. VandR).
+    c1_hat, c2_hat : Fraction
+        Bounds of ``V̂`` on ``R̂`` (eq. hatVandHatR).
+    c : Fraction
+        Decrease rate of Lemma 2, item 2; must equal ``2(k_v k_p - k_i)``.
+    overshoot_bound : str
+        Decimal string claimed to be ``≥ √(c₂ĉ₂/(c₁ĉ₁))`` (eq. stabState).
+    provenance : Provenance or None
+        How the certificate was found.
+
+    Raises
+    ------
+    CertificateFormatError
+        If a field is not a positive exact rational (or, for
+        ``overshoot_bound``, a positive decimal string).
+    """
+
+    k_p: Fraction
+    k_i: Fraction
+    k_v: Fraction
+    f_c: Fraction
+    k1: Fraction
+    k2: Fraction
+    k3: Fraction
+    k4: Fraction
+    c1: Fraction
+    c2: Fraction
+    c1_hat: Fraction
+    c2_hat: Fraction
+    c: Fraction
+    overshoot_bound: str
+    provenance: Provenance | None = field(default=None)
+
+    def __post_init__(self) -> None:
+        for name in PARAMETER_NAMES:
+            object.__setattr__(self, name, _as_positive_fraction(getattr(self, name), f"parameters.{name}"))
+        for name in CONSTANT_NAMES:
+            object.__setattr__(self, name, _as_positive_fraction(getattr(self, name), f"constants.{name}"))
+        _decimal_field(self.overshoot_bound, "overshoot_bound")
+        if self.provenance is not None and not isinstance(self.provenance, Provenance):
+            raise CertificateFormatError(
+                f"provenance must be a Provenance or None; got {type(self.provenance).__name__}"
+            )
+
+    # -- derived quantities -------------------------------------------------
+    @property
+    def parameters(self) -> dict[str, Fraction]:
+        """``{"k_p": …, "k_i": …, "k_v": …, "f_c": …}`` (exact)."""
+        return {name: getattr(self, name) for name in PARAMETER_NAMES}
+
+    def as_parameters(self) -> Any:
+        """The gains as :class:`~symbolic_friction.Parameters` (for simulation or re-certification).
+
+        Raises
+        ------
+        AssumptionError
+            If the certificate's gains violate Assumption 1 (such a
+            certificate also fails verification).
+        """
+        from .._parameters import Parameters
+
+        return Parameters(k_p=self.k_p, k_i=self.k_i, k_v=self.k_v, f_c=self.f_c)
+
+    @property
+    def constants(self) -> dict[str, Fraction]:
+        """``{"k1": …, …, "c": …}`` in the order of :data:`CONSTANT_NAMES` (exact)."""
+        return {name: getattr(self, name) for name in CONSTANT_NAMES}
+
+    @property
+    def kappa_squared(self) -> Fraction:
+        """``c₂ĉ₂/(c₁ĉ₁)``, the exact square of Proposition 1's constant."""
+        return (self.c2 * self.c2_hat) / (self.c1 * self.c1_hat)
+
+    @property
+    def kappa(self) -> float:
+        """The claimed overshoot bound as a float (for display and plots)."""
+        return float(self.overshoot_bound)
+
+    # -- (de)serialisation --------------------------------------------------
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready mapping of the file format."""
+        out: dict[str, Any] = {
+            "schema": SCHEMA,
+            "parameters": {k: format_rational(v) for k, v in self.parameters.items()},
+            "constants": {k: format_rational(v) for k, v in self.constants.items()},
+            "overshoot_bound": self.overshoot_bound,
+        }
+        if self.provenance is not None:
+            out["provenance"] = self.provenance.to_dict()
+        return out
+
+    @classmethod
+    def from_dict(cls, data: object) -> "Certificate":
+        """Build a certificate from a parsed JSON object, strictly.
+
+        Raises
+        ------
+        CertificateFormatError
+            Naming the key: unknown schema, missing or unknown keys, a number
+            that is not an exact rational string, a non-positive value.
+        """
+        if not isinstance(data, dict):
+            raise CertificateFormatError(f"a certificate must be a JSON object; got a JSON {_json_kind(data)}")
+        if "schema" not in data:
+            raise CertificateFormatError(f"missing key 'schema' (expected {SCHEMA!r})")
+        if data["schema"] != SCHEMA:
+            raise CertificateFormatError(f"unknown schema {data['schema']!r}; expected {SCHEMA!r}")
+        _check_keys(data, required=_TOP_KEYS, optional=_OPTIONAL_TOP_KEYS, where="certificate")
+        parameters = data["parameters"]
+        constants = data["constants"]
+        for where, obj, names in (("parameters", parameters, PARAMETER_NAMES), ("constants", constants, CONSTANT_NAMES)):
+            if not isinstance(obj, dict):
+                raise CertificateFormatError(f"{where} must be a JSON object; got a JSON {_json_kind(obj)}")
+            _check_keys(obj, required=names, optional=(), where=where)
+        values = {name: _rational_field(parameters[name], f"parameters.{name}") for name in PARAMETER_NAMES}
+        values.update({name: _rational_field(constants[name], f"constants.{name}") for name in CONSTANT_NAMES})
+        provenance = Provenance.from_dict(data["provenance"]) if "provenance" in data else None
+        return cls(
+            **values,
+            overshoot_bound=_decimal_field(data["overshoot_bound"], "overshoot_bound"),
+            provenance=provenance,
+        )
+
+
+def _json_kind(value: object) -> str:
+    return {dict: "object", list: "array", str: "string", bool: "boolean", type(None): "null"}.get(
+        type(value), "number"
+    )
+
+
+def _check_keys(obj: dict[str, Any], *, required: tuple[str, ...], optional: tuple[str, ...], where: str) -> None:
+    missing = [k for k in required if k not in obj]
+    if missing:
+        prefix = "" if where == "certificate" else f"{where}."
+        raise CertificateFormatError(
+            f"missing key{'s' if len(missing) > 1 else ''} {', '.join(repr(prefix + k) for k in missing)} "
+            f"in {where} (required: {', '.join(required)})"
+        )
+    unknown = sorted(k for k in obj if k not in required and k not in optional)
+    if unknown:
+        raise CertificateFormatError(
+            f"unknown key{'s' if len(unknown) > 1 else ''} {', '.join(repr(k) for k in unknown)} in {where} "
+            f"(allowed: {', '.join(required + optional)})"
+        )
+
+
+def dumps(certificate: Certificate) -> str:
+    """The file text: sorted keys, two-space indentation, ASCII, trailing newline."""
+    return json.dumps(certificate.to_dict(), indent=2, sort_keys=True, ensure_ascii=True) + "\n"
+
+
+def _reject_constant(name: str) -> None:
+    raise CertificateFormatError(f"not valid JSON: the constant {name} is not allowed in a certificate")
+
+
+def _no_duplicates(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
+    out: dict[str, Any] = {}
+    for key, value in pairs:
+        if key in out:
+            raise CertificateFormatError(f"duplicate key {key!r} in a JSON object")
+        out[key] = value
+    return out
+
+
+def loads(text: str | bytes, *, source: str = "<string>") -> Certificate:
+    """Parse a certificate from its file text, strictly.
+
+    Raises
+    ------
+    CertificateFormatError
+        If ``text`` is not JSON (the message gives ``source``, line and
+        column) or violates the format (see :meth:`Certificate.from_dict`).
+    """
+    if isinstance(text, bytes):
+        try:
+            text = text.decode("utf-8")
+        except UnicodeDecodeError as exc:
+            raise CertificateFormatError(f"{source}: not valid JSON: not UTF-8 ({exc.reason} at byte {exc.start})")
+    try:
+        data = json.loads(text, parse_constant=_reject_constant, object_pairs_hook=_no_duplicates)
+    except json.JSONDecodeError as exc:
+        raise CertificateFormatError(
+            f"{source}: not valid JSON: {exc.msg} at line {exc.lineno}, column {exc.colno}"
+        ) from None
+    except CertificateFormatError as exc:
+        raise CertificateFormatError(f"{source}: {exc}") from None
+    try:
+        return Certificate.from_dict(data)
+    except CertificateFormatError as exc:
+        raise CertificateFormatError(f"{source}: {exc}") from None
+
+
+def load(path: str | os.PathLike[str]) -> Certificate:
+    """Read and parse a certificate file (see :func:`loads`)."""
+    path = Path(path)
+    return loads(path.read_bytes(), source=str(path))
+
+
+def atomic_write_text(path: str | os.PathLike[str], text: str) -> Path:
+    """Write ``text`` to ``path`` atomically (temporary file in the same directory + ``os.replace``).
+
+    Readers see either the old file or the complete new one, never a
+    partial write.  Line endings are written as ``\\n`` on every platform.
+    """
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    # mkstemp creates the file 0600; give the result the mode of the file it
+    # replaces (or the usual 0644) so committed files stay world-readable.
+    mode = path.stat().st_mode & 0o777 if path.exists() else 0o644
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    try:
+        os.chmod(tmp, mode)
+        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as handle:
+            handle.write(text)
+            handle.flush()
+            os.fsync(handle.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        try:
+            os.unlink(tmp)
+        except FileNotFoundError:
+            pass
+        raise
+    return path
+
+
+# Unambiguous names for the package's top-level API.
+load_certificate = load
+loads_certificate = loads
+dumps_certificate = dumps

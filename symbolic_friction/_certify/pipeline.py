@@ -1,0 +1,264 @@
+"""Find, prove and write certificates: search → exact rounding → exact
+verification → atomic write of the JSON and its Markdown report.
+
+Nothing is written unless :func:`~._certify.verify.verify_certificate` has
+proved it, and regenerating a certificate writes byte-identical files, which
+is what :func:`check_committed_certificates` relies on to detect stale files.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Iterable
+
+from .._errors import CertificateError, CertificateFormatError, ParameterError, SymbolicFrictionError
+from .._parameters import Parameters
+from .certificate import Certificate, atomic_write_text, dumps, load
+from .report import render_markdown
+from .rounding import to_certificate
+from .search import MODES, check_margin, check_mode, find_candidate
+from .verify import VerificationReport, verify_certificate
+
+__all__ = [
+    "certify",
+    "render_files",
+    "write_certificate",
+    "certify_table_i",
+    "table_i_stem",
+    "TABLE_I_FILES",
+    "default_stem",
+    "regenerate",
+    "CommittedCertificate",
+    "check_committed_certificates",
+]
+
+TABLE_I_LABELS = {"a": "Table I, case (a)", "b": "Table I, case (b)"}
+TABLE_I_FILES: tuple[str, ...] = tuple(f"case_{case}_{mode}.json" for case in TABLE_I_LABELS for mode in MODES)
+"""The committed certificates of ``proofs/`` (both cases of Table I, both modes)."""
+
+
+def certify(params: Parameters, *, mode: str = "tightest", margin: object = None, label: str = "") -> Certificate:
+    """Search, round and exactly verify a certificate for ``params``.
+
+    Parameters
+    ----------
+    params : Parameters
+        Gains satisfying Assumption 1.
+    mode : {"tightest", "feasible"}, keyword-only
+        ``tightest`` minimises the overshoot bound κ; ``feasible`` returns
+        constants with a wider margin from a cheaper (non-SDP) search.
+    margin : number, keyword-only
+        Relative margin on the strict inequalities (default: 1/10⁶ for
+        tightest, 1/100 for feasible).
+    label : str, keyword-only
+        Free text stored in the provenance.
+
+    Returns
+    -------
+    Certificate
+        A certificate that :func:`~symbolic_friction.verify_certificate` proves.
+
+    Raises
+    ------
+    InfeasibleError, InaccurateSolveError
+        If the solver does not report an optimal solution.
+    CertificateError
+        If the rounded constants do not verify (never silently returned).
+
+    Examples
+    --------
+    >>> cert = certify(Parameters.table_i("a"))
+    >>> cert.k1, cert.k2, cert.overshoot_bound
+    (Fraction(2, 1), Fraction(2, 1), '3.46703')
+    """
+    candidate = find_candidate(params, mode=mode, margin=margin)
+    certificate = to_certificate(candidate, label=label)
+    report = verify_certificate(certificate)
+    if not report.proved:
+        raise CertificateError(
+            f"the rounded {mode} candidate for {params} does not verify exactly: "
+            + "; ".join(check.message for check in report.failures)
+        )
+    return certificate
+
+
+def render_files(certificate: Certificate, *, name: str) -> tuple[str, str, VerificationReport]:
+    """The JSON text and the Markdown report of a *proved* certificate.
+
+    Raises
+    ------
+    CertificateError
+        If the certificate does not verify (nothing unproved is ever rendered
+        for writing).
+    """
+    report = verify_certificate(certificate, source=name)
+    report.raise_if_failed()
+    return dumps(certificate), render_markdown(report, name=name), report
+
+
+def write_certificate(certificate: Certificate, path: str | os.PathLike[str]) -> tuple[Path, Path]:
+    """Verify ``certificate`` and write ``path`` (JSON) and its ``.md`` report, atomically.
+
+    Returns
+    -------
+    (Path, Path)
+        The JSON file and the Markdown file.
+
+    Raises
+    ------
+    ParameterError
+        If ``path`` does not end in ``.json``.
+    CertificateError
+        If the certificate does not verify; nothing is written then.
+    """
+    path = Path(path)
+    if path.suffix != ".json":
+        raise ParameterError(f"a certificate file name must end in '.json'; got {str(path)!r}")
+    json_text, md_text, _ = render_files(certificate, name=path.name)
+    md_path = path.with_suffix(".md")
+    atomic_write_text(path, json_text)
+    atomic_write_text(md_path, md_text)
+    return path, md_path
+
+
+def table_i_stem(case: str, mode: str) -> str:
+    """``"case_a_tightest"`` etc."""
+    return f"case_{case}_{mode}"
+
+
+def default_stem(params: Parameters, mode: str) -> str:
+    """A deterministic file stem for one gain set: ``certificate_<hash of the exact gains>_<mode>``."""
+    key = ",".join(f"{k}={v}" for k, v in params.as_strings().items())
+    return f"certificate_{hashlib.sha256(key.encode()).hexdigest()[:12]}_{mode}"
+
+
+def certify_table_i(directory: str | os.PathLike[str] = "proofs", *, modes: Iterable[str] = MODES) -> list[Path]:
+    """Certify Table I's cases (a) and (b) in each mode and write them under ``directory``.
+
+    Returns the written paths (JSON and Markdown, in order).
+    """
+    directory = Path(directory)
+    written: list[Path] = []
+    for case, label in TABLE_I_LABELS.items():
+        for mode in modes:
+            cert = certify(Parameters.table_i(case), mode=check_mode(mode), label=label)
+            written.extend(write_certificate(cert, directory / f"{table_i_stem(case, mode)}.json"))
+    return written
+
+
+def regenerate(certificate: Certificate) -> Certificate:
+    """What ``certify`` would produce now for the gains, mode, margin and label of ``certificate``.
+
+    Raises
+    ------
+    CertificateFormatError
+        If the certificate has no provenance or an unknown mode (it cannot be regenerated).
+    """
+    prov = certificate.provenance
+    if prov is None:
+        raise CertificateFormatError("the certificate has no provenance, so it cannot be regenerated")
+    if prov.mode not in MODES:
+        raise CertificateFormatError(
+            f"provenance.mode is {prov.mode!r}; only {', '.join(MODES)} certificates can be regenerated"
+        )
+    return certify(certificate.as_parameters(), mode=prov.mode, margin=check_margin(prov.margin, prov.mode), label=prov.label)
+
+
+@dataclass(frozen=True)
+class CommittedCertificate:
+    """The state of one committed certificate (see :func:`check_committed_certificates`).
+
+    Attributes
+    ----------
+    path : Path
+        The JSON file (or the expected path of a missing one).
+    report : VerificationReport or None
+        Exact verification, or None if the file is missing or malformed.
+    stale : bool
+        True if the JSON or its ``.md`` differs byte-for-byte from what
+        ``certify`` would write now (or is missing, or cannot be regenerated).
+    reason : str
+        Why it is not ok (empty when ok).
+    """
+
+    path: Path
+    report: VerificationReport | None
+    stale: bool
+    reason: str = ""
+
+    @property
+    def proved(self) -> bool:
+        return self.report is not None and self.report.proved
+
+    @property
+    def ok(self) -> bool:
+        """Proved and up to date."""
+        return self.proved and not self.stale
+
+    def describe(self) -> str:
+        """One line for ``symbolic-friction check``."""
+        if self.ok:
+            return f"ok     {self.path} (proved, up to date, κ ≤ {self.report.certificate.overshoot_bound})"  # type: ignore[union-attr]
+        state = "STALE " if self.stale and self.report is not None and self.report.proved else "FAILED"
+        return f"{state} {self.path}: {self.reason}"
+
+
+def _check_one(path: Path) -> CommittedCertificate:
+    try:
+        report = verify_certificate(load(path), source=str(path))
+    except CertificateFormatError as exc:
+        return CommittedCertificate(path, None, True, f"malformed: {exc}")
+    if not report.proved:
+        return CommittedCertificate(path, report, False, "; ".join(check.message for check in report.failures))
+    try:
+        fresh = regenerate(report.certificate)
+        json_text, md_text, _ = render_files(fresh, name=path.name)
+    except SymbolicFrictionError as exc:
+        return CommittedCertificate(path, report, True, f"cannot be regenerated: {exc}")
+    md_path = path.with_suffix(".md")
+    stale = []
+    if path.read_bytes() != json_text.encode("utf-8"):
+        stale.append(path.name)
+    if not md_path.exists():
+        return CommittedCertificate(path, report, True, f"its report {md_path.name} is missing")
+    if md_path.read_bytes() != md_text.encode("utf-8"):
+        stale.append(md_path.name)
+    if stale:
+        return CommittedCertificate(
+            path,
+            report,
+            True,
+            f"{' and '.join(stale)} {'differ' if len(stale) > 1 else 'differs'} from what `symbolic-friction certify` "
+            "writes now",
+        )
+    return CommittedCertificate(path, report, False)
+
+
+def check_committed_certificates(
+    directory: str | os.PathLike[str] = "proofs", *, expected: Iterable[str] = ()
+) -> list[CommittedCertificate]:
+    """Verify every ``*.json`` certificate under ``directory`` and detect stale ones.
+
+    Parameters
+    ----------
+    directory : path
+        Searched recursively for ``*.json`` files (sorted, for a stable order).
+    expected : iterable of str, keyword-only
+        File names (relative to ``directory``) that must exist, e.g.
+        :data:`TABLE_I_FILES`; a missing one is reported as stale.
+
+    Returns
+    -------
+    list of CommittedCertificate
+        One per file; the directory passes iff every entry is ``ok``.
+    """
+    directory = Path(directory)
+    results = [_check_one(path) for path in sorted(directory.rglob("*.json"))]
+    for name in expected:
+        path = directory / name
+        if not path.exists():
+            results.append(CommittedCertificate(path, None, True, "missing; run `symbolic-friction certify`"))
+    return results

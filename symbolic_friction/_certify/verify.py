@@ -1,0 +1,279 @@
+"""Exact verification of a certificate: Lemma 2, Lemma 3 and Proposition 1
+instantiated with the certificate's numbers, decided in rational arithmetic.
+
+This is the only place where a certificate is called *proved*.  It uses
+:class:`fractions.Fraction` arithmetic only (no floats, no solver), and it
+shares no code with the search (:mod:`._certify.search`,
+:mod:`._certify.rounding`): the matrices come from the model's own entry
+functions (:func:`~symbolic_friction._lyapunov.lyapunov_matrix_entries`,
+:func:`~symbolic_friction._lyapunov.vhat_matrix_entries`), the k-conditions
+from :mod:`symbolic_friction._kconditions`, and positive semidefiniteness is
+decided by *all* principal minors (a symmetric matrix is PSD iff every
+principal minor is ``≥ 0``).
+
+The inequalities checked (each one a :class:`Check` in the report):
+
+* Assumption 1 (which makes ``P ≻ 0``, obligation ``lemma2.P``):
+  ``k_i > 0``, ``k_p > 0``, ``k_v k_p > k_i``; and ``f_c > 0``.
+* Lemma 2: ``c = 2(k_v k_p - k_i)`` exactly and ``c > 0`` (item 2,
+  ``lemma2.dVdt``); ``c₁ > 0`` and ``P - c₁I ⪰ 0``, i.e. ``c₁ ≤ λ_min(P)``
+  (item 1, ``lemma2.lower_bound``).
+* Lemma 3, eq. (VandR): ``c₂I - P ⪰ 0``, i.e. ``c₂ ≥ λ_max(P)`` (``lemma3.R``).
+* Lemma 3, eq. (hatVdot): the k-conditions ``k_j > 0``,
+  ``k₃ > (k_i/k_v)k₁``, ``k₃ > k₂``, ``k₄ > (k_i/k_v)k₃``, ``k₄ > k_p k₂``
+  (``lemma3.hatV_derivative``).
+* Lemma 3, eq. (hatVandHatR): ``k₁k₄ > k₃²`` (the paper's ``K ≻ 0``; not
+  needed for the bounds below but part of the paper's conditions), and, for
+  the nonnegative vector ``w = (|σ|, |dz(φ)|, |v|)``, ``0 < ĉ₁ ≤ k_j/2`` for
+  ``j ∈ {1, 2, 4}`` (valid
+  because ``k₃ ≥ 0`` and ``w ≥ 0`` make ``½wᵀKw ≥ ½min(k₁,k₂,k₄)|w|²``) and
+  ``ĉ₂I - K/2 ⪰ 0`` (``lemma3.hatV_bounds``).
+* Proposition 1, eq. (stabState): ``c₁ ≤ c₂``, ``ĉ₁ ≤ ĉ₂`` (so ``κ ≥ 1``) and
+  ``overshoot_bound² ≥ c₂ĉ₂/(c₁ĉ₁)`` (``prop1.stability_bound``).
+"""
+
+from __future__ import annotations
+
+import itertools
+import os
+from dataclasses import dataclass
+from fractions import Fraction
+from pathlib import Path
+from typing import Sequence
+
+from .._errors import CertificateError
+from .._lyapunov import lyapunov_matrix_entries, vhat_matrix_entries
+from .._rational import format_rational as _f
+from .certificate import Certificate, load
+
+__all__ = ["Check", "VerificationReport", "verify_certificate", "verify_file"]
+
+
+@dataclass(frozen=True)
+class Check:
+    """One instantiated inequality and its exact verdict.
+
+    Attributes
+    ----------
+    obligation : str
+        Id of the proof obligation it instantiates (e.g. ``"lemma3.hatV_bounds"``).
+    name : str
+        The inequality in symbols, e.g. ``"k3 > k2"``.
+    instance : str
+        The same with the certificate's exact numbers, e.g. ``"1/2 > 3/5"``.
+    holds : bool
+        Exact verdict.
+    """
+
+    obligation: str
+    name: str
+    instance: str
+    holds: bool
+
+    @property
+    def message(self) -> str:
+        """``"k3 > k2: 1/2 > 3/5 is false"`` (or without ``is false`` when it holds)."""
+        return f"{self.name}: {self.instance}" + ("" if self.holds else " is false")
+
+    def __str__(self) -> str:
+        return f"{'✓' if self.holds else '✗'} {self.message}"
+
+
+@dataclass(frozen=True)
+class VerificationReport:
+    """The per-inequality result of :func:`verify_certificate`.
+
+    Attributes
+    ----------
+    certificate : Certificate
+    checks : tuple of Check
+        In paper order.
+    source : str
+        File name or ``"<certificate>"``.
+    """
+
+    certificate: Certificate
+    checks: tuple[Check, ...]
+    source: str = "<certificate>"
+
+    @property
+    def proved(self) -> bool:
+        """True iff every inequality holds exactly."""
+        return all(check.holds for check in self.checks)
+
+    @property
+    def failures(self) -> tuple[Check, ...]:
+        """The inequalities that do not hold."""
+        return tuple(check for check in self.checks if not check.holds)
+
+    def summary(self) -> str:
+        """One line: ``PROVED file (κ ≤ 3.69516)`` or ``FAILED file: k3 > k2: … is false; …``."""
+        if self.proved:
+            return (
+                f"PROVED {self.source}: all {len(self.checks)} inequalities hold; "
+                f"|x(t)|_A <= {self.certificate.overshoot_bound}·|x(0)|_A"
+            )
+        return f"FAILED {self.source}: " + "; ".join(check.message for check in self.failures)
+
+    def raise_if_failed(self) -> None:
+        """Raise :class:`~symbolic_friction.CertificateError` naming every failed inequality."""
+        if not self.proved:
+            raise CertificateError(self.summary())
+
+
+# -- exact linear algebra (Fractions only) -----------------------------------------------
+def _det(m: Sequence[Sequence[Fraction]]) -> Fraction:
+    """Determinant by cofactor expansion (the matrices here are at most 3×3)."""
+    n = len(m)
+    if n == 0:
+        return Fraction(1)
+    if n == 1:
+        return Fraction(m[0][0])
+    total = Fraction(0)
+    for j in range(n):
+        if m[0][j] == 0:
+            continue
+        minor = [row[:j] + row[j + 1 :] for row in m[1:]]
+        total += (-1) ** j * Fraction(m[0][j]) * _det(minor)
+    return total
+
+
+def _matrix_text(m: Sequence[Sequence[Fraction]]) -> str:
+    return "[" + "; ".join(", ".join(_f(Fraction(x)) for x in row) for row in m) + "]"
+
+
+def _psd_check(obligation: str, name: str, m: Sequence[Sequence[Fraction]]) -> Check:
+    """PSD iff every principal minor is ≥ 0 (not only the leading ones)."""
+    m = [[Fraction(x) for x in row] for row in m]
+    n = len(m)
+    minors: list[tuple[tuple[int, ...], Fraction]] = []
+    for size in range(1, n + 1):
+        for idx in itertools.combinations(range(n), size):
+            minors.append((idx, _det([[m[i][j] for j in idx] for i in idx])))
+    negative = [(idx, d) for idx, d in minors if d < 0]
+    if negative:
+        idx, d = negative[0]
+        rows = ",".join(str(i + 1) for i in idx)
+        # `Check.message` appends "is false": the instance states the claim, then the witness
+        instance = f"{_matrix_text(m)} ⪰ 0 (principal minor {{{rows}}} = {_f(d)} < 0)"
+        return Check(obligation, name, instance, False)
+    smallest = min(d for _, d in minors)
+    instance = f"{_matrix_text(m)} ⪰ 0 (all {len(minors)} principal minors ≥ 0, smallest {_f(smallest)})"
+    return Check(obligation, name, instance, True)
+
+
+def _cmp(obligation: str, name: str, lhs: Fraction, op: str, rhs: Fraction, *, rhs_text: str | None = None) -> Check:
+    holds = {">": lhs > rhs, ">=": lhs >= rhs, "<=": lhs <= rhs, "==": lhs == rhs}[op]
+    symbol = {">": ">", ">=": "≥", "<=": "≤", "==": "="}[op]
+    right = _f(rhs) if rhs_text is None else f"{rhs_text} = {_f(rhs)}"
+    return Check(obligation, name, f"{_f(lhs)} {symbol} {right}", holds)
+
+
+def _k_condition_checks(cert: Certificate) -> list[Check]:
+    """Lemma 3's conditions on k1…k4 (eq. hatVdot), from :mod:`symbolic_friction._kconditions`."""
+    from .. import _kconditions
+
+    checks = []
+    for cond in _kconditions.k_conditions(cert.k_p, cert.k_i, cert.k_v, cert.k1, cert.k2, cert.k3, cert.k4):
+        op = ">" if cond.strict else ">="
+        # k1·k4 > k3² is the paper's route to K ≻ 0 (eq. hatVandHatR); the rest come from eq. (hatVdot)
+        obligation = "lemma3.hatV_bounds" if cond.kind == "definiteness" else "lemma3.hatV_derivative"
+        checks.append(_cmp(obligation, cond.name, Fraction(cond.lhs), op, Fraction(cond.rhs)))
+    return checks
+
+
+def verify_certificate(certificate: Certificate, *, source: str = "<certificate>") -> VerificationReport:
+    """Check every inequality of the certificate exactly.
+
+    Parameters
+    ----------
+    certificate : Certificate
+    source : str, keyword-only
+        Name shown in the report (e.g. the file name).
+
+    Returns
+    -------
+    VerificationReport
+        ``report.proved`` is True iff every inequality holds; failing ones are
+        named in ``report.failures`` with their exact numbers.
+
+    Examples
+    --------
+    >>> from symbolic_friction import Parameters
+    >>> from symbolic_friction._certify import certify
+    >>> verify_certificate(certify(Parameters.table_i("a"))).proved
+    True
+    """
+    if not isinstance(certificate, Certificate):
+        raise TypeError(f"verify_certificate needs a Certificate; got {type(certificate).__name__}")
+    cert = certificate
+    k_p, k_i, k_v, f_c = cert.k_p, cert.k_i, cert.k_v, cert.f_c
+    zero = Fraction(0)
+    checks: list[Check] = [
+        _cmp("lemma2.P", "k_i > 0", k_i, ">", zero),
+        _cmp("lemma2.P", "k_p > 0", k_p, ">", zero),
+        _cmp("lemma2.P", "k_v·k_p > k_i", k_v * k_p, ">", k_i),
+        _cmp("model", "f_c > 0", f_c, ">", zero),
+        _cmp(
+            "lemma2.dVdt",
+            "c = 2(k_v·k_p − k_i)",
+            cert.c,
+            "==",
+            2 * (k_v * k_p - k_i),
+            rhs_text=f"2·({_f(k_v * k_p)} − {_f(k_i)})",
+        ),
+        _cmp("lemma2.dVdt", "c > 0", cert.c, ">", zero),
+        _cmp("lemma2.lower_bound", "c1 > 0", cert.c1, ">", zero),
+    ]
+    p = [[Fraction(x) for x in row] for row in lyapunov_matrix_entries(k_p, k_i, k_v)]
+    identity = [[Fraction(int(i == j)) for j in range(3)] for i in range(3)]
+    checks.append(
+        _psd_check(
+            "lemma2.lower_bound",
+            "P − c1·I ⪰ 0",
+            [[p[i][j] - cert.c1 * identity[i][j] for j in range(3)] for i in range(3)],
+        )
+    )
+    checks.append(
+        _psd_check("lemma3.R", "c2·I − P ⪰ 0", [[cert.c2 * identity[i][j] - p[i][j] for j in range(3)] for i in range(3)])
+    )
+    checks.extend(_k_condition_checks(cert))
+    k = [[Fraction(x) for x in row] for row in vhat_matrix_entries(cert.k1, cert.k2, cert.k3, cert.k4)]
+    checks.append(_cmp("lemma3.hatV_bounds", "c1_hat > 0", cert.c1_hat, ">", zero))
+    for j, kj in ((1, cert.k1), (2, cert.k2), (4, cert.k4)):
+        checks.append(_cmp("lemma3.hatV_bounds", f"c1_hat ≤ k{j}/2", cert.c1_hat, "<=", kj / 2))
+    checks.append(
+        _psd_check(
+            "lemma3.hatV_bounds",
+            "c2_hat·I − K/2 ⪰ 0",
+            [[cert.c2_hat * identity[i][j] - k[i][j] / 2 for j in range(3)] for i in range(3)],
+        )
+    )
+    kappa = Fraction(cert.overshoot_bound)
+    checks.extend(
+        [
+            _cmp("prop1.stability_bound", "c1 ≤ c2", cert.c1, "<=", cert.c2),
+            _cmp("prop1.stability_bound", "c1_hat ≤ c2_hat", cert.c1_hat, "<=", cert.c2_hat),
+            _cmp(
+                "prop1.stability_bound",
+                "overshoot_bound² ≥ c2·c2_hat/(c1·c1_hat)",
+                kappa * kappa,
+                ">=",
+                cert.kappa_squared,
+                rhs_text=f"({_f(cert.c2 * cert.c2_hat)})/({_f(cert.c1 * cert.c1_hat)})",
+            ),
+        ]
+    )
+    return VerificationReport(certificate=cert, checks=tuple(checks), source=source)
+
+
+def verify_file(path: str | os.PathLike[str]) -> VerificationReport:
+    """Load a certificate file strictly and verify it.
+
+    Raises
+    ------
+    CertificateFormatError
+        If the file is not a well-formed certificate (the message names the key).
+    """
+    path = Path(path)
+    return verify_certificate(load(path), source=str(path))

@@ -1,0 +1,121 @@
+"""The certified constants a cross-check puts to the test (float view of a
+certificate of Lemma 2, Lemma 3 and Proposition 1).
+
+A :class:`~symbolic_friction._certify.certificate.Certificate` holds exact
+rationals; trajectories are floats.  :class:`Claims` is the float view the
+vectorised checks need, built from any certificate-like object (the
+:class:`Certificate` dataclass, or an *altered* copy made with
+:func:`dataclasses.replace` that the exact verifier would reject: the
+cross-check deliberately does not verify a certificate before testing it,
+so that wrong certificates can be shown to fail on trajectories too).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from fractions import Fraction
+from typing import Any
+
+import numpy as np
+
+from .._errors import CertificateFormatError
+from .._parameters import Parameters
+
+__all__ = ["Claims"]
+
+_CONSTANTS = ("k1", "k2", "k3", "k4", "c1", "c2", "c1_hat", "c2_hat", "c")
+
+
+@dataclass(frozen=True)
+class Claims:
+    """Float view of one certificate.
+
+    Attributes
+    ----------
+    label : str
+        Name shown in tables and counterexample files (usually the file stem).
+    params : Parameters
+        Exact gains.
+    k1, k2, k3, k4, c1, c2, c1_hat, c2_hat, c : float
+        The certificate's constants.
+    kappa : float
+        ``overshoot_bound`` (the claimed κ of eq. stabState).
+    exact : dict
+        The exact constants (Fractions) and ``overshoot_bound`` string, kept
+        for counterexample files.
+    """
+
+    label: str
+    params: Parameters
+    k1: float
+    k2: float
+    k3: float
+    k4: float
+    c1: float
+    c2: float
+    c1_hat: float
+    c2_hat: float
+    c: float
+    kappa: float
+    exact: dict
+
+    @classmethod
+    def from_certificate(cls, certificate: Any, *, label: str | None = None) -> "Claims":
+        """Read a certificate (or an altered copy of one) without verifying it.
+
+        Raises
+        ------
+        CertificateFormatError
+            If an attribute is missing or not a finite positive number.
+        """
+        values: dict[str, float] = {}
+        exact: dict[str, Any] = {}
+        for name in ("k_p", "k_i", "k_v", "f_c", *_CONSTANTS):
+            if not hasattr(certificate, name):
+                raise CertificateFormatError(
+                    f"a certificate for the cross-check needs the attribute {name!r}; "
+                    f"{type(certificate).__name__} has none"
+                )
+            exact[name] = getattr(certificate, name)
+        bound = getattr(certificate, "overshoot_bound", None)
+        if bound is None:
+            raise CertificateFormatError(f"a certificate for the cross-check needs 'overshoot_bound'; got none")
+        exact["overshoot_bound"] = bound
+        for name, value in exact.items():
+            try:
+                f = float(Fraction(value)) if isinstance(value, str) else float(value)
+            except (TypeError, ValueError):
+                raise CertificateFormatError(f"{name} must be a number; got {value!r}") from None
+            if not (math.isfinite(f) and f > 0):
+                raise CertificateFormatError(f"{name} must be finite and > 0; got {value!r}")
+            values[name] = f
+        params = Parameters(k_p=exact["k_p"], k_i=exact["k_i"], k_v=exact["k_v"], f_c=exact["f_c"])
+        if label is None:
+            prov = getattr(certificate, "provenance", None)
+            label = getattr(prov, "label", "") or "<certificate>"
+            mode = getattr(prov, "mode", "")
+            if mode:
+                label = f"{label} [{mode}]"
+        return cls(
+            label=label,
+            params=params,
+            **{name: values[name] for name in _CONSTANTS},
+            kappa=values["overshoot_bound"],
+            exact={k: (str(v) if isinstance(v, Fraction) else v) for k, v in exact.items()},
+        )
+
+    @property
+    def k(self) -> tuple[float, float, float, float]:
+        """``(k1, k2, k3, k4)`` of eq. (Vhat)."""
+        return (self.k1, self.k2, self.k3, self.k4)
+
+    @property
+    def kappa_formula(self) -> float:
+        """``√(c₂ĉ₂/(c₁ĉ₁))`` from the constants (the bound ``kappa`` must not be below it)."""
+        return math.sqrt(self.c2 * self.c2_hat / (self.c1 * self.c1_hat))
+
+    def lambda_max_K_half(self) -> float:
+        """Largest eigenvalue of ``K/2`` (``V̂ = ½wᵀKw``), used only to scale tolerances."""
+        K = np.array([[self.k1, 0.0, self.k3], [0.0, self.k2, 0.0], [self.k3, 0.0, self.k4]])
+        return float(np.linalg.eigvalsh(K)[-1]) / 2.0

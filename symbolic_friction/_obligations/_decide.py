@@ -1,0 +1,343 @@
+"""Exact decision procedures shared by the proof obligations.
+
+The obligations decide inequalities for *symbolic* gains.  This module keeps
+that decision sound and deliberately simple:
+
+* :func:`sign_of` decides the sign of a rational function all of whose free
+  symbols are declared positive, by a **sign-definite decomposition**: after
+  ``together`` the numerator and the denominator are expanded, and each must
+  have all its coefficients of one sign.  A polynomial with only positive
+  coefficients is positive wherever its variables are positive, so the answer
+  is correct whenever one is given; ``None`` means "not decided" and the
+  obligation then fails instead of guessing.
+* Regions of the state space are written with fresh positive symbols
+  (``c + p``, ``c - p``, ``(a·hi + b·lo)/(a + b)``), each of which covers its
+  region exactly, so a sign decided on the parametrisation holds on the whole
+  region.
+* :func:`decide` turns relations into ``True``/``False``/``None`` with
+  :func:`sign_of`; :func:`resolve_piecewise` picks Piecewise branches with it;
+  :func:`minimum_on` computes the exact minimum of a differentiable function
+  over a finite set or a closed interval (endpoints and interior stationary
+  points are the only candidates).
+
+No floating-point number is used anywhere.
+"""
+
+from __future__ import annotations
+
+import functools
+from collections.abc import Iterable, Sequence
+from typing import Any
+
+import sympy as sp
+
+from .. import _symbolic
+
+__all__ = [
+    "Undecided",
+    "G",
+    "pos",
+    "sign_of",
+    "is_zero",
+    "decide",
+    "resolve_piecewise",
+    "minimum_on",
+    "maximum_on",
+    "vertices",
+    "affine_image",
+    "interval_partitions_reals",
+    "interval_contains",
+    "phi_classes",
+    "sign_classes",
+    "latex",
+]
+
+
+class Undecided(Exception):
+    """A sign or a branch could not be decided; the obligation must fail."""
+
+
+@functools.lru_cache(maxsize=None)
+def G() -> _symbolic.Gains:
+    """The package's canonical symbols (cached)."""
+    return _symbolic.gains()
+
+
+def pos(name: str) -> sp.Symbol:
+    """A fresh positive symbol used to parametrise a region."""
+    return sp.Symbol(name, positive=True)
+
+
+def _is_rational_function(expr: sp.Expr) -> bool:
+    """Whether ``expr`` is built from symbols and rationals by + - × ÷ and integer powers only."""
+    for node in sp.preorder_traversal(expr):
+        if isinstance(node, (sp.Symbol, sp.Rational, sp.Add, sp.Mul)):
+            continue
+        if isinstance(node, sp.Pow) and node.exp.is_Integer:
+            continue
+        return False
+    return True
+
+
+def is_zero(expr: Any) -> bool:
+    """Exact identity test ``expr == 0``.
+
+    For a rational function, ``cancel`` gives a canonical numerator, so
+    ``expand(numerator) == 0`` decides the identity; radicals or other
+    functions fall back to ``simplify`` (a ``True`` answer is then still an
+    identity, a ``False`` one may only mean "not shown").
+    """
+    expr = sp.sympify(expr)
+    if expr == 0:
+        return True
+    # together() writes a rational function as P/Q with polynomials P, Q; it is
+    # identically zero iff the expanded P is (no cancellation needed).
+    num = sp.expand(sp.fraction(sp.together(expr))[0])
+    if num == 0:
+        return True
+    if _is_rational_function(num) or num.has(sp.Piecewise, sp.Abs, sp.sign, sp.Max, sp.Min):
+        return False
+    return sp.simplify(num) == 0
+
+
+def _poly_sign(p: sp.Expr) -> int | None:
+    if p.is_number:
+        if p.is_zero:
+            return 0
+        return 1 if p.is_positive else (-1 if p.is_negative else None)
+    poly = sp.Poly(p, *sorted(p.free_symbols, key=sp.default_sort_key))
+    coeffs = poly.coeffs()
+    if not all(c.is_Rational for c in coeffs):
+        return None
+    if all(c > 0 for c in coeffs):
+        return 1
+    if all(c < 0 for c in coeffs):
+        return -1
+    return None
+
+
+def sign_of(expr: Any) -> int | None:
+    """Sign of ``expr`` (1, 0 or -1) on the positive orthant, or ``None`` if not decided.
+
+    Every free symbol must be declared positive; otherwise ``None``.
+    """
+    expr = sp.sympify(expr)
+    if expr.has(sp.Piecewise, sp.Abs, sp.sign, sp.Max, sp.Min):
+        return None
+    num, den = sp.fraction(sp.together(expr))
+    result = _fraction_sign(sp.expand(num), sp.expand(den))
+    if result is None:  # common factors may hide the sign, or carry non-positive symbols that cancel
+        num, den = sp.fraction(sp.cancel(num / den))
+        result = _fraction_sign(sp.expand(num), sp.expand(den))
+    return result
+
+
+def _fraction_sign(num: sp.Expr, den: sp.Expr) -> int | None:
+    if num == 0:
+        return 0
+    if any(s.is_positive is not True for s in num.free_symbols | den.free_symbols):
+        return None
+    try:
+        sn, sd = _poly_sign(num), _poly_sign(den)
+    except sp.PolynomialError:  # radicals or other non-polynomial parts
+        return None
+    if sn is None or sd is None or sd == 0:
+        return None
+    return sn * sd
+
+
+_REL = {
+    sp.StrictGreaterThan: lambda s: {1: True, 0: False, -1: False}[s],
+    sp.GreaterThan: lambda s: {1: True, 0: True, -1: False}[s],
+    sp.StrictLessThan: lambda s: {1: False, 0: False, -1: True}[s],
+    sp.LessThan: lambda s: {1: False, 0: True, -1: True}[s],
+    sp.Equality: lambda s: s == 0,
+    sp.Unequality: lambda s: s != 0,
+}
+
+
+def decide(cond: Any) -> bool | None:
+    """Truth value of a relation (or And/Or/Not of relations) on the positive orthant; ``None`` if undecided."""
+    if cond is True or cond is sp.true:
+        return True
+    if cond is False or cond is sp.false:
+        return False
+    if isinstance(cond, sp.And):
+        vals = [decide(a) for a in cond.args]
+        return False if False in vals else (None if None in vals else True)
+    if isinstance(cond, sp.Or):
+        vals = [decide(a) for a in cond.args]
+        return True if True in vals else (None if None in vals else False)
+    if isinstance(cond, sp.Not):
+        val = decide(cond.args[0])
+        return None if val is None else not val
+    for kind, rule in _REL.items():
+        if isinstance(cond, kind):
+            s = sign_of(cond.lhs - cond.rhs)
+            return None if s is None else rule(s)
+    return None
+
+
+def resolve_piecewise(expr: Any) -> sp.Expr:
+    """Replace every ``Piecewise`` by the branch whose condition is decided true.
+
+    Raises
+    ------
+    Undecided
+        If a condition before the chosen branch cannot be decided.
+    """
+
+    def pick(*pairs):
+        for pair in pairs:
+            e, c = pair.args
+            val = decide(c)
+            if val is True:
+                return e
+            if val is None:
+                raise Undecided(f"cannot decide the branch condition {c}")
+        raise Undecided("no branch of a Piecewise applies")
+
+    expr = sp.sympify(expr)
+    while expr.has(sp.Piecewise):
+        expr = expr.replace(sp.Piecewise, pick)
+    return expr
+
+
+def vertices(s: sp.Set) -> list[sp.Expr]:
+    """Extreme points of a finite set or a closed bounded interval."""
+    if isinstance(s, sp.FiniteSet):
+        return list(s.args)
+    if isinstance(s, sp.Interval) and not s.left_open and not s.right_open and s.start.is_finite and s.end.is_finite:
+        return [s.start, s.end]
+    raise Undecided(f"{s} is neither finite nor a closed bounded interval")
+
+
+def _stationary_points(f: sp.Expr, var: sp.Symbol) -> list[sp.Expr]:
+    """Real roots of ``f'`` (exact; polynomial derivatives through ``roots``)."""
+    df = sp.together(sp.diff(f, var))
+    num = sp.fraction(df)[0]
+    if num.is_polynomial(var):
+        poly = sp.Poly(num, var)
+        if poly.degree() <= 0:
+            return []
+        if poly.degree() == 1:
+            c1, c0 = poly.all_coeffs()
+            return [sp.cancel(-c0 / c1)]
+        found = sp.roots(poly)
+        if sum(found.values()) == poly.degree():
+            return [r for r in found if r.is_real is not False]
+    return [r for r in sp.solve(df, var, simplify=False) if r.is_real is not False]
+
+
+def minimum_on(f: sp.Expr, var: sp.Symbol, s: sp.Set) -> sp.Expr:
+    """Exact ``min_{var ∈ s} f`` for a finite set or a closed bounded interval ``s``.
+
+    A continuous function on a compact interval attains its minimum at an
+    endpoint or at an interior stationary point; all candidates are compared
+    with :func:`sign_of`.
+    """
+    candidates = list(vertices(s))
+    if isinstance(s, sp.Interval):
+        for r in _stationary_points(f, var):
+            inside = decide(sp.And(sp.StrictLessThan(s.start, r), sp.StrictLessThan(r, s.end)))
+            if inside is None:
+                raise Undecided(f"cannot decide whether the stationary point {r} lies in {s}")
+            if inside:
+                candidates.append(r)
+    values = [f.subs(var, c) for c in candidates]
+    for v in values:
+        if all(sign_of(w - v) in (0, 1) for w in values):
+            return v
+    raise Undecided(f"cannot order the candidate values {values} of the minimum over {s}")
+
+
+def maximum_on(f: sp.Expr, var: sp.Symbol, s: sp.Set) -> sp.Expr:
+    """Exact ``max_{var ∈ s} f`` (see :func:`minimum_on`)."""
+    return -minimum_on(-f, var, s)
+
+
+def affine_image(expr: sp.Expr, var: sp.Symbol, s: sp.Interval) -> sp.Interval:
+    """Image of a closed interval under ``var ↦ expr`` when ``expr`` is affine in ``var``."""
+    if sp.degree(sp.expand(expr), var) > 1:
+        raise Undecided(f"{expr} is not affine in {var}")
+    slope = sp.diff(expr, var)
+    a, b = expr.subs(var, s.start), expr.subs(var, s.end)
+    sg = sign_of(slope)
+    if sg is None:
+        raise Undecided(f"cannot decide the sign of the slope {slope}")
+    if sg == 0:
+        return sp.FiniteSet(sp.simplify(a))
+    lo, hi = (a, b) if sg > 0 else (b, a)
+    return sp.Interval(sp.simplify(lo), sp.simplify(hi), s.left_open if sg > 0 else s.right_open, s.right_open if sg > 0 else s.left_open)
+
+
+def interval_partitions_reals(intervals: Sequence[sp.Interval]) -> tuple[bool, str]:
+    """Whether the intervals partition the real line (in any order).
+
+    Starting from the interval that begins at -oo, the chain is followed:
+    the next interval must begin where the current one ends, and exactly one
+    of the two must contain that point; the chain must use every interval
+    once and end at +oo.
+    """
+    left = list(intervals)
+    firsts = [i for i in left if i.start == -sp.oo]
+    if len(firsts) != 1:
+        return False, f"{len(firsts)} intervals start at -oo (expected exactly one)"
+    current = firsts[0]
+    left.remove(current)
+    while current.end != sp.oo:
+        nxt = [i for i in left if decide(sp.Eq(i.start, current.end)) is True]
+        if len(nxt) != 1:
+            return False, f"{len(nxt)} intervals start where {current} ends (expected exactly one)"
+        if current.right_open == nxt[0].left_open:
+            what = "both miss" if current.right_open else "both contain"
+            return False, f"{current} and {nxt[0]} {what} the point {current.end}"
+        current = nxt[0]
+        left.remove(current)
+    if left:
+        return False, f"the intervals {left} overlap the others"
+    return True, ""
+
+
+def interval_contains(outer: sp.Interval, inner: sp.Interval) -> bool | None:
+    """Whether ``inner ⊆ outer``, decided on the endpoints."""
+    lo = decide(sp.GreaterThan(inner.start, outer.start) if not outer.left_open or inner.left_open else sp.StrictGreaterThan(inner.start, outer.start))
+    hi = decide(sp.LessThan(inner.end, outer.end) if not outer.right_open or inner.right_open else sp.StrictLessThan(inner.end, outer.end))
+    if lo is None or hi is None:
+        return None
+    return lo and hi
+
+
+def phi_classes(c: sp.Expr, tag: str = "") -> list[tuple[str, str, sp.Expr, sp.Set]]:
+    """The five classes of a real number relative to ``±c`` (``c > 0``), parametrised exactly.
+
+    Returns ``(label, tex, value, region)``: ``value`` covers ``region``
+    exactly as its positive symbols range over ``(0, ∞)``; ``tex`` is the
+    class in LaTeX, relative to the symbol ``\\phi``.
+    """
+    p, a, b = pos(f"p{tag}"), pos(f"a{tag}"), pos(f"b{tag}")
+    return [
+        ("φ > f_c", "\\phi > f_c", c + p, sp.Interval.open(c, sp.oo)),
+        ("φ = f_c", "\\phi = f_c", c, sp.FiniteSet(c)),
+        ("|φ| < f_c", "|\\phi| < f_c", (a * c - b * c) / (a + b), sp.Interval.open(-c, c)),
+        ("φ = -f_c", "\\phi = -f_c", -c, sp.FiniteSet(-c)),
+        ("φ < -f_c", "\\phi < -f_c", -c - p, sp.Interval.open(-sp.oo, -c)),
+    ]
+
+
+def sign_classes(tag: str) -> list[tuple[str, int, sp.Expr]]:
+    """The three sign classes ``> 0``, ``= 0``, ``< 0`` with a positive symbol."""
+    q = pos(tag)
+    return [("> 0", 1, q), ("= 0", 0, sp.Integer(0)), ("< 0", -1, -q)]
+
+
+def latex(expr: Any) -> str:
+    """Deterministic LaTeX of a sympy object (lists and tuples become tuples)."""
+    if isinstance(expr, (list, tuple)):
+        expr = sp.Tuple(*expr)
+    return sp.latex(expr, order="lex")
+
+
+def all_positive_symbols(exprs: Iterable[Any]) -> bool:
+    """Whether every free symbol of ``exprs`` is declared positive."""
+    return all(s.is_positive is True for e in exprs for s in sp.sympify(e).free_symbols)

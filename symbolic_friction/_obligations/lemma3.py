@@ -1,0 +1,870 @@
+"""Lemma 3 (Section V, "Proof of Prop. 1: stability"): the bounds on ``R`` and
+``R̂`` and the Clarke derivative of ``V̂`` (eqs. VandR, hatVandHatR, hatVdot).
+
+.. math::
+
+    \\hat V(x) = \\tfrac12 k_1\\sigma^2 + \\tfrac12 k_2\\,\\mathrm{dz}(\\phi)^2
+        + k_3|\\sigma||v| + \\tfrac12 k_4 v^2,\\qquad
+    R = \\{x : v(\\phi - \\mathrm{sign}(v) f_c) \\ge 0\\},\\quad \\hat R = \\mathbb R^3\\setminus R.
+
+Three obligations, each for symbolic gains and symbolic ``k₁ … k₄``:
+
+* ``lemma3.R`` — on ``R`` the minimum over ``f ∈ f_c SGN(v)`` in eq. (lyapLike)
+  is ``dz(φ)²``, so ``V = wᵀPw`` with ``w = (σ, dz(φ), v)`` and
+  ``λ_min(P)|x|²_𝒜 ≤ V ≤ λ_max(P)|x|²_𝒜`` there (eq. VandR).
+* ``lemma3.hatV_bounds`` — ``V̂ = ½wᵀKw`` with ``w = (|σ|, |dz(φ)|, |v|)``;
+  ``K ≻ 0 ⇔ k₁k₄ > k₃²`` by Sylvester's criterion; the eigenvalue bounds of
+  ``K`` and the sharper bound ``½min(k₁,k₂,k₄)|w|²`` valid for nonnegative
+  ``w`` give eq. (hatVandHatR).
+* ``lemma3.hatV_derivative`` — the conditions on ``k₁ … k₄`` that make
+  ``V̂° ≤ 0`` on ``R̂`` (eq. hatVdot) are *derived* from ``V̂`` and ``F`` by an
+  exhaustive case split, shown necessary and sufficient, and compared with the
+  list stated in :mod:`symbolic_friction._kconditions` (the paper's list).
+"""
+
+from __future__ import annotations
+
+import functools
+import itertools
+from dataclasses import dataclass
+from typing import Any
+
+import sympy as sp
+
+from .. import _symbolic
+from .._kconditions import Condition, k_conditions
+from ._base import Erratum, Obligation, Outcome
+from ._decide import G, Undecided, is_zero, latex
+from ._inequalities import (
+    Case,
+    block_eigen_bounds,
+    canonical,
+    case_grid,
+    decide,
+    is_lower_bound_of,
+    is_nonneg,
+    is_upper_bound_of,
+    label_latex,
+    line_cases,
+    resolve,
+    sign_of,
+)
+
+__all__ = [
+    "OBLIGATIONS",
+    "LemmaR",
+    "HatVBounds",
+    "HatVDerivative",
+    "RSubject",
+    "HatVBoundsSubject",
+    "HatVDerivativeSubject",
+    "k_symbols",
+    "vhat_expression",
+    "derived_k_conditions",
+]
+
+
+# --------------------------------------------------------------------------
+# shared pieces of the model
+# --------------------------------------------------------------------------
+
+
+@functools.lru_cache(maxsize=None)
+def k_symbols() -> tuple[sp.Symbol, sp.Symbol, sp.Symbol, sp.Symbol]:
+    """Positive symbols ``k_1 … k_4`` of eq. (Vhat)."""
+    return tuple(sp.symbols("k_1 k_2 k_3 k_4", positive=True))  # type: ignore[return-value]
+
+
+def vhat_expression(g: _symbolic.Gains, k: tuple[Any, Any, Any, Any]) -> sp.Expr:
+    """``V̂`` exactly as eq. (Vhat) writes it, with the package's ``dz``."""
+    k1, k2, k3, k4 = k
+    half = sp.Rational(1, 2)
+    dz = _symbolic.dz(g.phi, g.f_c)
+    return half * k1 * g.sigma**2 + half * k2 * dz**2 + k3 * sp.Abs(g.sigma) * sp.Abs(g.v) + half * k4 * g.v**2
+
+
+def _phi_cases() -> list[Case]:
+    g = G()
+    return line_cases(
+        g.phi, [-g.f_c, g.f_c], name="φ", beyond="d_phi", weights=("u_phi", "w_phi"), labels=["-f_c", "f_c"]
+    )
+
+
+def _sign_cases(var: sp.Symbol, name: str, slack: str) -> list[Case]:
+    return line_cases(var, [0], name=name, beyond=slack, labels=["0"])
+
+
+def _resolve(expr: Any) -> sp.Expr:
+    return resolve(sp.sympify(expr))
+
+
+def _fmt_failures(failures: list[str]) -> str:
+    head = failures[:6]
+    more = f" (and {len(failures) - 6} more)" if len(failures) > 6 else ""
+    return "; ".join(head) + more
+
+
+# --------------------------------------------------------------------------
+# lemma3.R
+# --------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class RSubject:
+    """What ``lemma3.R`` checks.
+
+    Attributes
+    ----------
+    sigma, phi, v, f_c : Symbol
+    region : Expr
+        ``R = {region ≥ 0}``; the paper's ``v(φ - sign(v) f_c)``.
+    sgn_lo, sgn_hi : Expr
+        ``f_c SGN(v) = [sgn_lo, sgn_hi]`` (Piecewise in ``v``).
+    minimizer : Expr
+        The closed-form minimiser used by ``V`` (``_lyapunov.V``):
+        ``f_c sign(v)`` if ``v ≠ 0``, else ``sat_{f_c}(φ)``.
+    P : Matrix
+        ``P`` of eq. (lyapLikeP).
+    dz : Expr
+        ``dz_{f_c}(φ)``.
+    dist2 : Expr
+        ``|x|²_𝒜`` of eq. (distFromA).
+    c1, c2 : Expr
+        Claimed constants of eq. (VandR).
+    assumption : tuple of (Symbol, Expr)
+        Substitution encoding Assumption 1 (``k_v = (k_i + δ)/k_p``).
+    cases : tuple of Case
+        Split of ``(φ, v)`` (``σ`` stays a free real symbol).
+    """
+
+    sigma: sp.Symbol
+    phi: sp.Symbol
+    v: sp.Symbol
+    f_c: sp.Symbol
+    region: sp.Expr
+    sgn_lo: sp.Expr
+    sgn_hi: sp.Expr
+    minimizer: sp.Expr
+    P: sp.Matrix
+    dz: sp.Expr
+    dist2: sp.Expr
+    c1: sp.Expr
+    c2: sp.Expr
+    assumption: tuple[tuple[sp.Symbol, sp.Expr], ...]
+    cases: tuple[Case, ...]
+
+
+def _region_R(g: _symbolic.Gains) -> sp.Expr:
+    return g.v * (g.phi - sp.sign(g.v) * g.f_c)
+
+
+class LemmaR(Obligation):
+    """``lemma3.R``: on ``R``, ``min_f (φ - f)² = dz(φ)²`` and eq. (VandR) with ``c₂ = λ_max(P)``."""
+
+    id = "lemma3.R"
+    paper = "Lemma 3, eq. (VandR) and first lines of its proof"
+    statement = (
+        "On R = {v(φ − sign(v) f_c) ≥ 0}: min over f ∈ f_c·SGN(v) of (φ − f)² equals dz(φ)², "
+        "so V = [σ, dz(φ), v] P [σ, dz(φ), v]ᵀ and λ_min(P)|x|²_𝒜 ≤ V ≤ λ_max(P)|x|²_𝒜 there"
+    )
+    method = (
+        "exhaustive case split (v ≷ 0, φ against ±f_c, positive parametrisations); minimiser checked "
+        "admissible and optimal by sign-definite decomposition; Rayleigh bounds from exact eigenvalue identities of P"
+    )
+
+    def derive(self) -> RSubject:
+        g = G()
+        fc = g.f_c
+        nonzero = sp.Ne(g.v, 0)
+        P = _symbolic.P(g)
+        _, eig = block_eigen_bounds(P, what="P")
+        dz = _symbolic.dz(g.phi, fc)
+        return RSubject(
+            sigma=g.sigma,
+            phi=g.phi,
+            v=g.v,
+            f_c=fc,
+            region=_region_R(g),
+            sgn_lo=sp.Piecewise((fc * sp.sign(g.v), nonzero), (-fc, True)),
+            sgn_hi=sp.Piecewise((fc * sp.sign(g.v), nonzero), (fc, True)),
+            # the closed form used by _lyapunov.V: the projection of φ on f_c·SGN(v)
+            minimizer=sp.Piecewise((fc * sp.sign(g.v), nonzero), (_symbolic.sat(g.phi, fc), True)),
+            P=P,
+            dz=dz,
+            dist2=g.sigma**2 + g.v**2 + dz**2,
+            c1=eig["lam_min"],
+            c2=eig["lam_max"],
+            assumption=tuple(_symbolic.assumption1_substitution(g).items()),
+            cases=tuple(case_grid(_sign_cases(g.v, "v", "a_v"), _phi_cases())),
+        )
+
+    def verify(self, subject: RSubject) -> Outcome:
+        s = subject
+        failures: list[str] = []
+        rows: list[str] = []
+        fa, fb = sp.symbols("alpha_f beta_f", positive=True)  # weights of an interior point of [lo, hi]
+        x_vec = sp.Matrix([s.sigma, s.phi, s.v])
+        in_R = 0
+        for case in s.cases:
+            try:
+                member = decide(sp.GreaterThan(_resolve(case(s.region)), 0))
+                if member is None:
+                    failures.append(f"cannot decide whether the piece {case.label} lies in R")
+                    continue
+                if not member:
+                    continue
+                in_R += 1
+                lo, hi, fstar = (_resolve(case(e)) for e in (s.sgn_lo, s.sgn_hi, s.minimizer))
+                phi = case.value(s.phi)
+                dz = _resolve(case(s.dz))
+            except Undecided as exc:
+                failures.append(f"{case.label}: {exc}")
+                continue
+            if not (decide(sp.LessThan(lo, fstar)) and decide(sp.LessThan(fstar, hi))):
+                failures.append(f"{case.label}: the minimiser {fstar} is not in f_c·SGN(v) = [{lo}, {hi}]")
+                continue
+            candidates = [lo] if is_zero(hi - lo) else [lo, hi, (fa * lo + fb * hi) / (fa + fb)]
+            gap = [(phi - f) ** 2 - (phi - fstar) ** 2 for f in candidates]
+            if not all(is_nonneg(d) for d in gap):
+                failures.append(f"{case.label}: f = {fstar} does not minimise (φ − f)² over [{lo}, {hi}]")
+                continue
+            if not is_zero(phi - fstar - dz):
+                failures.append(f"{case.label}: φ − f* = {sp.simplify(phi - fstar)} differs from dz(φ) = {dz}")
+                continue
+            # V = (σ, φ − f*, v) P (σ, φ − f*, v)ᵀ must be wᵀPw with w = (σ, dz, v)
+            y = sp.Matrix([case(s.sigma), phi - fstar, case(s.v)])
+            w = sp.Matrix([case(s.sigma), dz, case(s.v)])
+            if not is_zero((y.T * s.P * y)[0] - (w.T * s.P * w)[0]):
+                failures.append(f"{case.label}: V is not [σ, dz, v] P [σ, dz, v]ᵀ")
+                continue
+            if not is_zero(_resolve(case(s.dist2)) - (w.T * w)[0]):
+                failures.append(f"{case.label}: |x|²_𝒜 ≠ σ² + dz(φ)² + v²")
+                continue
+            rows.append(f"{label_latex(case.label)}: f^* = {latex(fstar)},\\ \\mathrm{{dz}} = {latex(dz)}")
+        if in_R == 0:
+            failures.append("no piece of the case split lies in R")
+        checks, eig = block_eigen_bounds(s.P, what="P")
+        failures += [f"eigenvalue bound: {label} fails" for label, ok in checks if not ok]
+        if not is_upper_bound_of(s.c2, [eig["m"], eig["mu_plus"]]):
+            failures.append(f"c₂ = {s.c2} is not ≥ every eigenvalue of P ({eig['m']}, {eig['mu_plus']})")
+        if not is_lower_bound_of(s.c1, [eig["m"], eig["mu_minus"]]):
+            failures.append(f"c₁ = {s.c1} is not ≤ every eigenvalue of P ({eig['m']}, {eig['mu_minus']})")
+        # c₁ > 0: μ₋ = det(B)/μ₊ with μ₊ ≥ P₁₁ > 0, and det(B) > 0 under Assumption 1
+        det_b = (s.P[0, 0] * s.P[2, 2] - s.P[0, 2] ** 2).xreplace(dict(s.assumption))
+        positive_c1 = sign_of(s.P[0, 0]) == 1 and sign_of(det_b) == 1 and sign_of(eig["m"]) == 1
+        if not positive_c1:
+            failures.append(f"cannot show λ_min(P) > 0 under Assumption 1 (det of the outer block: {det_b})")
+        elif not (isinstance(s.c1, sp.Min) or sign_of(s.c1) == 1):
+            failures.append(f"cannot show c₁ = {s.c1} > 0")
+        details = (
+            ("pieces of R (σ free)", r" \\ ".join(rows) if rows else r"\text{none}"),
+            ("P", latex(s.P)),
+            ("eigenvalues of P", f"1,\\ {latex(eig['mu_minus'])},\\ {latex(eig['mu_plus'])}"),
+            ("c_1 = \\lambda_{min}(P),\\ c_2 = \\lambda_{max}(P)", f"{latex(s.c1)},\\quad {latex(s.c2)}"),
+            ("\\det(\\text{outer block of }P)\\text{ under Assumption 1}", latex(sp.factor(det_b))),
+        )
+        if failures:
+            return Outcome.fail(_fmt_failures(failures), details)
+        return Outcome(True, f"{in_R} pieces of R checked; c₁ > 0 under Assumption 1", details)
+
+
+# --------------------------------------------------------------------------
+# lemma3.hatV_bounds
+# --------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class HatVBoundsSubject:
+    """What ``lemma3.hatV_bounds`` checks.
+
+    Attributes
+    ----------
+    sigma, phi, v, f_c : Symbol
+    k : tuple of Symbol
+        ``k₁ … k₄`` (positive).
+    Vhat : Expr
+        eq. (Vhat).
+    K : Matrix
+        ``K`` with ``V̂ = ½wᵀKw`` (``_lyapunov.vhat_matrix_entries``).
+    w : tuple of Expr
+        ``(|σ|, |dz(φ)|, |v|)``.
+    dist2 : Expr
+        ``|x|²_𝒜``.
+    definiteness : Expr
+        The stated condition for ``K ≻ 0`` (``k₁k₄ - k₃² > 0``, from
+        :mod:`._kconditions`).
+    c1_hat, c1_hat_eig, c2_hat : Expr
+        ``½min(k₁,k₂,k₄)`` (nonnegative ``w``), ``½λ_min(K)`` and ``½λ_max(K)``.
+    cases : tuple of Case
+        Split of ``φ`` against ``±f_c``.
+    """
+
+    sigma: sp.Symbol
+    phi: sp.Symbol
+    v: sp.Symbol
+    f_c: sp.Symbol
+    k: tuple[sp.Symbol, sp.Symbol, sp.Symbol, sp.Symbol]
+    Vhat: sp.Expr
+    K: sp.Matrix
+    w: tuple[sp.Expr, sp.Expr, sp.Expr]
+    dist2: sp.Expr
+    definiteness: sp.Expr
+    c1_hat: sp.Expr
+    c1_hat_eig: sp.Expr
+    c2_hat: sp.Expr
+    cases: tuple[Case, ...]
+
+
+class HatVBounds(Obligation):
+    """``lemma3.hatV_bounds``: eq. (hatVandHatR) and ``K ≻ 0 ⇔ k₁k₄ > k₃²``."""
+
+    id = "lemma3.hatV_bounds"
+    paper = "Lemma 3, eq. (hatVandHatR) and its proof"
+    statement = (
+        "V̂ = ½wᵀKw with w = (|σ|, |dz(φ)|, |v|); for positive k: K ≻ 0 ⇔ k₁k₄ > k₃², and "
+        "ĉ₁|x|²_𝒜 ≤ V̂ ≤ ĉ₂|x|²_𝒜 with ĉ₂ = ½λ_max(K) and ĉ₁ = ½λ_min(K) (> 0 iff k₁k₄ > k₃²) "
+        "or the sharper ĉ₁ = ½min(k₁,k₂,k₄), valid for every positive k because w ≥ 0"
+    )
+    method = (
+        "sympy identity per piece of φ; Sylvester's criterion (leading principal minors, factored); "
+        "exact eigenvalue identities of K; sign-definite decomposition over the three cases of min(k₁,k₂,k₄)"
+    )
+
+    def derive(self) -> HatVBoundsSubject:
+        g = G()
+        k = k_symbols()
+        K = _symbolic.K_hat(*k)
+        _, eig = block_eigen_bounds(K, what="K")
+        dz = _symbolic.dz(g.phi, g.f_c)
+        definiteness = next(c for c in k_conditions(g.k_p, g.k_i, g.k_v, *k) if c.kind == "definiteness")
+        return HatVBoundsSubject(
+            sigma=g.sigma,
+            phi=g.phi,
+            v=g.v,
+            f_c=g.f_c,
+            k=k,
+            Vhat=vhat_expression(g, k),
+            K=K,
+            w=(sp.Abs(g.sigma), sp.Abs(dz), sp.Abs(g.v)),
+            dist2=g.sigma**2 + g.v**2 + dz**2,
+            definiteness=definiteness.margin,
+            c1_hat=sp.Min(k[0], k[1], k[3]) / 2,
+            c1_hat_eig=eig["lam_min"] / 2,
+            c2_hat=eig["lam_max"] / 2,
+            cases=tuple(_phi_cases()),
+        )
+
+    def verify(self, subject: HatVBoundsSubject) -> Outcome:
+        s = subject
+        failures: list[str] = []
+        half = sp.Rational(1, 2)
+        w = sp.Matrix(s.w)
+        for case in s.cases:
+            try:
+                quad = _resolve(case((half * w.T * s.K * w)[0]))
+                vhat = _resolve(case(s.Vhat))
+                dist = _resolve(case(s.dist2))
+                norm = _resolve(case((w.T * w)[0]))
+            except Undecided as exc:
+                failures.append(f"{case.label}: {exc}")
+                continue
+            if not is_zero(vhat - quad):
+                failures.append(f"{case.label}: V̂ − ½wᵀKw = {sp.factor(vhat - quad)} ≠ 0")
+            if not is_zero(dist - norm):
+                failures.append(f"{case.label}: |x|²_𝒜 − |w|² = {sp.factor(dist - norm)} ≠ 0")
+        # Sylvester's criterion: K ≻ 0 iff its leading principal minors are positive
+        minors = [s.K[:n, :n].det() for n in (1, 2, 3)]
+        for n, m in enumerate(minors[:2], start=1):
+            if sign_of(m) != 1:
+                failures.append(f"leading minor {n} of K, {m}, is not positive for positive k")
+        third = canonical(minors[2]) if sign_of(minors[2]) is None else None
+        if third is None or third != canonical(s.definiteness):
+            failures.append(
+                f"det K = {sp.factor(minors[2])} is not a positive multiple of the stated condition "
+                f"{s.definiteness} > 0"
+            )
+        checks, eig = block_eigen_bounds(s.K, what="K")
+        failures += [f"eigenvalue bound: {label} fails" for label, ok in checks if not ok]
+        if not is_upper_bound_of(2 * s.c2_hat, [eig["m"], eig["mu_plus"]]):
+            failures.append(f"2ĉ₂ = {2 * s.c2_hat} is not ≥ every eigenvalue of K")
+        if not is_lower_bound_of(2 * s.c1_hat_eig, [eig["m"], eig["mu_minus"]]):
+            failures.append(f"2ĉ₁ = {2 * s.c1_hat_eig} (eigenvalue route) is not ≤ every eigenvalue of K")
+        det_outer = s.K[0, 0] * s.K[2, 2] - s.K[0, 2] ** 2
+        if canonical(det_outer) != canonical(s.definiteness):
+            failures.append("λ_min(K) > 0 is not equivalent to the stated condition (outer determinant differs)")
+        # the sharper bound on nonnegative vectors, one case per index of min(k₁, k₂, k₄)
+        W = sp.symbols("w_1 w_2 w_3", nonnegative=True)
+        Wv = sp.Matrix(W)
+        diag = {0: s.K[0, 0], 1: s.K[1, 1], 2: s.K[2, 2]}
+        slack = sp.symbols("s_1 s_2 s_3", nonnegative=True)
+        tight_rows = []
+        for j in range(3):
+            # k_j is the smallest diagonal entry: the others are k_j + s with s ≥ 0
+            sub = {}
+            for i in range(3):
+                if i != j and diag[i].is_Symbol:
+                    sub[diag[i]] = diag[j] + slack[i]
+            if len(sub) != 2 or not diag[j].is_Symbol:
+                failures.append("the diagonal of K is not (k₁, k₂, k₄)")
+                break
+            gap = ((half * Wv.T * s.K * Wv)[0] - s.c1_hat * (Wv.T * Wv)[0]).xreplace(sub)
+            if not is_nonneg(gap):
+                failures.append(
+                    f"½wᵀKw ≥ ĉ₁|w|² not shown for w ≥ 0 when {diag[j]} is the smallest diagonal entry "
+                    f"(gap {sp.expand(gap)})"
+                )
+                continue
+            at_unit = gap.xreplace({W[i]: (1 if i == j else 0) for i in range(3)})
+            tight_rows.append(f"e_{j + 1}: {latex(sp.simplify(at_unit))}")
+        details = (
+            ("K", latex(s.K)),
+            ("leading principal minors of K", ",\\ ".join(latex(sp.factor(m)) for m in minors)),
+            ("K \\succ 0 \\iff", f"{latex(s.definiteness)} > 0"),
+            ("\\hat c_1 \\text{ (nonnegative } w)", latex(s.c1_hat)),
+            ("\\hat c_1 = \\tfrac12\\lambda_{min}(K),\\ \\hat c_2 = \\tfrac12\\lambda_{max}(K)", f"{latex(s.c1_hat_eig)},\\quad {latex(s.c2_hat)}"),
+            ("\\tfrac12 w^TKw - \\hat c_1|w|^2 \\text{ at the minimising unit vector}", r" \\ ".join(tight_rows)),
+        )
+        if failures:
+            return Outcome.fail(_fmt_failures(failures), details)
+        return Outcome(
+            True,
+            "ĉ₁ = ½min(k₁,k₂,k₄) is tight on nonnegative w (attained at a unit vector) and needs no k₁k₄ > k₃²",
+            details,
+        )
+
+
+# --------------------------------------------------------------------------
+# lemma3.hatV_derivative
+# --------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class HatVDerivativeSubject:
+    """What ``lemma3.hatV_derivative`` checks.
+
+    Attributes
+    ----------
+    sigma, phi, v, f_c : Symbol
+    gains : (k_p, k_i, k_v)
+    k : (k₁, k₂, k₃, k₄)
+    zeta : Symbol
+        Selection of the Clarke gradient ``∂|σ| = SGN(σ)``; it replaces
+        ``sign(σ)`` in the derivative of ``|σ|``.
+    Vhat : Expr
+        eq. (Vhat).
+    F : tuple of Expr
+        ``A x - b sign(v)``: the inclusion (eq. xDot) on ``v ≠ 0``.
+    region : Expr
+        ``R̂ = {region < 0}``.
+    K : Matrix
+        ``K`` of ``V̂ = ½wᵀKw`` (for the definiteness condition).
+    stated : tuple of Condition
+        :func:`symbolic_friction._kconditions.k_conditions` on the symbols.
+    paper_bound : Expr
+        The paper's bracketed upper bound of ``V̂°`` on ``R̂_>``.
+    paper_pairs : tuple of (Expr, Expr, Expr)
+        ``(bracket, coefficient, monomial)``: the paper's pairing argument
+        ``bracket ≤ coefficient·monomial``.
+    f_v_bound : Expr
+        The paper's ``-k_v|v| - |dz(φ)|``, claimed ``≥ sign(v)·f_v``.
+    zeta_claim : Expr
+        The paper's ``max_{ζ ∈ ∂|σ|}(-k_i k₃|v|²ζ) = k_i k₃|v|²``, right side.
+    cases : tuple of Case
+        Split of ``(v, σ, φ)``.
+    """
+
+    sigma: sp.Symbol
+    phi: sp.Symbol
+    v: sp.Symbol
+    f_c: sp.Symbol
+    gains: tuple[sp.Symbol, sp.Symbol, sp.Symbol]
+    k: tuple[sp.Symbol, sp.Symbol, sp.Symbol, sp.Symbol]
+    zeta: sp.Symbol
+    Vhat: sp.Expr
+    F: tuple[sp.Expr, sp.Expr, sp.Expr]
+    region: sp.Expr
+    K: sp.Matrix
+    stated: tuple[Condition, ...]
+    paper_bound: sp.Expr
+    paper_pairs: tuple[tuple[sp.Expr, sp.Expr, sp.Expr], ...]
+    f_v_bound: sp.Expr
+    zeta_claim: sp.Expr
+    cases: tuple[Case, ...]
+
+
+@dataclass(frozen=True)
+class _Derived:
+    """One derived condition ``expr ≥ 0`` (or ``> 0`` when ``strict``)."""
+
+    expr: sp.Expr
+    strict: bool
+    origin: str
+    necessary: bool = False
+
+
+def _paper_pairs(g: _symbolic.Gains, k: tuple[sp.Symbol, ...]) -> tuple[tuple[sp.Expr, sp.Expr, sp.Expr], ...]:
+    k1, k2, k3, k4 = k
+    a_s, a_v = sp.Abs(g.sigma), sp.Abs(g.v)
+    dz = _symbolic.dz(g.phi, g.f_c)
+    a_d = sp.Abs(dz)
+    # the four brackets of the displayed inequality in the proof of Lemma 3
+    return (
+        (g.k_i * k3 * a_v**2 - k4 * g.k_v * a_v**2, g.k_i * k3 - k4 * g.k_v, a_v**2),
+        (k2 * g.sigma * dz - k3 * a_s * a_d, k2 - k3, a_s * a_d),
+        (-k1 * g.k_i * g.sigma * g.v - k3 * g.k_v * a_v * a_s, k1 * g.k_i - k3 * g.k_v, a_s * a_v),
+        (k2 * g.k_p * a_v * a_d - k4 * a_v * a_d, k2 * g.k_p - k4, a_v * a_d),
+    )
+
+
+def _leading_witness(num: sp.Expr, coeff: sp.Expr, slacks: tuple[sp.Symbol, ...]) -> tuple[int, ...] | None:
+    """Exponents ``e`` such that ``num(slack = λ^e)`` has leading coefficient ``coeff × (positive)``.
+
+    Then ``coeff > 0`` makes ``num`` positive for large ``λ``: the
+    condition ``coeff ≤ 0`` is necessary.
+    """
+    lam = sp.Symbol("lambda", positive=True)
+    for exps in itertools.product(range(3), repeat=len(slacks)):
+        scaled = sp.expand(num.xreplace({s: lam**e for s, e in zip(slacks, exps)}))
+        lc = sp.Poly(scaled, lam).LC()
+        if sign_of(sp.cancel(lc / coeff)) == 1:
+            return exps
+    return None
+
+
+def derived_k_conditions(subject: HatVDerivativeSubject) -> tuple[list[_Derived], list[str], dict[str, Any]]:
+    """Derive, from ``V̂`` and ``F``, the conditions on ``k`` for ``V̂° ≤ 0`` on ``R̂``.
+
+    For each piece of ``R̂`` (``v ≠ 0``, so ``F`` is single valued) and each
+    extreme point ``ζ`` of ``∂|σ|`` (``V̂°`` is affine in ``ζ``, so its max over
+    ``[-1, 1]`` is at ``ζ = ±1``), ``⟨∂V̂, F⟩`` is a rational function of the
+    positive parameters of the piece.  Its numerator is a polynomial in those
+    parameters and ``f_c`` whose coefficients are polynomials in the gains
+    and ``k``: a coefficient that is negative for all positive gains imposes
+    nothing, a mixed one imposes ``coefficient ≤ 0`` (sufficient, since the
+    monomials are positive).  Each such condition is also shown *necessary*
+    by a scaling ``λ^e`` of the parameters whose leading term is that
+    coefficient times a positive factor.
+
+    Returns
+    -------
+    derived : list of _Derived
+    failures : list of str
+    info : dict
+        Per-piece data for the details and the paper's claims.
+    """
+    s = subject
+    failures: list[str] = []
+    state = (s.sigma, s.phi, s.v)
+    grad = [sp.diff(s.Vhat, x).xreplace({sp.sign(s.sigma): s.zeta}) for x in state]
+    if any(gi.has(sp.sign(s.sigma)) for gi in grad):
+        failures.append("the gradient still contains sign(σ) after the Clarke selection")
+    found: dict[sp.Expr, _Derived] = {}
+    witnesses: dict[sp.Expr, list[tuple[Case, sp.Expr, sp.Expr]]] = {}
+    pieces: list[tuple[Case, list[tuple[sp.Expr, sp.Expr]]]] = []
+    for case in s.cases:
+        try:
+            sign_region = decide(sp.StrictLessThan(_resolve(case(s.region)), 0))
+        except Undecided as exc:
+            failures.append(f"{case.label}: {exc}")
+            continue
+        if sign_region is None:
+            failures.append(f"cannot decide whether the piece {case.label} lies in R̂")
+            continue
+        if not sign_region:
+            continue
+        sigma_val = case.value(s.sigma)
+        zetas = [sp.Integer(-1), sp.Integer(1)] if sigma_val == 0 else [sp.sign(sigma_val)]
+        try:
+            f_vals = [_resolve(case(fi)) for fi in s.F]
+            g_vals = [_resolve(case(gi)) for gi in grad]
+        except Undecided as exc:
+            failures.append(f"{case.label}: {exc}")
+            continue
+        inner = sp.expand(sum(gi * fi for gi, fi in zip(g_vals, f_vals)))
+        if any(isinstance(z, sp.sign) for z in zetas) or sp.degree(inner, s.zeta) > 1:
+            failures.append(f"{case.label}: ⟨∂V̂, F⟩ is not affine in the selection ζ of ∂|σ|")
+            continue
+        branch_values = []
+        for zeta in zetas:
+            value = sp.together(inner.xreplace({s.zeta: zeta}))
+            branch_values.append((zeta, value))
+            num, den = sp.fraction(value)
+            if sign_of(den) != 1:
+                failures.append(f"{case.label}: cannot show the denominator {den} is positive")
+                continue
+            gens = tuple(sorted(set(case.slacks) | {s.f_c}, key=sp.default_sort_key))
+            poly = sp.Poly(sp.expand(num), *gens)
+            for monom, coeff in poly.terms():
+                sg = sign_of(coeff)
+                if sg in (-1, 0):
+                    continue
+                mono = sp.Mul(*[x**e for x, e in zip(gens, monom)])
+                if sg == 1:
+                    failures.append(
+                        f"{case.label}, ζ = {zeta}: the term {coeff}·{mono} of V̂° is positive for every choice of k"
+                    )
+                    continue
+                key = canonical(-coeff)
+                found.setdefault(key, _Derived(key, False, f"V̂° ≤ 0 on {case.label}"))
+                witnesses.setdefault(key, []).append((case, num, coeff))
+        pieces.append((case, branch_values))
+    # necessity of each derived condition
+    derived: list[_Derived] = []
+    for key in sorted(found, key=sp.default_sort_key):
+        necessary = False
+        for case, num, coeff in sorted(witnesses[key], key=lambda t: len(t[0].slacks)):
+            # a witness must keep f_c fixed: the claim is for each friction level
+            if s.f_c in dict(case.values):
+                continue
+            if _leading_witness(num, coeff, case.slacks) is not None:
+                necessary = True
+                break
+        derived.append(_Derived(key, False, found[key].origin, necessary))
+    return derived, failures, {"grad": grad, "pieces": pieces}
+
+
+class HatVDerivative(Obligation):
+    """``lemma3.hatV_derivative``: derive the ``k``-conditions of ``V̂° ≤ 0`` and compare with the stated list."""
+
+    id = "lemma3.hatV_derivative"
+    paper = "Lemma 3, eq. (hatVdot) and its proof (eqs. diffEqForHatV, almostEverywhereDerivatives)"
+    statement = (
+        "On R̂∩{v>0} and R̂∩{v<0}, for σ ≷ 0 and σ = 0 (Clarke ∂|σ| = [−1, 1]), V̂° ≤ 0 holds iff "
+        "k₃k_v ≥ k_i k₁, k₃ ≥ k₂, k₄k_v ≥ k_i k₃, k₄ ≥ k_p k₂ (derived from V̂ and F, each shown necessary); "
+        "with K ≻ 0 ⇔ k₁k₄ > k₃² these are exactly the paper's k₃ > max{(k_i/k_v)k₁, k₂}, "
+        "k₄ > max{(k_i/k_v)k₃, k_p k₂, k₃²/k₁} (stated strictly; non-strict suffices for V̂° ≤ 0)"
+    )
+    method = (
+        "exhaustive case split of R̂ (v ≷ 0, σ ≷ 0 or = 0, φ against ±f_c) with positive parametrisations; "
+        "Clarke gradient (max of C¹ functions) at σ = 0; coefficientwise sign-definite decomposition of V̂°; "
+        "necessity by leading-term scaling; canonical comparison of condition sets"
+    )
+    errata = (
+        Erratum(
+            where="Lemma 3, proof of eq. (hatVdot), sentence before the bracketed bound",
+            paper_says="max_{ζ∈∂|σ|}(−k_i k₃|v|²ζ) = k_i k₃|v|² for all x ∈ R̂_>",
+            correct=(
+                "max_{ζ∈∂|σ|}(−k_i k₃|v|²ζ) ≤ k_i k₃|v|², with equality iff σ ≤ 0; for σ > 0, ∂|σ| = {1} and "
+                "the max is −k_i k₃|v|². The bound that follows only needs ≤, so the proof stands"
+            ),
+            checked_by="lemma3.hatV_derivative",
+        ),
+    )
+
+    def derive(self) -> HatVDerivativeSubject:
+        g = G()
+        k = k_symbols()
+        x = sp.Matrix([g.sigma, g.phi, g.v])
+        F = _symbolic.A(g) * x - _symbolic.b(g) * sp.sign(g.v)
+        dz = _symbolic.dz(g.phi, g.f_c)
+        pairs = _paper_pairs(g, k)
+        return HatVDerivativeSubject(
+            sigma=g.sigma,
+            phi=g.phi,
+            v=g.v,
+            f_c=g.f_c,
+            gains=(g.k_p, g.k_i, g.k_v),
+            k=k,
+            zeta=sp.Symbol("zeta", real=True),
+            Vhat=vhat_expression(g, k),
+            F=tuple(F),
+            region=_region_R(g),
+            K=_symbolic.K_hat(*k),
+            stated=k_conditions(g.k_p, g.k_i, g.k_v, *k),
+            paper_bound=sp.Add(*[p[0] for p in pairs]),
+            paper_pairs=pairs,
+            f_v_bound=-g.k_v * sp.Abs(g.v) - sp.Abs(dz),
+            zeta_claim=g.k_i * k[2] * sp.Abs(g.v) ** 2,
+            cases=tuple(
+                case_grid(_sign_cases(g.v, "v", "a_v"), _sign_cases(g.sigma, "σ", "a_sigma"), _phi_cases())
+            ),
+        )
+
+    def verify(self, subject: HatVDerivativeSubject) -> Outcome:
+        s = subject
+        # ½dz(φ)² must be C¹ for its piecewise derivative to be the gradient
+        failures = _c1_failures(s)
+        derived, more, info = derived_k_conditions(s)
+        failures += more
+        notes: list[str] = []
+        # the definiteness condition (K ≻ 0), as in the paper's list
+        minors = [s.K[:n, :n].det() for n in (1, 2, 3)]
+        if not all(sign_of(m) == 1 for m in minors[:2]) or sign_of(minors[2]) is not None:
+            failures.append("the leading minors of K do not reduce K ≻ 0 to one condition")
+            definiteness = None
+        else:
+            definiteness = _Derived(canonical(minors[2]), True, "K ≻ 0 (Sylvester)", True)
+        premise = [_Derived(_condition_key(kj), True, "premise: k₁ … k₄ positive") for kj in s.k]
+        all_derived = premise + derived + ([definiteness] if definiteness else [])
+        if any(not d.necessary for d in derived):
+            notes.append(
+                "only sufficient: " + ", ".join(f"{d.expr} ≥ 0" for d in derived if not d.necessary)
+            )
+        # compare with the stated list
+        stated = {}
+        for cond in s.stated:
+            try:
+                stated[_condition_key(cond.margin)] = cond
+            except ValueError as exc:
+                failures.append(f"stated condition {cond.name}: {exc}")
+        derived_map = {d.expr: d for d in all_derived}
+        for key, d in derived_map.items():
+            if key not in stated:
+                failures.append(f"derived condition {key} {'>' if d.strict else '≥'} 0 ({d.origin}) is not stated")
+            elif d.strict and not stated[key].strict:
+                failures.append(f"stated {stated[key].name} must be strict")
+        for key, cond in stated.items():
+            if key not in derived_map:
+                failures.append(f"stated condition {cond.name} (i.e. {key} > 0) is not derived from V̂ and F")
+        # the paper's intermediate claims
+        claim_rows, claim_failures, eq_cases, strict_cases = _paper_claims(s, info, derived)
+        failures += claim_failures
+        deriv_rows = [f"{latex(d.expr)} \\ge 0" + ("" if d.necessary else r"\ (\text{sufficient only})") for d in derived]
+        rep = next(
+            (
+                (c, vals)
+                for c, vals in info["pieces"]
+                if c.label.startswith("v > 0") and "σ < 0" in c.label and "φ < -f_c" in c.label
+            ),
+            None,
+        )
+        details = [
+            ("\\partial \\hat V \\ (\\zeta \\in \\mathrm{SGN}(\\sigma))", latex(sp.Matrix(info["grad"]))),
+            ("F \\text{ on } \\hat R", latex(sp.Matrix(s.F))),
+        ]
+        if rep is not None:
+            details.append(
+                (
+                    "\\hat V^\\circ \\text{ on } \\hat R \\cap \\{v>0, \\sigma<0, \\phi<-f_c\\}\\ "
+                    "(|\\sigma| = a_\\sigma, |\\mathrm{dz}| = d_\\phi, |v| = a_v)",
+                    latex(sp.collect(sp.expand(rep[1][0][1]), [rep[0].slacks[0]])),
+                )
+            )
+        details += [
+            ("\\text{derived from } \\hat V^\\circ \\le 0 \\text{ (necessary and sufficient)}", r" \\ ".join(deriv_rows)),
+            ("\\text{derived from } K \\succ 0", f"{latex(definiteness.expr)} > 0" if definiteness else "-"),
+            ("\\text{stated (\\_kconditions, as in the paper)}", r" \\ ".join(f"{latex(c.lhs)} > {latex(c.rhs)}" for c in s.stated)),
+        ]
+        details += claim_rows
+        if failures:
+            return Outcome.fail(_fmt_failures(failures), tuple(details))
+        remark = (
+            f"derived set = stated set ({len(stated)} conditions); the four V̂° conditions are necessary and "
+            "sufficient in non-strict form, the stated strict form is sufficient; "
+            f"max over ∂|σ| equals k_i k₃|v|² in {eq_cases} pieces and is smaller in {strict_cases}"
+        )
+        if notes:
+            remark += "; " + "; ".join(notes)
+        return Outcome(True, remark, tuple(details))
+
+
+def _condition_key(expr: sp.Expr) -> sp.Expr:
+    """Key under which a condition ``expr > 0`` is compared.
+
+    A condition that holds by the symbols' assumptions (``k₁ > 0`` for a
+    positive symbol) is its own key; any other is :func:`canonical`, which
+    drops positive factors and integer content.
+    """
+    expr = sp.sympify(expr)
+    if sign_of(expr) == 1:
+        return sp.expand(expr)
+    return canonical(expr)
+
+
+def _c1_failures(s: HatVDerivativeSubject) -> list[str]:
+    """``V̂`` and ``∂V̂/∂φ`` are continuous across ``φ = ±f_c`` (so ``½k₂dz²`` is C¹)."""
+    out = []
+    u = sp.Symbol("u_eps", positive=True)
+    eps = 2 * s.f_c * u / (1 + u)  # 0 < ε < 2 f_c, so φ = ±f_c ± ε crosses no other breakpoint
+    dphi = sp.diff(s.Vhat, s.phi)
+    for point in (-s.f_c, s.f_c):
+        for label, expr in (("V̂", s.Vhat), ("∂V̂/∂φ", dphi)):
+            try:
+                at = _resolve(expr.xreplace({s.phi: point}))
+                left = _resolve(expr.xreplace({s.phi: point - eps})).xreplace({u: 0})
+                right = _resolve(expr.xreplace({s.phi: point + eps})).xreplace({u: 0})
+            except Undecided as exc:
+                out.append(f"continuity of {label} at φ = {point}: {exc}")
+                continue
+            if not (is_zero(left - at) and is_zero(right - at)):
+                out.append(f"{label} jumps at φ = {point}")
+    return out
+
+
+def _paper_claims(
+    s: HatVDerivativeSubject, info: dict[str, Any], derived: list[_Derived]
+) -> tuple[list[tuple[str, str]], list[str], int, int]:
+    """Check the paper's f_v bound, the max over ∂|σ|, the bracketed bound and the pairing argument."""
+    failures: list[str] = []
+    k_v = s.gains[2]
+    eq_cases = strict_cases = 0
+    fv_ok = bound_ok = pairs_ok = True
+    pair_keys = set()
+    for _, coeff, _ in s.paper_pairs:
+        try:
+            pair_keys.add(canonical(-coeff))
+        except ValueError:
+            failures.append(f"pair coefficient {coeff} has no positive denominator")
+    for case, branches in info["pieces"]:
+        v_val = case.value(s.v)
+        sign_v = sp.sign(v_val)
+        try:
+            f_v = _resolve(case(s.F[2]))
+            fv_gap = _resolve(case(s.f_v_bound)) - sign_v * f_v
+            paper = _resolve(case(s.paper_bound))
+            claim = _resolve(case(s.zeta_claim))
+            pairs = [(_resolve(case(b)), _resolve(case(c * m))) for b, c, m in s.paper_pairs]
+        except Undecided as exc:
+            failures.append(f"{case.label}: {exc}")
+            continue
+        if not is_nonneg(fv_gap):
+            fv_ok = False
+            failures.append(f"{case.label}: sign(v)·f_v ≤ −k_v|v| − |dz(φ)| fails (gap {sp.factor(fv_gap)})")
+        # max over ζ ∈ SGN(σ) of the ζ-term −k_i k₃|v| v ζ of ⟨∂V̂, F⟩
+        k3 = s.k[2]
+        term = -s.gains[1] * k3 * sp.Abs(v_val) * v_val
+        values = [term * z for z, _ in branches]
+        top = next((a for a in values if all(is_nonneg(a - b) for b in values)), None)
+        if top is None or not is_nonneg(claim - top):
+            failures.append(f"{case.label}: max over ∂|σ| exceeds k_i k₃|v|²")
+        elif is_zero(claim - top):
+            eq_cases += 1
+        else:
+            strict_cases += 1
+        for zeta, value in branches:
+            if not is_nonneg(paper - value):
+                bound_ok = False
+                failures.append(f"{case.label}, ζ = {zeta}: the paper's bracketed bound is below V̂°")
+        for bracket, cm in pairs:
+            if not is_nonneg(cm - bracket):
+                pairs_ok = False
+                failures.append(f"{case.label}: the bracket {bracket} is not ≤ {cm}")
+    derivative_keys = {d.expr for d in derived}
+    if pair_keys != derivative_keys:
+        failures.append(
+            "the paper's pairing gives the conditions "
+            + ", ".join(str(k) for k in sorted(pair_keys, key=sp.default_sort_key))
+            + " ≥ 0, not the derived ones"
+        )
+    rows = [
+        (
+            "\\text{paper: } \\mathrm{sign}(v) f_v \\le -k_v|v| - |\\mathrm{dz}(\\phi)| \\text{ on } \\hat R",
+            r"\text{holds in every piece}" if fv_ok else r"\text{fails}",
+        ),
+        (
+            "\\text{paper: } \\max_{\\zeta}(-k_i k_3 |v|^2\\zeta) = k_i k_3|v|^2",
+            f"\\text{{equality in {eq_cases} pieces, strict }} < \\text{{ in {strict_cases} (}}\\sigma v > 0\\text{{)}}",
+        ),
+        (
+            "\\text{paper's bracketed bound} \\ge \\hat V^\\circ",
+            r"\text{holds in every piece}" if bound_ok else r"\text{fails}",
+        ),
+        (
+            "\\text{pairing: bracket} \\le \\text{coefficient} \\cdot \\text{monomial}",
+            (r"\text{holds; the coefficients give exactly the derived conditions}" if pairs_ok else r"\text{fails}"),
+        ),
+    ]
+    return rows, failures, eq_cases, strict_cases
+
+
+OBLIGATIONS = (LemmaR, HatVBounds, HatVDerivative)

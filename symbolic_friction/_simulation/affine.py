@@ -1,0 +1,419 @@
+"""Closed-form flows of the three affine modes (eq. subcasesAffine) and a
+robust matrix exponential ``e^{At}``.
+
+In ``x = (σ, φ, v)`` coordinates the inclusion ``x' ∈ A x - b SGN(v)``
+(eq. xDot) is, in each mode ``k`` of Claim 1, an affine system:
+
+* slip ``k = ±1`` (eq. subcasesAffine:f1 / f-1): ``x' = A x ∓ b``, whose
+  equilibrium is ``x*_k = A⁻¹ b k = (0, k f_c, 0)`` exactly, so
+  ``x(t) = x*_k + e^{At} (x(0) - x*_k)``.  Writing the flow around the exact
+  equilibrium avoids the cancellation of ``e^{At} x(0) - (e^{At} - I) A⁻¹ b``
+  when ``|x(0)|`` and ``f_c`` differ by many orders of magnitude;
+* stick ``k = 0`` (eq. subcasesAffine:f0): ``σ' = 0, φ' = σ, v' = 0``, so
+  ``φ(t) = φ(0) + σ(0) t``.
+
+The matrix exponential
+----------------------
+``A`` has the characteristic polynomial ``p(s) = s³ + k_v s² + k_p s + k_i``.
+With ``w`` the impulse response of ``1/p`` (``w(0) = w'(0) = 0``,
+``w''(0) = 1``), the Cayley–Hamilton theorem gives, for *any* root
+configuration,
+
+.. math::
+
+    e^{At} = w''(t)\\,I + w'(t)\\,(A + k_v I) + w(t)\\,(A^2 + k_v A + k_p I).
+
+No eigenvector matrix is involved (it becomes singular at the triple root
+``k_v = k_p = 3, k_i = 1`` and at double roots).  ``w`` is the second divided
+difference of ``z ↦ e^{tz}`` over the roots.  We split the roots into a real
+root ``r`` that is *isolated* (farthest from the other two) and a pair
+``α ± β`` that is either real (``β² > 0``) or complex (``β² < 0``); ``α`` and
+``β²`` come from deflating ``p`` by ``r`` (so only ``r`` is ever computed as a
+root, and a double pair needs no root separation).  With ``x = (r - α) t``,
+``y = β² t²``, ``C = e^{αt} cosh(β t)``, ``D = e^{αt} sinh(β t)/β``
+(``cos``/``sin`` for a complex pair, power series for ``|y| ≤ 1``),
+
+.. math::
+
+    w = \\frac{e^{rt} - C - (r - α) D}{(r - α)^2 - β^2},\\qquad
+    w' = r w + D,\\qquad w'' = r w' + α D + C,
+
+and, when ``x² + |y| ≤ 1`` (the three roots are close at the time scale
+``t``, including the triple root), the cancellation-free series
+
+.. math::
+
+    w = t^2 e^{αt} \\sum_{n \\ge 1} H_n \\Big(\\frac{1}{(2n)!} + \\frac{x}{(2n+1)!}\\Big),
+    \\qquad H_n = \\frac{x^{2n} - y^n}{x^2 - y} = \\sum_{j<n} x^{2j} y^{n-1-j}.
+
+Because ``r`` is isolated, ``|r - α| ≥ 3|β|`` for a real pair, so the
+denominator never cancels, and outside the series region the numerator
+cancels at most by a small constant factor.  All exponents are
+``≤ max Re λ · t < 0`` (Assumption 1 makes ``A`` Hurwitz), so nothing
+overflows for large ``t``.
+
+The same formulas are written twice: vectorised with numpy
+(:meth:`MatrixExponential.w`) for dense output and batches, and with plain
+floats (:meth:`MatrixExponential.w_scalar`) for the event search of a single
+trajectory, where numpy's per-call overhead would dominate.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from fractions import Fraction
+from typing import Any
+
+import numpy as np
+
+from .._errors import SimulationError
+from .._parameters import Parameters
+
+__all__ = [
+    "MatrixExponential",
+    "SlipBounds",
+    "ScanTable",
+    "slip_equilibrium",
+    "slip_flow",
+    "stick_flow",
+]
+
+# 1/(2n)! and 1/(2n+1)! for the series; 12 terms reach 1/24! ≈ 1.6e-24.
+_N_SERIES = 12
+_INV_EVEN_FACT = tuple(1.0 / math.factorial(2 * n) for n in range(_N_SERIES + 1))
+_INV_ODD_FACT = tuple(1.0 / math.factorial(2 * n + 1) for n in range(_N_SERIES + 1))
+
+
+def _polish_root(r: float, k_p: float, k_i: float, k_v: float) -> float:
+    """A few guarded Newton steps on ``p`` (accepted only while ``|p|`` decreases)."""
+    best, p_best = r, abs(((r + k_v) * r + k_p) * r + k_i)
+    for _ in range(8):
+        dp = (3.0 * best + 2.0 * k_v) * best + k_p
+        if dp == 0.0 or p_best == 0.0:
+            break
+        cand = best - (((best + k_v) * best + k_p) * best + k_i) / dp
+        p_cand = abs(((cand + k_v) * cand + k_p) * cand + k_i)
+        if not p_cand < p_best:
+            break
+        best, p_best = cand, p_cand
+    return best
+
+
+def _split_roots(k_p: float, k_i: float, k_v: float) -> tuple[float, float, float]:
+    """``(r, α, β²)``: an isolated real root ``r`` and the remaining pair ``α ± β``."""
+    roots = np.roots([1.0, k_v, k_p, k_i])
+    real = sorted(float(z.real) for z in roots if z.imag == 0.0)
+    if len(real) == 3:
+        # The isolated root: its nearest neighbour is the farthest away.
+        gaps = [min(abs(a - b) for b in real if b is not a) for a in real]
+        r = real[int(np.argmax(gaps))]
+    elif real:
+        r = real[0]
+    else:  # pragma: no cover - a real cubic always has a real root
+        r = float(roots[np.argmin(np.abs(roots.imag))].real)
+    r = _polish_root(r, k_p, k_i, k_v)
+    # Deflate p(s) = (s - r)(s² + b s + c): b = k_v + r from the s² coefficient,
+    # c = -k_i / r from the constant one (a division, so no cancellation).
+    alpha = -(k_v + r) / 2.0
+    c = -k_i / r
+    beta2 = alpha * alpha - c
+    return r, alpha, beta2
+
+
+def _cofactor_matrices(k_p: float, k_i: float, k_v: float) -> tuple[np.ndarray, np.ndarray]:
+    """``B1 = A + k_v I`` and ``B2 = A² + k_v A + k_p I`` (exact entries, see module doc)."""
+    b1 = np.array([[k_v, 0.0, -k_i], [1.0, k_v, -k_p], [0.0, 1.0, 0.0]])
+    b2 = np.array([[k_p, -k_i, 0.0], [k_v, 0.0, -k_i], [1.0, 0.0, 0.0]])
+    return b1, b2
+
+
+@dataclass(frozen=True, eq=False)
+class MatrixExponential:
+    """``t ↦ e^{At}`` for ``A`` of eq. (xDot), robust to repeated roots.
+
+    Parameters
+    ----------
+    k_p, k_i, k_v : float
+        Gains satisfying Assumption 1 (not re-checked here; build it with
+        :meth:`from_params`).
+
+    Examples
+    --------
+    >>> E = MatrixExponential.from_params(Parameters(k_p=3, k_i=1, k_v=3))  # triple root -1
+    >>> float(E(1.0)[2, 0])  # w(1) = e^{-1}/2
+    0.18393972058572117
+    """
+
+    k_p: float
+    k_i: float
+    k_v: float
+    r: float = field(init=False)
+    alpha: float = field(init=False)
+    beta2: float = field(init=False)
+    B1: np.ndarray = field(init=False, repr=False)
+    B2: np.ndarray = field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        k_p, k_i, k_v = float(self.k_p), float(self.k_i), float(self.k_v)
+        r, alpha, beta2 = _split_roots(k_p, k_i, k_v)
+        b1, b2 = _cofactor_matrices(k_p, k_i, k_v)
+        b1.flags.writeable = False
+        b2.flags.writeable = False
+        for name, value in (("r", r), ("alpha", alpha), ("beta2", beta2), ("B1", b1), ("B2", b2)):
+            object.__setattr__(self, name, value)
+
+    @classmethod
+    def from_params(cls, params: Parameters) -> "MatrixExponential":
+        """Build from :class:`Parameters` (floats of the exact gains)."""
+        k_p, k_i, k_v, _ = params.as_floats()
+        return cls(k_p, k_i, k_v)
+
+    # -- the scalar functions w, w', w'' ------------------------------------
+    def w(self, t: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``(w, w', w'')`` at times ``t ≥ 0`` (array_like, any shape), vectorised."""
+        t_in = np.asarray(t, dtype=float)
+        t = t_in.reshape(-1)
+        r, alpha, beta2 = self.r, self.alpha, self.beta2
+        delta = r - alpha
+        y = beta2 * t * t
+        ea = np.exp(alpha * t)
+
+        # C = e^{αt} Ch(y), D = e^{αt} t S(y): series (Horner) where |y| ≤ 1
+        small = np.flatnonzero(np.abs(y) <= 1.0)
+        C = np.empty_like(t)
+        D = np.empty_like(t)
+        if small.size:
+            ys = y[small]
+            ch = np.full(small.size, _INV_EVEN_FACT[_N_SERIES])
+            sh = np.full(small.size, _INV_ODD_FACT[_N_SERIES])
+            for n in range(_N_SERIES - 1, -1, -1):
+                ch = ch * ys + _INV_EVEN_FACT[n]
+                sh = sh * ys + _INV_ODD_FACT[n]
+            C[small] = ea[small] * ch
+            D[small] = ea[small] * t[small] * sh
+        if small.size < t.size:
+            big = np.flatnonzero(np.abs(y) > 1.0)
+            tb = t[big]
+            if beta2 > 0.0:
+                beta = math.sqrt(beta2)
+                e1 = np.exp((alpha + beta) * tb)
+                e2 = np.exp((alpha - beta) * tb)
+                C[big] = 0.5 * (e1 + e2)
+                D[big] = (e1 - e2) / (2.0 * beta)
+            else:
+                omega = math.sqrt(-beta2)
+                C[big] = ea[big] * np.cos(omega * tb)
+                D[big] = ea[big] * np.sin(omega * tb) / omega
+
+        # w: the series where the three roots are close at this time scale
+        x = delta * t
+        series = x * x + np.abs(y) <= 1.0
+        w0 = np.empty_like(t)
+        inner = np.flatnonzero(series)
+        if inner.size:
+            xs, ys = x[inner], y[inner]
+            x2 = xs * xs
+            h = np.ones(inner.size)
+            ypow = np.ones(inner.size)
+            acc = np.zeros(inner.size)
+            for n in range(1, _N_SERIES + 1):
+                acc += h * (_INV_EVEN_FACT[n] + xs * _INV_ODD_FACT[n])
+                ypow *= ys
+                h = x2 * h + ypow
+            ti = t[inner]
+            w0[inner] = ti * ti * ea[inner] * acc
+        if inner.size < t.size:
+            outer = np.flatnonzero(~series)
+            w0[outer] = (np.exp(r * t[outer]) - C[outer] - delta * D[outer]) / (delta * delta - beta2)
+        w1 = r * w0 + D
+        w2 = r * w1 + alpha * D + C
+        shape = t_in.shape
+        return w0.reshape(shape), w1.reshape(shape), w2.reshape(shape)
+
+    def w_scalar(self, t: float) -> tuple[float, float, float]:
+        """Same as :meth:`w` for one float ``t ≥ 0``, in plain Python (fast for one time)."""
+        r, alpha, beta2 = self.r, self.alpha, self.beta2
+        delta = r - alpha
+        x = delta * t
+        y = beta2 * t * t
+        ea = math.exp(alpha * t)
+        if abs(y) <= 1.0:
+            ch = sh = 0.0
+            power = 1.0
+            for n in range(_N_SERIES + 1):
+                ch += power * _INV_EVEN_FACT[n]
+                sh += power * _INV_ODD_FACT[n]
+                power *= y
+            C = ea * ch
+            D = ea * t * sh
+        elif beta2 > 0.0:
+            beta = math.sqrt(beta2)
+            e1 = math.exp((alpha + beta) * t)
+            e2 = math.exp((alpha - beta) * t)
+            C = 0.5 * (e1 + e2)
+            D = (e1 - e2) / (2.0 * beta)
+        else:
+            omega = math.sqrt(-beta2)
+            C = ea * math.cos(omega * t)
+            D = ea * math.sin(omega * t) / omega
+        if x * x + abs(y) <= 1.0:
+            x2 = x * x
+            h = 1.0
+            ypow = 1.0
+            acc = 0.0
+            for n in range(1, _N_SERIES + 1):
+                acc += h * (_INV_EVEN_FACT[n] + x * _INV_ODD_FACT[n])
+                ypow *= y
+                h = x2 * h + ypow
+            w0 = t * t * ea * acc
+        else:
+            w0 = (math.exp(r * t) - C - delta * D) / (delta * delta - beta2)
+        w1 = r * w0 + D
+        w2 = r * w1 + alpha * D + C
+        return w0, w1, w2
+
+    # -- the matrix and its action ------------------------------------------
+    def __call__(self, t: Any) -> np.ndarray:
+        """``e^{At}``, shape ``t.shape + (3, 3)``."""
+        w0, w1, w2 = self.w(t)
+        eye = np.eye(3)
+        return w2[..., None, None] * eye + w1[..., None, None] * self.B1 + w0[..., None, None] * self.B2
+
+    def apply(self, t: Any, y0: Any) -> np.ndarray:
+        """``e^{At} y0`` for times ``t`` (shape ``S``) and vectors ``y0`` (shape ``(3,)`` or ``S + (3,)``)."""
+        y0 = np.asarray(y0, dtype=float)
+        w0, w1, w2 = self.w(t)
+        q1 = y0 @ self.B1.T
+        q2 = y0 @ self.B2.T
+        return w2[..., None] * y0 + w1[..., None] * q1 + w0[..., None] * q2
+
+
+def _quad_bound(g: tuple[Fraction, ...], params: Parameters) -> float:
+    """``sqrt(gᵀ P⁻¹ g)`` rounded up: the largest ``|gᵀ y|`` over ``yᵀ P y ≤ 1``."""
+    k_p, k_i, k_v = params.k_p, params.k_i, params.k_v
+    # P = [[k_v/k_i, 0, -1], [0, 1, 0], [-1, 0, k_p]]; invert the (σ, v) block exactly.
+    det = k_v * k_p / k_i - 1
+    inv = ((k_p / det, 0, 1 / det), (0, Fraction(1), 0), (1 / det, 0, (k_v / k_i) / det))
+    val = sum(g[i] * inv[i][j] * g[j] for i in range(3) for j in range(3))
+    return math.sqrt(float(val)) * (1.0 + 1e-12)
+
+
+@dataclass(frozen=True)
+class SlipBounds:
+    """Constants bounding the derivatives of ``v`` along a slip (used to bracket events).
+
+    Along a slip ``y = x - x*_k`` solves ``y' = A y`` and, by the paper's own
+    identity behind eq. (dVdt), ``AᵀP + PA = -c e₃e₃ᵀ``, so
+    ``d/dt (yᵀ P y) = -c v² ≤ 0`` with ``P`` of eq. (lyapLikeP).  Hence
+    ``|y(t)|_P ≤ |y(a)|_P`` for ``t ≥ a`` and
+
+    .. math:: |v^{(j)}(t)| = |e_3^\top A^j y(t)| \le m_j\, |y(a)|_P,
+        \qquad m_j = \sqrt{g_j^\top P^{-1} g_j},\quad g_j = (A^j)^\top e_3,
+
+    with ``m_j`` computed from the exact gains (rounded up).
+
+    Attributes
+    ----------
+    m : tuple of float
+        ``(m_0, …, m_5)``.
+    e1_norm : float
+        ``|e₁|_P = sqrt(k_v/k_i)``: ``w`` of :class:`MatrixExponential` is
+        ``v`` along the flow from ``y = e₁``, so ``|w^{(j)}| ≤ m_j |e₁|_P``.
+    """
+
+    m: tuple[float, ...]
+    e1_norm: float
+
+    @property
+    def m2(self) -> float:
+        return self.m[2]
+
+    @property
+    def m3(self) -> float:
+        return self.m[3]
+
+    @classmethod
+    def from_params(cls, params: Parameters) -> "SlipBounds":
+        k_p, k_i, k_v = params.k_p, params.k_i, params.k_v
+        a = ((0, 0, -k_i), (1, 0, -k_p), (0, 1, -k_v))
+        g = (Fraction(0), Fraction(0), Fraction(1))
+        m = []
+        for _ in range(6):
+            m.append(_quad_bound(g, params))
+            g = tuple(sum(g[i] * a[i][j] for i in range(3)) for j in range(3))  # gᵀ ← gᵀ A
+        return cls(m=tuple(m), e1_norm=math.sqrt(float(k_v / k_i)) * (1.0 + 1e-12))
+
+
+@dataclass(frozen=True, eq=False)
+class ScanTable:
+    r"""``w`` and its first four derivatives on a fine grid, to scan a slip for its event.
+
+    Along a slip, from any time ``a`` with offset ``y(a) = (σ, p, v)``,
+
+    .. math:: v(a + τ) = σ\, w(τ) + p\, w'(τ) + v\, w''(τ),
+        \qquad v''(a + τ) = σ\, w''(τ) + p\, w'''(τ) + v\, w^{(4)}(τ)
+
+    (the third rows of ``e^{Aτ}`` and ``A² e^{Aτ}``), so two products with
+    this table give ``v`` and ``v''`` on the whole grid ``τ_j = jΔ``,
+    ``Δ = 1/(8ρ)`` with ``ρ`` the spectral radius of ``A``.  With
+    :class:`SlipBounds`, ``|v^{(4)}| ≤ m₄ |y(a)|_P`` after ``a``, so on a cell
+    ``|v''| ≤ max(|v''_j|, |v''_{j+1}|) + Δ² m₄ |y(a)|_P / 8``, and ``v`` stays
+    within ``Δ² max|v''| / 8`` of its linear interpolation: a cell whose end
+    values both exceed that bound has no zero (see :mod:`.search`).
+
+    Attributes
+    ----------
+    dt : float
+        ``Δ``.
+    values : ndarray, shape (5, G + 1)
+        Rows ``w, w', w'', w''', w⁗`` at ``τ_j``.
+    """
+
+    dt: float
+    values: np.ndarray = field(repr=False)
+
+    @property
+    def window(self) -> float:
+        """Length ``GΔ`` of the grid."""
+        return self.dt * (self.values.shape[1] - 1)
+
+    @classmethod
+    def build(cls, expm: MatrixExponential, *, cells: int = 1024) -> "ScanTable":
+        """Tabulate ``w, …, w⁗`` on ``cells + 1`` points."""
+        k_p, k_i, k_v = expm.k_p, expm.k_i, expm.k_v
+        r, alpha, beta2 = expm.r, expm.alpha, expm.beta2
+        rho = max(abs(r), math.sqrt(alpha * alpha - beta2) if beta2 < 0 else abs(alpha) + math.sqrt(beta2))
+        dt = 1.0 / (8.0 * rho)
+        tau = dt * np.arange(cells + 1)
+        w0, w1, w2 = expm.w(tau)
+        w3 = -k_v * w2 - k_p * w1 - k_i * w0  # w solves p(d/dt) w = 0
+        w4 = -k_v * w3 - k_p * w2 - k_i * w1
+        values = np.array([w0, w1, w2, w3, w4])
+        values.flags.writeable = False
+        return cls(dt=dt, values=values)
+
+
+def slip_equilibrium(f_c: float, direction: int) -> np.ndarray:
+    """``x*_k = (0, k f_c, 0)``, the equilibrium of slip mode ``k = ±1``."""
+    return np.array([0.0, direction * f_c, 0.0])
+
+
+def slip_flow(expm: MatrixExponential, f_c: float, x0: Any, t: Any, direction: int) -> np.ndarray:
+    """States ``x(t)`` of ``x' = A x - k b`` (``k = direction = ±1``) from ``x0``, shape ``t.shape + (3,)``."""
+    if direction not in (1, -1):
+        raise SimulationError(f"a slip direction must be +1 or -1; got {direction!r}")
+    star = slip_equilibrium(f_c, direction)
+    y0 = np.asarray(x0, dtype=float) - star
+    return star + expm.apply(t, y0)
+
+
+def stick_flow(x0: Any, t: Any) -> np.ndarray:
+    """States of the stick mode ``σ' = 0, φ' = σ, v' = 0`` from ``x0`` (``v`` is set to 0)."""
+    x0 = np.asarray(x0, dtype=float)
+    t = np.asarray(t, dtype=float)
+    out = np.empty(t.shape + (3,))
+    out[..., 0] = x0[0]
+    out[..., 1] = x0[1] + x0[0] * t
+    out[..., 2] = 0.0
+    return out

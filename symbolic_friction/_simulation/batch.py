@@ -1,0 +1,350 @@
+"""The exact event-driven method vectorised over many initial states.
+
+Same mathematics as :mod:`.event` (closed-form flows of eq. subcasesAffine,
+the appendix's mode table, the certified event search of :mod:`.search`),
+but every step acts on all unfinished trajectories at once with numpy: the
+Python loops run over *event index* (one closed-form segment per trajectory
+per round) and over the iterations of the vectorised search, never over
+trajectories.  All trajectories share the sample times ``t_eval``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import Any
+
+import numpy as np
+
+from .._coordinates import x_to_z, z_to_x
+from .._errors import SimulationError
+from .._parameters import Parameters
+from ._base import Solution, Status
+from .event import _SNAP_ULPS, _check_positive_int
+from .modes import modes_after_slip, select_modes
+from .search import first_zeros, slip_model
+
+__all__ = ["BatchSolution", "simulate_batch"]
+
+_EPS = 2.220446049250313e-16
+
+
+@dataclass(frozen=True, eq=False)
+class BatchSolution:
+    """Solutions of :func:`simulate_batch` from ``N`` initial states on a common time grid.
+
+    Attributes
+    ----------
+    params : Parameters
+    t : ndarray, shape (m,)
+        Sample times (``t_eval``).
+    z : ndarray, shape (N, m, 3)
+        ``(e_i, s, v)``; NaN after ``t_stop`` (only for status ``MAX_EVENTS``).
+    mode : ndarray of int8, shape (N, m)
+        ``+1``, ``0``, ``-1`` as in :class:`Solution` (0 after ``t_stop``).
+    n_events : ndarray of int, shape (N,)
+        Number of mode changes.
+    status : ndarray of str, shape (N,)
+        One of :class:`Status` per trajectory.
+    t_stop : ndarray, shape (N,)
+        Where each computation stopped: ``t_end``, or the time of the
+        ``max_events``-th event.
+    event_times : ndarray, shape (N, K)
+        Event times in order, NaN-padded (``K = max(n_events)``).
+    event_modes : ndarray of int8, shape (N, K, 2)
+        ``(mode_before, mode_after)`` of each event, 0-padded.
+    options : dict
+    """
+
+    params: Parameters
+    t: np.ndarray
+    z: np.ndarray
+    mode: np.ndarray
+    n_events: np.ndarray
+    status: np.ndarray
+    t_stop: np.ndarray
+    event_times: np.ndarray
+    event_modes: np.ndarray
+    options: dict[str, Any] = field(default_factory=dict)
+
+    @cached_property
+    def x(self) -> np.ndarray:
+        """States in ``(σ, φ, v)``, shape (N, m, 3)."""
+        return z_to_x(self.params, self.z)
+
+    def events(self, i: int) -> tuple[tuple[float, int, int], ...]:
+        """The events ``(t, mode_before, mode_after)`` of trajectory ``i``."""
+        k = int(self.n_events[i])
+        return tuple(
+            (float(self.event_times[i, j]), int(self.event_modes[i, j, 0]), int(self.event_modes[i, j, 1]))
+            for j in range(k)
+        )
+
+    def solution(self, i: int) -> Solution:
+        """Trajectory ``i`` as a :class:`Solution` (samples after ``t_stop`` dropped)."""
+        keep = self.t <= self.t_stop[i] if self.status[i] == Status.MAX_EVENTS else slice(None)
+        return Solution(
+            params=self.params,
+            method="event",
+            t=self.t[keep],
+            z=self.z[i][keep],
+            mode=self.mode[i][keep],
+            events=self.events(i),
+            status=str(self.status[i]),
+            options=dict(self.options),
+        )
+
+
+def _check_states(Z0: Any) -> np.ndarray:
+    try:
+        arr = np.asarray(Z0, dtype=float)
+    except (TypeError, ValueError):
+        raise SimulationError("the initial states Z0 must be an (N, 3) array of numbers (e_i, s, v)") from None
+    if arr.ndim != 2 or arr.shape[1] != 3 or arr.shape[0] == 0:
+        raise SimulationError(f"the initial states Z0 must have shape (N, 3) with N ≥ 1; got shape {arr.shape}")
+    bad = ~np.all(np.isfinite(arr), axis=1)
+    if bad.any():
+        i = int(np.argmax(bad))
+        raise SimulationError(
+            f"all initial states Z0 must be finite; {int(bad.sum())} row(s) are not, first row {i}: {arr[i].tolist()}"
+        )
+    return arr
+
+
+class _Filler:
+    """Writes closed-form segments into the (N, m) sample arrays."""
+
+    def __init__(self, params: Parameters, t_eval: np.ndarray, n: int) -> None:
+        model = slip_model(params)
+        self.expm, self.f_c = model.expm, model.f_c
+        self.t_eval = t_eval
+        self.x = np.full((n, t_eval.size, 3), np.nan)
+        self.mode = np.zeros((n, t_eval.size), dtype=np.int8)
+
+    def _cells(self, rows: np.ndarray, t0: np.ndarray, t1: np.ndarray, final: bool):
+        lo = np.searchsorted(self.t_eval, t0, side="left")
+        hi = np.searchsorted(self.t_eval, t1, side="right" if final else "left")
+        counts = np.maximum(hi - lo, 0)
+        rep = np.repeat(np.arange(rows.size), counts)
+        offsets = np.cumsum(counts) - counts
+        col = lo[rep] + (np.arange(rep.size) - offsets[rep])
+        return rep, col
+
+    def stick(self, rows: np.ndarray, t0: np.ndarray, t1: np.ndarray, x0: np.ndarray, final: bool) -> None:
+        rep, col = self._cells(rows, t0, t1, final)
+        r = rows[rep]
+        tau = self.t_eval[col] - t0[rep]
+        self.x[r, col, 0] = x0[rep, 0]
+        self.x[r, col, 1] = x0[rep, 1] + x0[rep, 0] * tau
+        self.x[r, col, 2] = 0.0
+        self.mode[r, col] = 0
+
+    def slip(
+        self, rows: np.ndarray, t0: np.ndarray, t1: np.ndarray, x0: np.ndarray, d: np.ndarray, final: bool
+    ) -> None:
+        rep, col = self._cells(rows, t0, t1, final)
+        if rep.size == 0:
+            return
+        r = rows[rep]
+        tau = self.t_eval[col] - t0[rep]
+        dd = d[rep].astype(float)
+        star = np.zeros((rep.size, 3))
+        star[:, 1] = dd * self.f_c
+        y0 = x0[rep] - star
+        w0, w1, w2 = self.expm.w(tau)
+        y = w2[:, None] * y0 + w1[:, None] * (y0 @ self.expm.B1.T) + w0[:, None] * (y0 @ self.expm.B2.T)
+        states = star + y
+        states[:, 2] = dd * np.maximum(dd * states[:, 2], 0.0)
+        self.x[r, col] = states
+        self.mode[r, col] = d[rep]
+
+
+def simulate_batch(
+    params: Parameters,
+    Z0: Any,
+    t_end: float,
+    *,
+    t_eval: Any = None,
+    max_events: int = 10_000,
+    grid_points: int = 1001,
+) -> BatchSolution:
+    """Exact event-driven solutions from many initial states, vectorised with numpy.
+
+    Parameters
+    ----------
+    params : Parameters
+    Z0 : array_like, shape (N, 3)
+        Initial states ``(e_i, s, v)``; must be finite.
+    t_end : float
+        Horizon, ``> 0``.
+    t_eval : array_like, optional, keyword-only
+        Common sample times in ``[0, t_end]`` (nondecreasing); default
+        ``grid_points`` equally spaced times.
+    max_events : int, keyword-only
+        Stop a trajectory after this many mode changes (status ``MAX_EVENTS``).
+    grid_points : int, keyword-only
+        Number of default sample times when ``t_eval`` is None.
+
+    Returns
+    -------
+    BatchSolution
+
+    Examples
+    --------
+    >>> p = Parameters.table_i("a")
+    >>> sol = simulate_batch(p, [[0, 5, 0], [0, 0, 3]], 30.0, t_eval=[0.0, 15.0, 30.0])
+    >>> sol.z.shape, sol.n_events.tolist()
+    ((2, 3, 3), [10, 8])
+    """
+    from . import _check_horizon, _check_t_eval
+
+    if not isinstance(params, Parameters):
+        raise SimulationError(f"params must be a Parameters instance; got {type(params).__name__}")
+    _check_positive_int("max_events", max_events, 1)
+    _check_positive_int("grid_points", grid_points, 2)
+    Z0 = _check_states(Z0)
+    t_end = _check_horizon(t_end)
+    t_eval = _check_t_eval(t_eval, t_end)
+    if t_eval is None:
+        t_eval = np.linspace(0.0, t_end, int(grid_points))
+
+    model = slip_model(params)
+    f_c = model.f_c
+    k_p, k_i, _, _ = params.as_floats()
+    n = Z0.shape[0]
+    X = z_to_x(params, Z0)
+    on_zero = X[:, 2] == 0.0
+    tol0 = _SNAP_ULPS * _EPS * (f_c + k_i * np.abs(Z0[:, 0]) + k_p * np.abs(Z0[:, 1]))
+    phi = X[:, 1]
+    phi = np.where(on_zero & (np.abs(phi - f_c) <= tol0), f_c, phi)
+    phi = np.where(on_zero & (np.abs(phi + f_c) <= tol0), -f_c, phi)
+    X[:, 1] = phi
+    mode = select_modes(X[:, 0], X[:, 1], X[:, 2], f_c).astype(np.int8)
+
+    fill = _Filler(params, t_eval, n)
+    t = np.zeros(n)
+    active = np.ones(n, dtype=bool)
+    status = np.full(n, Status.T_END, dtype=object)
+    t_stop = np.full(n, t_end)
+    n_events = np.zeros(n, dtype=np.int64)
+    log_t: list[np.ndarray] = []
+    log_rows: list[np.ndarray] = []
+    log_before: list[np.ndarray] = []
+    log_after: list[np.ndarray] = []
+
+    def record(rows: np.ndarray, times: np.ndarray, before: np.ndarray, after: np.ndarray) -> None:
+        log_t.append(times)
+        log_rows.append(rows)
+        log_before.append(before.astype(np.int8))
+        log_after.append(after.astype(np.int8))
+        n_events[rows] += 1
+
+    for _ in range(4 * max_events + 16):
+        if not active.any():
+            break
+        # -- stick: closed-form exit time -------------------------------
+        rows = np.flatnonzero(active & (mode == 0))
+        if rows.size:
+            sig, ph = X[rows, 0], X[rows, 1]
+            eq = sig == 0.0
+            if eq.any():
+                r = rows[eq]
+                fill.stick(r, t[r], np.full(r.size, t_end), X[r], final=True)
+                status[r] = Status.EQUILIBRIUM
+                active[r] = False
+            rows, sig, ph = rows[~eq], sig[~eq], ph[~eq]
+            d = np.where(sig > 0.0, 1, -1).astype(np.int8)
+            t_next = t[rows] + (d * f_c - ph) / sig
+            ends = t_next >= t_end
+            if ends.any():
+                r = rows[ends]
+                fill.stick(r, t[r], np.full(r.size, t_end), X[r], final=True)
+                active[r] = False
+            go = ~ends
+            r, d, t_next = rows[go], d[go], t_next[go]
+            fill.stick(r, t[r], t_next, X[r], final=False)
+            record(r, t_next, np.zeros(r.size, dtype=np.int8), d)
+            t[r] = t_next
+            X[r, 1] = d * f_c
+            X[r, 2] = 0.0
+            mode[r] = d
+        # -- slip (including those that just left a stick): first zero of v --
+        rows = np.flatnonzero(active & (mode != 0))
+        if rows.size:
+            d = mode[rows].astype(np.int8)
+            star = d * f_c
+            y0 = np.column_stack([X[rows, 0], X[rows, 1] - star, X[rows, 2]])
+            tau, y = first_zeros(model, y0, d, t_end - t[rows])
+            none = np.isnan(tau)
+            if none.any():
+                r = rows[none]
+                fill.slip(r, t[r], np.full(r.size, t_end), X[r], d[none], final=True)
+                active[r] = False
+            hit = ~none
+            r, d, tau, y, y0h = rows[hit], d[hit], tau[hit], y[hit], y0[hit]
+            t_next = t[r] + tau
+            fill.slip(r, t[r], t_next, X[r], d, final=False)
+            tol = _SNAP_ULPS * _EPS * (f_c + np.max(np.abs(y0h), axis=1))
+            phi_end, new = modes_after_slip(y[:, 0], y[:, 1] + d * f_c, d, f_c, tol)
+            t[r] = t_next
+            X[r, 0], X[r, 1], X[r, 2] = y[:, 0], phi_end, 0.0
+            changed = new != d
+            record(r[changed], t_next[changed], d[changed], new[changed])
+            mode[r] = new
+            late = t_next >= t_end
+            if late.any():
+                rl = r[late]
+                sticks = mode[rl] == 0
+                fill.stick(rl[sticks], t[rl[sticks]], np.full(int(sticks.sum()), t_end), X[rl[sticks]], final=True)
+                fill.slip(
+                    rl[~sticks], t[rl[~sticks]], np.full(int((~sticks).sum()), t_end), X[rl[~sticks]],
+                    mode[rl[~sticks]], final=True,
+                )
+                active[rl] = False
+        capped = active & (n_events >= max_events)
+        if capped.any():
+            r = np.flatnonzero(capped)
+            # the state at the stopping time (an event time) closes the record
+            for_stick = mode[r] == 0
+            fill.stick(r[for_stick], t[r[for_stick]], t[r[for_stick]], X[r[for_stick]], final=True)
+            fill.slip(r[~for_stick], t[r[~for_stick]], t[r[~for_stick]], X[r[~for_stick]], mode[r[~for_stick]], final=True)
+            status[r] = Status.MAX_EVENTS
+            t_stop[r] = t[r]
+            active[r] = False
+    else:
+        r = np.flatnonzero(active)
+        status[r] = Status.MAX_EVENTS
+        t_stop[r] = t[r]
+
+    k = int(n_events.max()) if n > 0 else 0
+    event_times = np.full((n, k), np.nan)
+    event_modes = np.zeros((n, k, 2), dtype=np.int8)
+    if log_t:
+        rows_all = np.concatenate(log_rows)
+        times_all = np.concatenate(log_t)
+        order = np.argsort(rows_all, kind="stable")  # each row's events were logged in time order
+        rows_all, times_all = rows_all[order], times_all[order]
+        before_all = np.concatenate(log_before)[order]
+        after_all = np.concatenate(log_after)[order]
+        first = np.searchsorted(rows_all, np.arange(n), side="left")
+        slot = np.arange(rows_all.size) - first[rows_all]
+        event_times[rows_all, slot] = times_all
+        event_modes[rows_all, slot, 0] = before_all
+        event_modes[rows_all, slot, 1] = after_all
+
+    z = x_to_z(params, fill.x.reshape(-1, 3)).reshape(fill.x.shape)
+    at_zero = t_eval == 0.0
+    if at_zero.any():
+        z[:, at_zero, :] = Z0[:, None, :]
+    return BatchSolution(
+        params=params,
+        t=t_eval,
+        z=z,
+        mode=fill.mode,
+        n_events=n_events,
+        status=status.astype(str),
+        t_stop=t_stop,
+        event_times=event_times,
+        event_modes=event_modes,
+        options={"max_events": int(max_events), "grid_points": int(grid_points)},
+    )

@@ -1,0 +1,223 @@
+"""The ``ivp-events`` method: mode switching with :func:`scipy.integrate.solve_ivp`
+terminal events, the usual do-it-yourself way to simulate eq. (xPhDot).
+
+Each mode of Lemma 1 / Claim 1 is an ODE in ``z = (e_i, s, v)``:
+
+* slip ``v > 0`` (``k = 1``): ``z' = A_δ z - (0, 0, f_c)``, ended by the
+  terminal event ``v = 0`` (direction ``-``);
+* slip ``v < 0`` (``k = -1``): ``z' = A_δ z + (0, 0, f_c)``, ended by ``v = 0``
+  (direction ``+``);
+* stick (``k = 0``): ``z' = (s, 0, 0)``, integrated by ``solve_ivp`` too and
+  ended by the terminal events ``φ = -k_i e_i - k_p s = ±f_c``.
+
+At the start and after every terminal event ``v`` is set to 0 exactly (after
+a slip) and the next mode is chosen from the state by the appendix's table
+(Claim 1): ``v = 0`` and ``φ > f_c``, or ``φ = f_c`` with ``σ > 0`` → ``+1``;
+``φ < -f_c``, or ``φ = -f_c`` with ``σ < 0`` → ``-1``; otherwise stick.  A
+stick with ``σ = 0`` (``s = 0``) inside ``|φ| ≤ f_c`` is an equilibrium of
+𝒜 and ends the run (status ``"at an equilibrium"``).  Because the table is
+applied to floating-point states, rounding near ``|φ| = f_c`` can produce
+zero-length segments; ``max_events`` bounds the loop (status
+``"max_events reached"``).  The exact method (``event``) does not have this
+weakness; this one is here to compare against.
+
+Options
+-------
+rtol, atol : float
+    Tolerances of ``solve_ivp`` (defaults ``1e-8``, ``1e-10``).
+integrator : {"DOP853", "RK45", "Radau", "BDF", "LSODA"}
+    The integrator of each segment (default ``"DOP853"``, scipy's
+    recommendation for tight tolerances).
+max_events : int
+    Maximum number of mode switches (default ``10_000``).
+
+Output
+------
+Without ``t_eval`` the samples are the integrator's steps of each segment
+(a switching time appears twice: as the end of one segment, with the old
+mode, and the start of the next).  With ``t_eval`` the samples are the dense
+output of the segment containing each time; a time equal to a switching time
+takes the new mode (right-continuous, as the table).  scipy is imported only
+when a simulation runs.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, ClassVar
+
+import numpy as np
+
+from .._errors import SimulationError
+from .._parameters import Parameters
+from ._base import SimulationMethod, Solution, Status
+
+__all__ = ["IvpEvents", "INTEGRATORS", "table_mode"]
+
+INTEGRATORS = ("DOP853", "RK45", "Radau", "BDF", "LSODA")
+
+
+def table_mode(sigma: float, phi: float, v: float, f_c: float) -> int:
+    """Mode ``k`` selected by the appendix table of Claim 1 (rows i–xi).
+
+    Written here from the table, independently of the ``event`` method's
+    selection, as a do-it-yourself user would.
+    """
+    if v > 0:
+        return 1  # (i)
+    if v < 0:
+        return -1  # (xi)
+    if phi > f_c or (phi == f_c and sigma > 0):
+        return 1  # (ii), (iii)
+    if phi < -f_c or (phi == -f_c and sigma < 0):
+        return -1  # (x), (ix)
+    return 0  # (iv)-(viii)
+
+
+def _check_positive(options: dict[str, Any], name: str) -> None:
+    value = options[name]
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise SimulationError(f"option {name} must be a number > 0; got {value!r}")
+    if not (math.isfinite(float(value)) and float(value) > 0):
+        raise SimulationError(f"option {name} must be finite and > 0; got {name} = {value!r}")
+
+
+class IvpEvents(SimulationMethod):
+    """Mode switching with ``solve_ivp`` terminal events (see the module docstring)."""
+
+    name: ClassVar[str] = "ivp-events"
+    options: ClassVar[dict[str, Any]] = {"rtol": 1e-8, "atol": 1e-10, "integrator": "DOP853", "max_events": 10_000}
+
+    def _validate(self, options: dict[str, Any]) -> None:
+        _check_positive(options, "rtol")
+        _check_positive(options, "atol")
+        if options["integrator"] not in INTEGRATORS:
+            raise SimulationError(
+                f"option integrator must be one of {', '.join(map(repr, INTEGRATORS))}; got {options['integrator']!r}"
+            )
+        m = options["max_events"]
+        if isinstance(m, bool) or not isinstance(m, (int, np.integer)) or m < 1:
+            raise SimulationError(f"option max_events must be an integer ≥ 1; got {m!r}")
+
+    def _solve(
+        self, params: Parameters, z0: np.ndarray, t_end: float, t_eval: np.ndarray | None, options: dict[str, Any]
+    ) -> Solution:
+        from scipy.integrate import solve_ivp
+
+        k_p, k_i, k_v, f_c = params.as_floats()
+        rtol, atol = float(options["rtol"]), float(options["atol"])
+        integrator = options["integrator"]
+        max_events = int(options["max_events"])
+
+        def slip_rhs(sign: float):
+            def rhs(_t: float, z: np.ndarray) -> np.ndarray:
+                e, s, v = z
+                return np.array([s, v, -k_i * e - k_p * s - k_v * v - sign * f_c])
+
+            return rhs
+
+        def stick_rhs(_t: float, z: np.ndarray) -> np.ndarray:
+            return np.array([z[1], 0.0, 0.0])
+
+        def v_zero(_t: float, z: np.ndarray) -> float:
+            return z[2]
+
+        def phi_up(_t: float, z: np.ndarray) -> float:
+            return -k_i * z[0] - k_p * z[1] - f_c
+
+        def phi_down(_t: float, z: np.ndarray) -> float:
+            return -k_i * z[0] - k_p * z[1] + f_c
+
+        for fn in (v_zero, phi_up, phi_down):
+            fn.terminal = True  # type: ignore[attr-defined]
+
+        t_parts: list[np.ndarray] = []
+        z_parts: list[np.ndarray] = []
+        m_parts: list[np.ndarray] = []
+        events: list[tuple[float, int, int]] = []
+        t0 = 0.0
+        z = np.asarray(z0, dtype=float).copy()
+        mode = table_mode(-k_i * z[1], -k_i * z[0] - k_p * z[1], z[2], f_c)
+        status = Status.T_END
+        k_eval = 0  # next t_eval index
+        segments = 0
+
+        while True:
+            if mode == 0 and z[1] == 0.0:
+                status = Status.EQUILIBRIUM
+                if t_eval is not None:
+                    rest = t_eval[k_eval:]
+                    t_parts.append(rest)
+                    z_parts.append(np.tile(z, (rest.size, 1)))
+                    m_parts.append(np.zeros(rest.size, dtype=int))
+                else:
+                    t_parts.append(np.array([t0, t_end]))
+                    z_parts.append(np.tile(z, (2, 1)))
+                    m_parts.append(np.zeros(2, dtype=int))
+                break
+            if mode == 0:
+                # Both edges as terminal events, each in its outward direction.
+                phi_up.direction, phi_down.direction = 1.0, -1.0  # type: ignore[attr-defined]
+                rhs, evs = stick_rhs, (phi_up, phi_down)
+            else:
+                v_zero.direction = -float(mode)  # type: ignore[attr-defined]
+                rhs, evs = slip_rhs(float(mode)), (v_zero,)
+            seg = solve_ivp(
+                rhs,
+                (t0, t_end),
+                z,
+                method=integrator,
+                rtol=rtol,
+                atol=atol,
+                events=evs,
+                dense_output=t_eval is not None,
+            )
+            if seg.status == -1:
+                raise SimulationError(f"the {integrator} integrator failed at t = {seg.t[-1]:g}: {seg.message}")
+            t1 = float(seg.t[-1])
+            if t_eval is None:
+                t_parts.append(seg.t)
+                z_parts.append(seg.y.T)
+                m_parts.append(np.full(seg.t.size, mode, dtype=int))
+            else:
+                stop = np.searchsorted(t_eval, t1, side="right" if seg.status == 0 else "left")
+                if stop > k_eval:
+                    ts = t_eval[k_eval:stop]
+                    t_parts.append(ts)
+                    z_parts.append(seg.sol(ts).T)
+                    m_parts.append(np.full(ts.size, mode, dtype=int))
+                    k_eval = stop
+            if seg.status == 0:
+                break  # t_end reached
+            z = seg.y[:, -1].copy()
+            if mode != 0:
+                z[2] = 0.0  # the event found v = 0; make it exact
+            new_mode = table_mode(-k_i * z[1], -k_i * z[0] - k_p * z[1], z[2], f_c)
+            if mode == 0 and new_mode == 0:
+                # The event fired on |φ| = f_c but rounding left |φ| a hair inside:
+                # leave stick in the direction the edge was crossed (rows iii / ix).
+                new_mode = 1 if seg.t_events[0].size else -1
+            if new_mode != mode:
+                events.append((t1, mode, new_mode))
+            mode = new_mode
+            t0 = t1
+            segments += 1
+            # A segment that keeps its mode (v touched 0 tangentially) is not an event but still counts,
+            # so that rounding can never make the loop spin.
+            if len(events) >= max_events or segments >= 2 * max_events:
+                status = Status.MAX_EVENTS
+                break
+
+        t = np.concatenate(t_parts) if t_parts else np.zeros(0)
+        zz = np.concatenate(z_parts) if z_parts else np.zeros((0, 3))
+        mm = np.concatenate(m_parts) if m_parts else np.zeros(0, dtype=int)
+        return Solution(
+            params=params,
+            method=self.name,
+            t=t,
+            z=zz,
+            mode=mm,
+            events=tuple(events),
+            status=status,
+            options=dict(options),
+        )

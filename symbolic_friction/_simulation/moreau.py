@@ -1,0 +1,226 @@
+"""The ``moreau`` method: implicit (Moreau / catching-up) Euler time-stepping
+of the inclusion ``x' ∈ A x - b SGN(v)`` (eq. xDot), with the set-valued law
+solved exactly in each step.
+
+One step of size ``h`` is ``x_{n+1} = x_n + h (A x_{n+1} - b λ)``,
+``λ ∈ SGN(v_{n+1})``.  Its first two rows give ``σ_{n+1} = σ_n - h k_i v_{n+1}``
+and ``φ_{n+1} = φ_n + h σ_n - h (h k_i + k_p) v_{n+1}``; the third becomes a
+scalar monotone inclusion in ``w = v_{n+1}``:
+
+.. math::
+
+    D\\,w + h f_c\\,\\mathrm{SGN}(w) \\ni r,\\qquad
+    D = 1 + h k_v + h^2 k_p + h^3 k_i,\\quad r = v_n + h\\phi_n + h^2\\sigma_n,
+
+whose unique solution is ``w = (r - h f_c sign r)/D`` if ``|r| > h f_c`` and
+``w = 0`` (stick, ``λ = r/(h f_c)``) otherwise.  In ``z = (e_i, s, v)`` the
+same step reads ``s_{n+1} = s_n + h w``, ``e_{i,n+1} = e_{i,n} + h s_{n+1}``.
+A stick step keeps ``v = 0`` and ``s`` *exactly*, as the inclusion does.
+
+The scheme is first-order accurate (the switching instants are resolved to
+``O(h)``); ``tests/simulation/test_convergence.py`` measures the order
+against the independent reference.
+
+Perturbed friction (Corollary 1, Fig. 4) uses the same step with another law
+from :mod:`.friction`: ``simulate(..., method="moreau", friction=law)``.
+
+Options
+-------
+h : float
+    Step size, ``> 0`` (default ``1e-3``).  The last step is shortened to
+    end exactly at ``t_end``.
+friction : FrictionLaw or None
+    ``None`` (default) is the paper's Coulomb law ``f_c SGN(v)``.
+max_steps : int
+    Refuse runs needing more steps than this (default ``10**7``).
+
+Output
+------
+Without ``t_eval`` the samples are the step points.  With ``t_eval`` they
+are the scheme's piecewise-linear interpolant (the catching-up trajectory)
+at those times.  ``mode[n]`` is the mode of the step that starts at
+``t[n]`` (``sign(v)`` after that step, ``0`` for a stick step), so it is
+right-continuous like the appendix table; the last sample takes the mode
+of the last step.  Events are reported at the first step point of each new
+mode.  The run stops early with status ``"at an equilibrium"`` when a step
+leaves the state unchanged (a stick step with ``s = 0``).
+"""
+
+from __future__ import annotations
+
+import math
+from array import array
+from typing import Any, ClassVar
+
+import numpy as np
+
+from .._errors import SimulationError
+from .._parameters import Parameters
+from ._base import SimulationMethod, Solution, Status
+from .friction import FrictionLaw, Step
+
+__all__ = ["Moreau", "step_grid"]
+
+
+def step_grid(t_end: float, h: float) -> int:
+    """Number of steps ``N`` for step ``h`` on ``[0, t_end]``.
+
+    The grid is ``t_n = n h`` for ``n < N`` and ``t_N = t_end``; when
+    ``t_end/h`` is an integer up to rounding no sliver step is added.
+    """
+    ratio = t_end / h
+    nearest = round(ratio)
+    if nearest >= 1 and abs(ratio - nearest) <= 1e-9 * ratio:
+        return int(nearest)
+    return int(math.ceil(ratio))
+
+
+class _Recorder:
+    """Collects samples on the step grid or, with ``t_eval``, interpolates."""
+
+    def __init__(self, t_eval: np.ndarray | None) -> None:
+        self.t_eval = t_eval
+        self.k = 0  # next t_eval index
+        self.t = array("d")
+        self.e = array("d")
+        self.s = array("d")
+        self.v = array("d")
+        self.mode = array("b")
+
+    def add(self, t: float, e: float, s: float, v: float, mode: int) -> None:
+        self.t.append(t)
+        self.e.append(e)
+        self.s.append(s)
+        self.v.append(v)
+        self.mode.append(mode)
+
+    def step(self, t0: float, t1: float, z0: tuple[float, float, float], z1: tuple[float, float, float], mode: int, last: bool) -> None:
+        """Record the step ``[t0, t1]`` (its left end, or the t_eval points in it)."""
+        if self.t_eval is None:
+            self.add(t0, *z0, mode)
+            if last:
+                self.add(t1, *z1, mode)
+            return
+        te = self.t_eval
+        n = te.size
+        dt = t1 - t0
+        while self.k < n and (te[self.k] < t1 or (last and te[self.k] <= t1)):
+            tau = te[self.k]
+            if last and tau >= t1:
+                self.add(tau, *z1, mode)
+            else:
+                th = (tau - t0) / dt
+                self.add(tau, *(a + th * (b - a) for a, b in zip(z0, z1)), mode)
+            self.k += 1
+
+    def hold(self, t: float, z: tuple[float, float, float], t_end: float) -> None:
+        """The state stays at ``z`` from ``t`` to ``t_end`` (equilibrium)."""
+        if self.t_eval is None:
+            self.add(t, *z, 0)
+            if t_end > t:
+                self.add(t_end, *z, 0)
+            return
+        te = self.t_eval
+        while self.k < te.size:
+            self.add(te[self.k], *z, 0)
+            self.k += 1
+
+    def arrays(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        t = np.frombuffer(self.t, dtype=float).copy()
+        z = np.column_stack(
+            [np.frombuffer(self.e, dtype=float), np.frombuffer(self.s, dtype=float), np.frombuffer(self.v, dtype=float)]
+        ) if len(self.t) else np.zeros((0, 3))
+        mode = np.frombuffer(self.mode, dtype=np.int8).astype(int)
+        return t, z, mode
+
+
+class Moreau(SimulationMethod):
+    """Implicit (Moreau / catching-up) Euler with the exact set-valued step.
+
+    See the module docstring for the step, the options and the output
+    conventions.
+
+    Examples
+    --------
+    >>> from symbolic_friction import Parameters
+    >>> from symbolic_friction._simulation import simulate
+    >>> sol = simulate(Parameters.table_i("a"), (0, 1, 0), 5.0, method="moreau", h=1e-3)
+    >>> float(sol.t[-1]), sol.z.shape, [(round(t, 3), a, b) for t, a, b in sol.events]  # exact: 3.6144, 4.4472
+    (5.0, (5001, 3), [(3.615, -1, 0), (4.449, 0, 1)])
+    """
+
+    name: ClassVar[str] = "moreau"
+    options: ClassVar[dict[str, Any]] = {"h": 1e-3, "friction": None, "max_steps": 10_000_000}
+
+    def _validate(self, options: dict[str, Any]) -> None:
+        h = options["h"]
+        if isinstance(h, bool) or not isinstance(h, (int, float, np.integer, np.floating)):
+            raise SimulationError(f"option h must be a number > 0; got {h!r}")
+        if not (math.isfinite(float(h)) and float(h) > 0):
+            raise SimulationError(f"option h (the step size) must be finite and > 0; got h = {h!r}")
+        friction = options["friction"]
+        if friction is not None and not isinstance(friction, FrictionLaw):
+            raise SimulationError(
+                f"option friction must be None (Coulomb) or a FrictionLaw such as Stribeck(...); got {type(friction).__name__}"
+            )
+        m = options["max_steps"]
+        if isinstance(m, bool) or not isinstance(m, (int, np.integer)) or m < 1:
+            raise SimulationError(f"option max_steps must be an integer ≥ 1; got {m!r}")
+
+    def _solve(
+        self, params: Parameters, z0: np.ndarray, t_end: float, t_eval: np.ndarray | None, options: dict[str, Any]
+    ) -> Solution:
+        h = float(options["h"])
+        n_steps = step_grid(t_end, h)
+        if n_steps > options["max_steps"]:
+            raise SimulationError(
+                f"h = {h:g} needs {n_steps} steps to reach t_end = {t_end:g}, more than max_steps = {options['max_steps']}"
+            )
+        k_p, k_i, k_v, f_c = params.as_floats()
+        law: FrictionLaw | None = options["friction"]
+        if law is not None:
+            law.check_step(h, k_p=k_p, k_i=k_i, k_v=k_v, f_c=f_c)
+        rec = _Recorder(t_eval)
+        events: list[tuple[float, int, int]] = []
+        e, s, v = (float(c) for c in z0)
+        prev_mode: int | None = None
+        status = Status.T_END
+        D_full = 1.0 + h * (k_v + h * (k_p + h * k_i))
+        for n in range(n_steps):
+            t0 = n * h
+            last = n == n_steps - 1
+            t1 = t_end if last else (n + 1) * h
+            hn = t1 - t0
+            D = D_full if hn == h else 1.0 + hn * (k_v + hn * (k_p + hn * k_i))
+            phi = -k_i * e - k_p * s
+            sigma = -k_i * s
+            r = v + hn * (phi + hn * sigma)
+            if law is None:
+                a = hn * f_c
+                w = (r - a) / D if r > a else (r + a) / D if r < -a else 0.0
+            else:
+                w, _ = law.solve_step(Step(t0, hn, sigma, phi, v, k_p, k_i, k_v, f_c))
+            s1 = s + hn * w
+            e1 = e + hn * s1
+            mode = 1 if w > 0 else -1 if w < 0 else 0
+            if prev_mode is not None and mode != prev_mode:
+                events.append((t0, prev_mode, mode))
+            if w == 0.0 and v == 0.0 and s1 == s and e1 == e and (law is None or law.time_invariant):
+                # A fixed point of a time-invariant step stays forever (Coulomb: a point of 𝒜).
+                status = Status.EQUILIBRIUM
+                rec.hold(t0, (e, s, v), t_end)
+                break
+            rec.step(t0, t1, (e, s, v), (e1, s1, w), mode, last)
+            prev_mode = mode
+            e, s, v = e1, s1, w
+        t, z, modes = rec.arrays()
+        return Solution(
+            params=params,
+            method=self.name,
+            t=t,
+            z=z,
+            mode=modes,
+            events=tuple(events),
+            status=status,
+            options=dict(options),
+        )

@@ -1,0 +1,180 @@
+"""The ``regularized`` method: replace ``SGN(v)`` in eq. (xPhDot) by a smooth or
+Lipschitz approximation and integrate the resulting stiff ODE with scipy.
+
+.. math::
+
+    \\dot e_i = s,\\quad \\dot s = v,\\quad
+    \\dot v = -k_i e_i - k_p s - k_v v - f_c\\,\\psi(v/\\varepsilon),
+    \\qquad \\psi = \\tanh \\text{ or } \\psi = \\mathrm{sat}.
+
+This is what many users would write first.  It has no stick phase: while the
+exact solution sticks, the regularized velocity is of order ``ε`` and the
+position creeps, so the error is of order ``ε`` (first order;
+``tests/simulation/test_convergence.py`` measures it).  For small ``ε`` the
+ODE is stiff (the Jacobian has the entry ``-f_c ψ'(v/ε)/ε``), so only
+scipy's implicit integrators are offered, with the analytic Jacobian.
+
+Options
+-------
+epsilon : float
+    Regularization width ``ε > 0`` (default ``1e-4``).
+law : {"tanh", "sat"}
+    ``ψ`` (default ``"tanh"``).
+rtol, atol : float
+    Tolerances of :func:`scipy.integrate.solve_ivp` (defaults ``1e-8``, ``1e-10``).
+integrator : {"Radau", "BDF", "LSODA"}
+    The stiff solver (default ``"Radau"``).
+
+Output
+------
+Without ``t_eval`` the samples are the integrator's steps; with ``t_eval``
+its dense output at those times.  ``mode`` is ``0`` inside the boundary
+layer ``|v| ≤ w`` (``w = ε`` for ``sat``, where the law is linear, and
+``w = 3ε`` for ``tanh``, where ``|tanh| ≤ 0.995``) and ``sign(v)`` outside;
+events are the crossings of ``v = ±w``, located by the integrator's event
+finder.  scipy is imported only when a simulation runs.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, ClassVar
+
+import numpy as np
+
+from .._errors import SimulationError
+from .._parameters import Parameters
+from ._base import SimulationMethod, Solution, Status
+
+__all__ = ["Regularized", "LAWS", "INTEGRATORS", "vector_field"]
+
+LAWS = ("tanh", "sat")
+INTEGRATORS = ("Radau", "BDF", "LSODA")
+_LAYER = {"tanh": 3.0, "sat": 1.0}
+
+
+def _positive_number(options: dict[str, Any], name: str, meaning: str) -> None:
+    value = options[name]
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise SimulationError(f"option {name} ({meaning}) must be a number > 0; got {value!r}")
+    if not (math.isfinite(float(value)) and float(value) > 0):
+        raise SimulationError(f"option {name} ({meaning}) must be finite and > 0; got {name} = {value!r}")
+
+
+def vector_field(params: Parameters, epsilon: float, law: str) -> tuple[Any, Any]:
+    """The regularized right-hand side ``f(t, z)`` and its analytic Jacobian ``J(t, z)``."""
+    k_p, k_i, k_v, f_c = params.as_floats()
+    eps = float(epsilon)
+    if law == "tanh":
+
+        def psi(v: float) -> float:
+            return math.tanh(v / eps)
+
+        def dpsi(v: float) -> float:
+            th = math.tanh(v / eps)
+            return (1.0 - th * th) / eps
+
+    else:
+
+        def psi(v: float) -> float:
+            return max(-1.0, min(1.0, v / eps))
+
+        def dpsi(v: float) -> float:
+            return 1.0 / eps if abs(v) < eps else 0.0
+
+    def rhs(_t: float, z: np.ndarray) -> np.ndarray:
+        e, s, v = z
+        return np.array([s, v, -k_i * e - k_p * s - k_v * v - f_c * psi(v)])
+
+    def jac(_t: float, z: np.ndarray) -> np.ndarray:
+        return np.array([[0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [-k_i, -k_p, -k_v - f_c * dpsi(z[2])]])
+
+    return rhs, jac
+
+
+class Regularized(SimulationMethod):
+    """``SGN(v) ≈ tanh(v/ε)`` (or ``sat(v/ε)``) integrated by a stiff scipy solver.
+
+    See the module docstring for the options and the output conventions.
+    """
+
+    name: ClassVar[str] = "regularized"
+    options: ClassVar[dict[str, Any]] = {
+        "epsilon": 1e-4,
+        "law": "tanh",
+        "rtol": 1e-8,
+        "atol": 1e-10,
+        "integrator": "Radau",
+    }
+
+    def _validate(self, options: dict[str, Any]) -> None:
+        _positive_number(options, "epsilon", "the regularization width")
+        _positive_number(options, "rtol", "relative tolerance")
+        _positive_number(options, "atol", "absolute tolerance")
+        if options["law"] not in LAWS:
+            raise SimulationError(f"option law must be one of {', '.join(map(repr, LAWS))}; got {options['law']!r}")
+        if options["integrator"] not in INTEGRATORS:
+            raise SimulationError(
+                f"option integrator must be one of {', '.join(map(repr, INTEGRATORS))} (stiff solvers); "
+                f"got {options['integrator']!r}"
+            )
+
+    def _solve(
+        self, params: Parameters, z0: np.ndarray, t_end: float, t_eval: np.ndarray | None, options: dict[str, Any]
+    ) -> Solution:
+        from scipy.integrate import solve_ivp
+
+        eps = float(options["epsilon"])
+        law = options["law"]
+        layer = _LAYER[law] * eps
+        rhs, jac = vector_field(params, eps, law)
+
+        def upper(_t: float, z: np.ndarray) -> float:
+            return z[2] - layer
+
+        def lower(_t: float, z: np.ndarray) -> float:
+            return z[2] + layer
+
+        result = solve_ivp(
+            rhs,
+            (0.0, t_end),
+            np.asarray(z0, dtype=float),
+            method=options["integrator"],
+            t_eval=t_eval,
+            rtol=float(options["rtol"]),
+            atol=float(options["atol"]),
+            jac=jac,
+            events=(upper, lower),
+        )
+        if not result.success:
+            raise SimulationError(
+                f"the {options['integrator']} integrator failed at t = {result.t[-1]:g} "
+                f"(epsilon = {eps:g}, rtol = {options['rtol']:g}): {result.message}"
+            )
+        t = np.asarray(result.t, dtype=float)
+        z = np.asarray(result.y, dtype=float).T
+
+        def mode_of(v: np.ndarray) -> np.ndarray:
+            return np.where(v > layer, 1, np.where(v < -layer, -1, 0))
+
+        mode = mode_of(z[:, 2])
+        crossings = [(float(te), +1) for te in result.t_events[0]] + [(float(te), -1) for te in result.t_events[1]]
+        crossings.sort()
+        events: list[tuple[float, int, int]] = []
+        current = int(mode_of(np.array([z0[2]]))[0])
+        for te, side in crossings:
+            # Crossing v = +w switches between 0 and +1; v = -w between 0 and -1.
+            after = 0 if current == side else side
+            if after != current:
+                events.append((te, current, after))
+                current = after
+        return Solution(
+            params=params,
+            method=self.name,
+            t=t,
+            z=z,
+            mode=mode,
+            events=tuple(events),
+            status=Status.T_END,
+            options=dict(options),
+        )

@@ -1,0 +1,457 @@
+"""The event of a slip: the *first* zero of ``v`` along ``x' = A x ∓ b``
+(eq. subcasesAffine:f1 / f-1), found without ever skipping a crossing.
+
+Along a slip in direction ``k = ±1`` let ``y = x - x*_k`` (so ``y' = A y``)
+and ``u = k v``, positive inside the slip.  Two rigorous tools are combined:
+
+1. **A certified scan** (:class:`.affine.ScanTable`).  From a window start
+   ``a`` with offset ``y(a) = (σ, p, v)``, ``u`` and ``u''`` are evaluated on
+   the grid ``a + jΔ`` by two products with a precomputed table of ``w`` and
+   its derivatives.  On a cell ``|u''| ≤ max(|u''_j|, |u''_{j+1}|) +
+   Δ² m₄ |y(a)|_P / 8`` (``|u⁗| ≤ m₄|y(a)|_P`` after ``a``), and a cell
+   with ``min(u_j, u_{j+1})`` above the interpolation error
+   ``Δ² max|u''| / 8`` (plus rounding) has no zero.
+2. **A certified Taylor march** on the first cell that the scan could not
+   clear.  ``|y(t)|_P`` does not increase along the slip (``P`` of
+   eq. lyapLikeP, :class:`.affine.SlipBounds`), so with
+   ``M₂ = m₂|y(a)|_P`` the lower bound ``u + u'τ - ½M₂τ²`` is positive up to
+   its first root: that is the next step (``u + u'τ + ½u''τ² - ⅙M₃τ³`` where
+   ``u' ≥ 0 < u''``, needed at a start on rows (iii)/(ix) where
+   ``u = u' = 0``).  As soon as the upper bound ``u + u'τ + ½M₂τ²`` has a
+   root too, ``u`` decreases strictly between the two roots and vanishes
+   exactly once there; the Illinois method on the closed form refines that
+   zero to machine precision.  At an exact tangency the steps shrink
+   geometrically and the contact point is returned.
+
+Everything is written twice: with plain floats for one trajectory
+(:func:`first_zero`) and vectorised over many (:func:`first_zeros`, used by
+:func:`~symbolic_friction._simulation.batch.simulate_batch`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+
+from .._parameters import Parameters
+from .affine import MatrixExponential, ScanTable, SlipBounds
+
+__all__ = ["SlipModel", "slip_model", "first_zero", "first_zeros"]
+
+_EPS = 2.220446049250313e-16
+# The Taylor march is only run on one grid cell at a time; this cap is reached
+# only at an exact tangency, where the steps shrink geometrically.
+_MAX_STEPS = 2_000
+# cells of the scan table examined at a time (slips usually end within a few blocks)
+_BLOCK = 128
+
+
+@dataclass(frozen=True, eq=False)
+class SlipModel:
+    """Everything the search needs for one parameter set."""
+
+    expm: MatrixExponential
+    bounds: SlipBounds
+    table: ScanTable
+    f_c: float
+
+
+@lru_cache(maxsize=64)
+def slip_model(params: Parameters) -> SlipModel:
+    """The closed form, the bounds and the scan table of ``params`` (cached)."""
+    expm = MatrixExponential.from_params(params)
+    bounds = SlipBounds.from_params(params)
+    return SlipModel(expm=expm, bounds=bounds, table=ScanTable.build(expm), f_c=float(params.f_c))
+
+
+# ---------------------------------------------------------------------------
+# One trajectory
+# ---------------------------------------------------------------------------
+class _Slip:
+    """``y(τ) = e^{Aτ} y0`` from the slip's start, in closed form."""
+
+    __slots__ = ("w_scalar", "d", "q0", "q1", "q2")
+
+    def __init__(self, expm: MatrixExponential, y0: tuple[float, float, float], direction: int) -> None:
+        self.w_scalar = expm.w_scalar
+        self.d = direction
+        s, p, v = y0
+        k_p, k_i, k_v = expm.k_p, expm.k_i, expm.k_v
+        # e^{Aτ} y0 = w'' y0 + w' B1 y0 + w B2 y0 (see affine.MatrixExponential)
+        self.q0 = (s, p, v)
+        self.q1 = (k_v * s - k_i * v, s + k_v * p - k_p * v, p)
+        self.q2 = (k_p * s - k_i * p, k_v * s - k_i * v, s)
+
+    def state(self, tau: float) -> tuple[float, float, float]:
+        w0, w1, w2 = self.w_scalar(tau)
+        q0, q1, q2 = self.q0, self.q1, self.q2
+        return (
+            w2 * q0[0] + w1 * q1[0] + w0 * q2[0],
+            w2 * q0[1] + w1 * q1[1] + w0 * q2[1],
+            w2 * q0[2] + w1 * q1[2] + w0 * q2[2],
+        )
+
+    def u(self, tau: float) -> float:
+        return self.d * self.state(tau)[2]
+
+
+def _illinois(f, lo: float, f_lo: float, hi: float, f_hi: float) -> float:
+    """Zero of ``f`` in ``[lo, hi]`` with ``f(lo) > 0 ≥ f(hi)``, to machine precision."""
+    side = 0
+    for _ in range(200):
+        if f_hi == 0.0 or hi - lo <= 2.0 * _EPS * max(abs(lo), abs(hi)):
+            break
+        m = (lo * f_hi - hi * f_lo) / (f_hi - f_lo)
+        if not lo < m < hi:
+            m = 0.5 * (lo + hi)
+        f_m = f(m)
+        if f_m > 0.0:
+            lo, f_lo = m, f_m
+            if side == -1:
+                f_hi *= 0.5
+            side = -1
+        else:
+            hi, f_hi = m, f_m
+            if side == 1:
+                f_lo *= 0.5
+            side = 1
+    return hi if abs(f_hi) <= abs(f_lo) else lo
+
+
+def _march(
+    slip: _Slip, model: SlipModel, a: float, y: tuple[float, float, float], stop: float
+) -> tuple[float | None, tuple[float, float, float]]:
+    """Certified Taylor march from ``a`` (state ``y``) to ``stop``; first zero of ``u`` or None."""
+    expm = model.expm
+    k_p, k_i, k_v = expm.k_p, expm.k_i, expm.k_v
+    kv_ki = k_v / k_i
+    m2, m3 = model.bounds.m[2], model.bounds.m[3]
+    d = slip.d
+    fresh = a == 0.0
+    for _ in range(_MAX_STEPS):
+        s, p, v = y
+        u = d * v
+        if u <= 0.0 and not fresh:
+            return a, y  # reached by a certified step: a zero up to rounding
+        fresh = False
+        du = d * (p - k_v * v)
+        r_p = math.sqrt(max(kv_ki * s * s - 2.0 * s * v + k_p * v * v + p * p, 0.0))
+        dd = d * (s - k_v * p + (k_v * k_v - k_p) * v)
+        # |u''| on [a, stop]: globally ≤ m2|y|_P, and ≤ |u''(a)| + m3|y|_P (stop - a)
+        big_m2 = min(m2 * r_p, abs(dd) + m3 * r_p * (stop - a))
+        if big_m2 == 0.0:
+            return (a, y) if a > 0.0 else (None, y)  # y = 0: the slip's equilibrium
+        root = math.sqrt(du * du + 2.0 * big_m2 * u)
+        # u > 0 on [a, a + step): the first root of u + du τ - M2 τ²/2
+        if du > 0.0:
+            step = (du + root) / big_m2
+        else:
+            step = 2.0 * u / (root - du) if root - du > 0.0 else 0.0
+        if du < 0.0 and 2.0 * big_m2 * u <= du * du:
+            # u + du τ + M2 τ²/2 vanishes too: one strictly decreasing crossing in [lo, hi]
+            lo = a + step
+            hi = a + 2.0 * u / (math.sqrt(du * du - 2.0 * big_m2 * u) - du)
+            if lo >= stop:
+                return None, y
+            if hi > stop:
+                if slip.u(stop) > 0.0:
+                    return None, y
+                hi = stop
+            f_lo, f_hi = slip.u(lo), slip.u(hi)
+            if f_lo <= 0.0:
+                tau = lo
+            elif f_hi > 0.0:
+                tau = hi
+            else:
+                tau = _illinois(slip.u, lo, f_lo, hi, f_hi)
+            return tau, slip.state(tau)
+        if du >= 0.0:
+            if dd > 0.0:
+                # u + du τ + dd τ²/2 - M3 τ³/6 ≥ τ² (dd/2 - M3 τ/6) > 0 below 3 dd/M3
+                step = max(step, 2.9 * dd / (m3 * r_p))
+        a_next = a + step
+        if a_next >= stop:
+            return None, y
+        if a_next == a:
+            return (a, y) if a > 0.0 else (None, y)  # tangential contact
+        a = a_next
+        y = slip.state(a)
+    return a, y
+
+
+def _blocked(w: np.ndarray, s, p, v, d, r_p, dt: float, m4: float) -> np.ndarray:
+    """Cells of a block ``w`` (shape (5, B + 1)) of the table that the scan cannot clear.
+
+    ``s, p, v, d, r_p`` are floats (one trajectory) or columns (R, 1); the
+    result has shape (B,) or (R, B).
+    """
+    u = d * (s * w[0] + p * w[1] + v * w[2])
+    u2 = np.abs(s * w[2] + p * w[3] + v * w[4])
+    # |u''| on a cell ≤ max of its ends + Δ² max|u⁗| / 8, |u⁗| ≤ m4 |y|_P
+    slack = 0.125 * dt * dt * (np.maximum(u2[..., :-1], u2[..., 1:]) + 0.125 * dt * dt * m4 * r_p)
+    # rounding of the products (u and u'' values)
+    terms = np.abs(s * w[0]) + np.abs(p * w[1]) + np.abs(v * w[2])
+    terms = terms + dt * dt * (np.abs(s * w[2]) + np.abs(p * w[3]) + np.abs(v * w[4]))
+    noise = 8.0 * _EPS * np.maximum(terms[..., :-1], terms[..., 1:])
+    return ~(np.minimum(u[..., :-1], u[..., 1:]) > slack + noise)
+
+
+def first_zero(
+    model: SlipModel, y0: tuple[float, float, float], direction: int, horizon: float
+) -> tuple[float | None, tuple[float, float, float]]:
+    """First ``τ ∈ (0, horizon]`` with ``v(τ) = 0`` along the slip from offset ``y0``.
+
+    Parameters
+    ----------
+    model : SlipModel
+        From :func:`slip_model`.
+    y0 : tuple of float
+        ``x(0) - x*_k`` with ``k·v(0) > 0``, or ``v(0) = 0`` with ``k·v``
+        increasing (the table's rows (ii)/(iii), (ix)/(x)).
+    direction : {1, -1}
+        ``k``.
+    horizon : float
+        ``> 0``.
+
+    Returns
+    -------
+    tau : float or None
+        ``None`` if ``k·v > 0`` on ``(0, horizon]``.
+    y : tuple of float
+        The offset ``y(tau)``, or ``y(horizon)`` when ``tau`` is None.
+    """
+    slip = _Slip(model.expm, y0, direction)
+    table = model.table
+    dt = table.dt
+    w = table.values
+    n_cells = w.shape[1] - 1
+    kv_ki, k_p = model.expm.k_v / model.expm.k_i, model.expm.k_p
+    m4 = model.bounds.m[4]
+    d = direction
+    a_w, y_w = 0.0, y0
+    while a_w < horizon:
+        s, p, v = y_w
+        r_p = math.sqrt(max(kv_ki * s * s - 2.0 * s * v + k_p * v * v + p * p, 0.0))
+        last = min(n_cells, math.ceil((horizon - a_w) / dt))
+        for j0 in range(0, last, _BLOCK):
+            j1 = min(j0 + _BLOCK, last)
+            for j in np.flatnonzero(_blocked(w[:, j0 : j1 + 1], s, p, v, d, r_p, dt, m4)):
+                a0 = a_w + float(j0 + j) * dt
+                y_a0 = y_w if j0 + j == 0 else slip.state(a0)
+                tau, y = _march(slip, model, a0, y_a0, min(a0 + dt, horizon))
+                if tau is not None:
+                    return tau, y
+        a_w += table.window
+        if a_w < horizon:
+            y_w = slip.state(a_w)
+    return None, slip.state(horizon)
+
+
+# ---------------------------------------------------------------------------
+# Many trajectories at once
+# ---------------------------------------------------------------------------
+def _states(expm: MatrixExponential, q0: np.ndarray, q1: np.ndarray, q2: np.ndarray, tau: np.ndarray) -> np.ndarray:
+    w0, w1, w2 = expm.w(tau)
+    return w2[:, None] * q0 + w1[:, None] * q1 + w0[:, None] * q2
+
+
+def first_zeros(
+    model: SlipModel, y0: np.ndarray, direction: np.ndarray, horizon: np.ndarray, *, chunk: int = 2048
+) -> tuple[np.ndarray, np.ndarray]:
+    """Vectorised :func:`first_zero` for offsets ``y0`` (N, 3), directions and horizons (N,).
+
+    Returns ``tau`` (N,), NaN where there is no zero before the horizon, and
+    the offsets ``y`` (N, 3) at ``tau`` (or at the horizon).
+    """
+    expm = model.expm
+    y0 = np.asarray(y0, dtype=float)
+    d = np.asarray(direction, dtype=float)
+    horizon = np.asarray(horizon, dtype=float)
+    n = y0.shape[0]
+    q0 = y0
+    q1 = y0 @ expm.B1.T
+    q2 = y0 @ expm.B2.T
+    table = model.table
+    dt, w = table.dt, table.values
+    n_cells = w.shape[1] - 1
+    kv_ki, k_p = expm.k_v / expm.k_i, expm.k_p
+    m4 = model.bounds.m[4]
+
+    tau = np.full(n, np.nan)
+    open_ = np.ones(n, dtype=bool)  # still searching
+    a_w = np.zeros(n)
+    y_w = y0.copy()
+    while True:
+        in_window = open_ & (a_w < horizon)
+        if not in_window.any():
+            break
+        last = np.minimum(n_cells, np.ceil((horizon - a_w) / dt)).astype(int)
+        for j0 in range(0, n_cells, _BLOCK):
+            rows = np.flatnonzero(in_window & open_ & (last > j0))
+            if rows.size == 0:
+                break
+            j1 = min(j0 + _BLOCK, n_cells)
+            block = w[:, j0 : j1 + 1]
+            cells = j0 + np.arange(j1 - j0)
+            for lo in range(0, rows.size, chunk):
+                part = rows[lo : lo + chunk]
+                s, p, v = y_w[part, 0:1], y_w[part, 1:2], y_w[part, 2:3]
+                r_p = np.sqrt(np.maximum(kv_ki * s * s - 2.0 * s * v + k_p * v * v + p * p, 0.0))
+                blocked = _blocked(block, s, p, v, d[part, None], r_p, dt, m4)
+                blocked &= cells[None, :] < last[part, None]
+                _march_cells(model, q0, q1, q2, d, horizon, part, a_w, j0, blocked, tau, open_)
+        a_w = np.where(open_, a_w + table.window, a_w)
+        moving = np.flatnonzero(open_ & (a_w < horizon))
+        if moving.size:
+            y_w[moving] = _states(expm, q0[moving], q1[moving], q2[moving], a_w[moving])
+    at = np.where(np.isnan(tau), horizon, tau)
+    return tau, _states(expm, q0, q1, q2, at)
+
+
+def _march_cells(model, q0, q1, q2, d, horizon, part, a_w, j0, blocked, tau, open_) -> None:
+    """Run the Taylor march, vectorised, on each row's blocked cells in order."""
+    dt = model.table.dt
+    pending = blocked.copy()
+    local = np.arange(part.size)
+    while True:
+        has = pending.any(axis=1)
+        if not has.any():
+            return
+        idx = local[has]
+        j = np.argmax(pending[idx], axis=1)
+        pending[idx, j] = False
+        rows = part[idx]
+        a0 = a_w[rows] + (j0 + j) * dt
+        stop = np.minimum(a0 + dt, horizon[rows])
+        found, where = _march_vec(model, q0[rows], q1[rows], q2[rows], d[rows], a0, stop)
+        hit = rows[found]
+        tau[hit] = where[found]
+        open_[hit] = False
+        pending[idx[found]] = False
+
+
+def _march_vec(model, q0, q1, q2, d, a, stop):
+    """Vectorised :func:`_march` (each row from ``a`` to ``stop``)."""
+    expm = model.expm
+    k_p, k_i, k_v = expm.k_p, expm.k_i, expm.k_v
+    m2, m3 = model.bounds.m[2], model.bounds.m[3]
+    n = a.size
+    a = a.copy()
+    found = np.zeros(n, dtype=bool)
+    where = np.full(n, np.nan)
+    active = np.ones(n, dtype=bool)
+    fresh = a == 0.0
+    for _ in range(_MAX_STEPS):
+        act = np.flatnonzero(active)
+        if act.size == 0:
+            break
+        aa = a[act]
+        y = _states(expm, q0[act], q1[act], q2[act], aa)
+        s, p, v = y[:, 0], y[:, 1], y[:, 2]
+        dd_ = d[act]
+        u = dd_ * v
+        # a zero reached by a certified step (not at a slip's start)
+        reached = (u <= 0.0) & ~fresh[act]
+        fresh[act] = False
+        du = dd_ * (p - k_v * v)
+        r_p = np.sqrt(np.maximum((k_v / k_i) * s * s - 2.0 * s * v + k_p * v * v + p * p, 0.0))
+        dd2 = dd_ * (s - k_v * p + (k_v * k_v - k_p) * v)
+        big_m2 = np.minimum(m2 * r_p, np.abs(dd2) + m3 * r_p * (stop[act] - aa))
+        degenerate = big_m2 == 0.0
+        safe_m2 = np.where(degenerate, 1.0, big_m2)
+        root = np.sqrt(du * du + 2.0 * safe_m2 * u)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            step = np.where(du > 0.0, (du + root) / safe_m2, 2.0 * u / (root - du))
+        step = np.where(np.isfinite(step) & (step > 0.0), step, 0.0)
+        grow = (du >= 0.0) & ~degenerate
+        with np.errstate(divide="ignore", invalid="ignore"):
+            step3 = np.where(grow & (dd2 > 0.0), 2.9 * dd2 / (m3 * np.where(degenerate, 1.0, r_p)), 0.0)
+        step = np.maximum(step, step3)
+        endgame = (du < 0.0) & (2.0 * safe_m2 * u <= du * du) & ~degenerate & ~reached
+        stp = stop[act]
+
+        # rows resolved now
+        done_zero = reached | (degenerate & (aa > 0.0))
+        done_none = degenerate & ~(aa > 0.0)
+        a_next = aa + step
+        plain = ~(done_zero | done_none | endgame)
+        done_none |= plain & (a_next >= stp)
+        stuck = plain & (a_next < stp) & (a_next == aa)
+        done_zero |= stuck & (aa > 0.0)
+        done_none |= stuck & ~(aa > 0.0)
+        moving = plain & (a_next < stp) & (a_next > aa)
+
+        rows_z = act[done_zero]
+        found[rows_z] = True
+        where[rows_z] = aa[done_zero]
+        active[act[done_zero | done_none]] = False
+        a[act[moving]] = a_next[moving]
+
+        eg = np.flatnonzero(endgame)
+        if eg.size:
+            rows_e = act[eg]
+            lo = aa[eg] + step[eg]
+            hi = aa[eg] + 2.0 * u[eg] / (np.sqrt(du[eg] ** 2 - 2.0 * safe_m2[eg] * u[eg]) - du[eg])
+            s_e = stp[eg]
+            active[rows_e] = False
+            beyond = lo >= s_e
+            check = ~beyond & (hi > s_e)
+            if check.any():
+                rc = rows_e[check]
+                u_stop = d[rc] * _states(expm, q0[rc], q1[rc], q2[rc], s_e[check])[:, 2]
+                none_now = np.zeros(eg.size, dtype=bool)
+                none_now[np.flatnonzero(check)[u_stop > 0.0]] = True
+                beyond |= none_now
+                hi = np.where(check, s_e, hi)
+            keep = ~beyond
+            if keep.any():
+                rk = rows_e[keep]
+                found[rk] = True
+                where[rk] = _illinois_vec(expm, q0[rk], q1[rk], q2[rk], d[rk], lo[keep], hi[keep])
+    # rows still active after the cap: a tangency; return the contact point
+    rest = np.flatnonzero(active)
+    found[rest] = a[rest] > 0.0
+    where[rest] = a[rest]
+    return found, where
+
+
+def _illinois_vec(expm, q0, q1, q2, d, lo, hi):
+    """Vectorised :func:`_illinois` on brackets where ``u(lo) > 0`` is expected and ``u(hi) ≤ 0``."""
+    f = lambda t, sel: d[sel] * _states(expm, q0[sel], q1[sel], q2[sel], t)[:, 2]  # noqa: E731
+    every = np.arange(lo.size)
+    f_lo = f(lo, every)
+    f_hi = f(hi, every)
+    result = np.where(f_lo <= 0.0, lo, np.where(f_hi > 0.0, hi, np.nan))
+    open_ = np.isnan(result)
+    side = np.zeros(lo.size, dtype=int)
+    lo, hi = lo.copy(), hi.copy()
+    for _ in range(200):
+        idx = np.flatnonzero(open_)
+        if idx.size == 0:
+            break
+        l, h, fl, fh = lo[idx], hi[idx], f_lo[idx], f_hi[idx]
+        close = (fh == 0.0) | (h - l <= 2.0 * _EPS * np.maximum(np.abs(l), np.abs(h)))
+        if close.any():
+            ci = idx[close]
+            result[ci] = np.where(np.abs(f_hi[ci]) <= np.abs(f_lo[ci]), hi[ci], lo[ci])
+            open_[ci] = False
+            idx, l, h, fl, fh = idx[~close], l[~close], h[~close], fl[~close], fh[~close]
+            if idx.size == 0:
+                break
+        m = (l * fh - h * fl) / (fh - fl)
+        bad = ~((l < m) & (m < h))
+        m = np.where(bad, 0.5 * (l + h), m)
+        fm = f(m, idx)
+        pos = fm > 0.0
+        # Illinois: halve the stale end's value when the same side moves twice
+        ip, ineg = idx[pos], idx[~pos]
+        f_hi[ip] = np.where(side[ip] == -1, 0.5 * f_hi[ip], f_hi[ip])
+        lo[ip], f_lo[ip], side[ip] = m[pos], fm[pos], -1
+        f_lo[ineg] = np.where(side[ineg] == 1, 0.5 * f_lo[ineg], f_lo[ineg])
+        hi[ineg], f_hi[ineg], side[ineg] = m[~pos], fm[~pos], 1
+    rest = np.flatnonzero(open_)
+    result[rest] = np.where(np.abs(f_hi[rest]) <= np.abs(f_lo[rest]), hi[rest], lo[rest])
+    return result

@@ -1,0 +1,142 @@
+"""Certify → verify → write, byte-identical regeneration, and staleness of committed files."""
+
+from __future__ import annotations
+
+import json
+import shutil
+from dataclasses import replace
+from fractions import Fraction as F
+from pathlib import Path
+
+import pytest
+
+from symbolic_friction import CertificateError, CertificateFormatError, Parameters, ParameterError
+from symbolic_friction._certify import (
+    TABLE_I_FILES,
+    certify,
+    certify_table_i,
+    check_committed_certificates,
+    default_stem,
+    dumps,
+    regenerate,
+    render_files,
+    write_certificate,
+)
+from symbolic_friction._certify import pipeline as pipeline_module
+
+REPO = Path(__file__).resolve().parents[2]
+CASE_A = Parameters.table_i("a")
+
+
+@pytest.fixture(scope="module")
+def table_dir(tmp_path_factory) -> Path:
+    directory = tmp_path_factory.mktemp("proofs")
+    certify_table_i(directory)
+    return directory
+
+
+def test_certify_table_i_writes_eight_files(table_dir):
+    names = sorted(p.name for p in table_dir.iterdir())
+    expected = sorted(TABLE_I_FILES + tuple(n.replace(".json", ".md") for n in TABLE_I_FILES))
+    assert names == expected
+
+
+def test_regeneration_is_byte_identical(table_dir, tmp_path):
+    certify_table_i(tmp_path)
+    for path in table_dir.iterdir():
+        assert (tmp_path / path.name).read_bytes() == path.read_bytes(), path.name
+
+
+def test_committed_proofs_are_verified_and_up_to_date():
+    """The files under proofs/ are exactly what `symbolic-friction certify` writes now."""
+    results = check_committed_certificates(REPO / "proofs", expected=TABLE_I_FILES)
+    assert [r.path.name for r in results] == sorted(TABLE_I_FILES)
+    for result in results:
+        assert result.ok, result.describe()
+        assert result.describe().startswith("ok ")
+
+
+def test_check_detects_a_stale_markdown_report(table_dir, tmp_path):
+    work = tmp_path / "p"
+    shutil.copytree(table_dir, work)
+    md = work / "case_a_tightest.md"
+    md.write_text(md.read_text(encoding="utf-8") + "edited\n", encoding="utf-8")
+    results = {r.path.name: r for r in check_committed_certificates(work)}
+    bad = results["case_a_tightest.json"]
+    assert bad.proved and bad.stale and not bad.ok
+    assert bad.reason == "case_a_tightest.md differs from what `symbolic-friction certify` writes now"
+    assert bad.describe().startswith("STALE ")
+    assert all(r.ok for name, r in results.items() if name != "case_a_tightest.json")
+
+
+def test_check_detects_a_valid_but_stale_certificate(table_dir, tmp_path):
+    work = tmp_path / "p"
+    shutil.copytree(table_dir, work)
+    path = work / "case_b_feasible.json"
+    data = json.loads(path.read_text(encoding="utf-8"))
+    data["constants"]["c2"] = "100"  # still a valid (looser) bound, but not what certify writes
+    data["overshoot_bound"] = "100.000"
+    path.write_text(json.dumps(data, indent=2, sort_keys=True) + "\n", encoding="utf-8")
+    result = {r.path.name: r for r in check_committed_certificates(work)}["case_b_feasible.json"]
+    assert result.proved and result.stale
+    assert result.reason == "case_b_feasible.json differs from what `symbolic-friction certify` writes now"
+
+
+def test_check_reports_missing_malformed_failing_and_unregenerable_files(table_dir, tmp_path):
+    work = tmp_path / "p"
+    shutil.copytree(table_dir, work)
+    (work / "case_a_feasible.json").unlink()
+    (work / "case_b_tightest.md").unlink()
+    (work / "junk.json").write_text("not json", encoding="utf-8")
+    data = json.loads((work / "case_a_tightest.json").read_text(encoding="utf-8"))
+    data["constants"]["k3"] = "1"
+    (work / "failing.json").write_text(json.dumps(data), encoding="utf-8")
+    data = json.loads((work / "case_b_feasible.json").read_text(encoding="utf-8"))
+    del data["provenance"]
+    (work / "anonymous.json").write_text(json.dumps(data), encoding="utf-8")
+    results = {r.path.name: r for r in check_committed_certificates(work, expected=TABLE_I_FILES)}
+    assert results["case_a_feasible.json"].reason == "missing; run `symbolic-friction certify`"
+    assert results["case_b_tightest.json"].reason == "its report case_b_tightest.md is missing"
+    assert results["junk.json"].reason.startswith("malformed: ") and "not valid JSON" in results["junk.json"].reason
+    assert results["junk.json"].describe().startswith("FAILED ")
+    assert not results["failing.json"].proved and "k3 > k2: 1 > 2 is false" in results["failing.json"].reason
+    assert results["anonymous.json"].proved and results["anonymous.json"].stale
+    assert "no provenance" in results["anonymous.json"].reason
+    assert sorted(name for name, r in results.items() if r.ok) == ["case_a_tightest.json", "case_b_feasible.json"]
+
+
+def test_write_refuses_an_unproved_certificate(tmp_path):
+    bad = replace(certify(CASE_A), k3=F(1))
+    with pytest.raises(CertificateError, match=r"FAILED case.json: .*k3 > k2: 1 > 2 is false"):
+        write_certificate(bad, tmp_path / "case.json")
+    assert list(tmp_path.iterdir()) == []
+    with pytest.raises(CertificateError, match="k3 > k2: 1 > 2 is false"):
+        render_files(bad, name="x.json")
+
+
+def test_write_needs_a_json_name(tmp_path):
+    with pytest.raises(ParameterError, match=r"must end in '.json'; got '.*case.txt'"):
+        write_certificate(certify(CASE_A), tmp_path / "case.txt")
+
+
+def test_certify_never_returns_an_unverified_certificate(monkeypatch):
+    real = pipeline_module.to_certificate
+    monkeypatch.setattr(pipeline_module, "to_certificate", lambda cand, label="": replace(real(cand), c=F(1)))
+    with pytest.raises(CertificateError, match=r"rounded tightest candidate for .* does not verify exactly: c = 2"):
+        certify(CASE_A)
+
+
+def test_regenerate_needs_provenance_and_a_known_mode():
+    cert = certify(CASE_A, mode="feasible", label="x")
+    assert dumps(regenerate(cert)) == dumps(cert)
+    with pytest.raises(CertificateFormatError, match="no provenance, so it cannot be regenerated"):
+        regenerate(replace(cert, provenance=None))
+    with pytest.raises(CertificateFormatError, match=r"provenance.mode is 'manual'; only feasible, tightest"):
+        regenerate(replace(cert, provenance=replace(cert.provenance, mode="manual")))
+
+
+def test_default_stem_is_deterministic_and_distinguishes_gains():
+    a = default_stem(CASE_A, "tightest")
+    assert a == default_stem(Parameters(k_p="3", k_i="4.0", k_v="32/5"), "tightest")
+    assert a.startswith("certificate_") and a.endswith("_tightest") and len(a) == len("certificate_") + 12 + 9
+    assert a != default_stem(Parameters.table_i("b"), "tightest")

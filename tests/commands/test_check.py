@@ -1,0 +1,268 @@
+"""``symbolic-friction check``: exit codes, ``--json`` schema, ``--write``
+determinism, staleness detection and start-up cost."""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+import symbolic_friction._obligations as obligations
+from symbolic_friction._commands import check
+from symbolic_friction._obligations._base import Erratum, Obligation, Outcome
+from symbolic_friction.cli import main
+
+REPO = Path(__file__).resolve().parents[2]
+MY_IDS = (
+    "coordinates",
+    "regularization",
+    "assumption1.routh",
+    "equilibria",
+    "distance",
+    "lemma1.uniqueness",
+    "lemma2.P",
+    "lemma2.lower_bound",
+    "lemma2.dVdt",
+    "remark.armstrong",
+    "claim1.cases",
+    "prop1.invariance",
+)
+
+
+# --------------------------------------------------------------------------- the real run (once)
+
+
+@pytest.fixture(scope="module")
+def full_run(tmp_path_factory):
+    """``check --json --write`` on every obligation, run once for this module."""
+    proofs = tmp_path_factory.mktemp("proofs")
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        rc = main(["check", "--json", "--write", "--proofs", str(proofs)])
+    return rc, json.loads(out.getvalue()), err.getvalue(), proofs / "obligations.md"
+
+
+def test_every_obligation_holds(full_run):
+    rc, payload, err, _ = full_run
+    failing = [(o["id"], o["reason"]) for o in payload["obligations"] if o["status"] != "holds"]
+    assert failing == []
+    assert rc == 0, err
+
+
+def test_json_schema(full_run):
+    _, payload, _, _ = full_run
+    assert set(payload) == {"obligations", "errata"}
+    ids = [o["id"] for o in payload["obligations"]]
+    assert len(ids) == len(set(ids))
+    assert [i for i in ids if i in MY_IDS] == list(MY_IDS)  # all present, in paper order
+    for o in payload["obligations"]:
+        assert {"id", "paper", "statement", "method", "status", "seconds"} <= set(o)
+        assert o["status"] in ("holds", "fails")
+        assert isinstance(o["seconds"], float) and o["seconds"] >= 0
+        assert all(isinstance(o[k], str) and o[k] for k in ("id", "paper", "statement", "method"))
+        assert all(set(d) == {"label", "latex"} for d in o["details"])
+    for e in payload["errata"]:
+        assert set(e) == {"where", "paper_says", "correct", "checked_by"}
+    v0 = [e for e in payload["errata"] if "V_0" in e["paper_says"]]
+    assert v0 and "ξ_σ²" in v0[0]["correct"]
+
+
+def test_write_reports_every_obligation_with_latex(full_run):
+    _, payload, err, report = full_run
+    text = report.read_text(encoding="utf-8")
+    assert f"wrote {report}" in err
+    for o in payload["obligations"]:
+        assert f"`{o['id']}` — {o['status']}" in text
+    assert text.count("$$") % 2 == 0 and "\\left[\\begin{matrix}" in text
+    assert "## Errata" in text and "ξ_σ²" in text
+    assert "seconds" not in text and " s)" not in text  # no timings: byte-deterministic
+
+
+def test_write_is_deterministic_across_processes(full_run, tmp_path):
+    """A second process (other hash seed) writes the same bytes."""
+    _, _, _, report = full_run
+    env = dict(os.environ, PYTHONHASHSEED="12345")
+    proc = subprocess.run(
+        [sys.executable, "-m", "symbolic_friction", "check", "--write", "--proofs", str(tmp_path)],
+        capture_output=True, text=True, env=env, timeout=300,
+    )
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    assert (tmp_path / "obligations.md").read_bytes() == report.read_bytes()
+
+
+def test_committed_report_is_current(full_run):
+    """``proofs/obligations.md`` in the repository is what ``check --write`` writes now."""
+    _, _, _, report = full_run
+    committed = REPO / "proofs" / "obligations.md"
+    assert committed.is_file(), "run `symbolic-friction check --write` and commit proofs/obligations.md"
+    assert committed.read_bytes() == report.read_bytes(), "proofs/obligations.md is stale: run `symbolic-friction check --write`"
+
+
+# --------------------------------------------------------------------------- mechanics, with small fake obligations
+
+
+class _Holds(Obligation):
+    id = "fake.holds"
+    paper = "eq. (x)"
+    statement = "|x| ≥ 0"
+    method = "sympy identity"
+    errata = (Erratum(where="§0", paper_says="1 = 2", correct="1 = 1", checked_by="fake.holds"),)
+
+    def derive(self):
+        return 0
+
+    def verify(self, subject):
+        return Outcome(True, "fine", (("x", "x^2"),))
+
+
+class _Fails(_Holds):
+    id = "fake.fails"
+    errata = ()
+
+    def verify(self, subject):
+        return Outcome.fail("residual k_i - 1 is not zero")
+
+
+class _Crashes(_Holds):
+    id = "fake.crashes"
+    errata = ()
+
+    def verify(self, subject):
+        raise ZeroDivisionError("division by zero in a broken check")
+
+
+@pytest.fixture
+def fake(monkeypatch):
+    """Replace the obligation list by the given fake classes."""
+
+    def use(*classes):
+        monkeypatch.setattr(obligations, "all_obligations", lambda: [c() for c in classes])
+        monkeypatch.setattr(obligations, "all_errata", lambda: [e for c in classes for e in c.errata])
+
+    return use
+
+
+def test_table_lists_columns_and_errata(fake, tmp_path, capsys):
+    fake(_Holds)
+    assert main(["check", "--write", "--proofs", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    header = next(line for line in out.splitlines() if line.startswith("id"))
+    assert header.split() == ["id", "paper", "statement", "method", "status", "seconds"]
+    assert "fake.holds" in out and "holds" in out
+    assert "Errata" in out and 'the paper says "1 = 2"; correct: 1 = 1' in out
+    assert "1 of 1 obligations hold" in out
+
+
+def test_failing_obligation_exits_1_and_shows_the_residual(fake, tmp_path, capsys):
+    fake(_Holds, _Fails)
+    assert main(["check", "--write", "--proofs", str(tmp_path)]) == 1
+    out = capsys.readouterr().out
+    assert "FAILS fake.fails: residual k_i - 1 is not zero" in out
+    assert "1 of 2 obligations hold" in out
+    assert "`fake.fails` — fails" in (tmp_path / "obligations.md").read_text(encoding="utf-8")
+
+
+def test_crashing_obligation_is_reported_as_failing(fake, tmp_path, capsys):
+    fake(_Crashes)
+    assert main(["check", "--json", "--proofs", str(tmp_path / "none")]) == 1
+    record = json.loads(capsys.readouterr().out)["obligations"][0]
+    assert record["status"] == "fails"
+    assert "ZeroDivisionError: division by zero in a broken check" in record["reason"]
+
+
+def test_write_twice_is_byte_identical(fake, tmp_path, capsys):
+    fake(_Holds, _Fails)
+    main(["check", "--write", "--proofs", str(tmp_path / "a")])
+    main(["check", "--write", "--proofs", str(tmp_path / "b")])
+    first = (tmp_path / "a" / "obligations.md").read_bytes()
+    assert first == (tmp_path / "b" / "obligations.md").read_bytes()
+    main(["check", "--write", "--proofs", str(tmp_path / "a")])
+    assert (tmp_path / "a" / "obligations.md").read_bytes() == first
+    assert sorted(p.name for p in (tmp_path / "a").iterdir()) == ["obligations.md"]  # no temp files left
+
+
+def test_stale_report_exits_1(fake, tmp_path, capsys):
+    fake(_Holds)
+    assert main(["check", "--write", "--proofs", str(tmp_path)]) == 0
+    assert main(["check", "--proofs", str(tmp_path)]) == 0
+    report = tmp_path / "obligations.md"
+    report.write_text(report.read_text(encoding="utf-8").replace("holds", "held"), encoding="utf-8")
+    capsys.readouterr()
+    assert main(["check", "--proofs", str(tmp_path)]) == 1
+    out = capsys.readouterr().out
+    assert f"STALE: {report} differs from what `check` derives now" in out
+
+
+def test_missing_report_exits_1(fake, tmp_path, capsys):
+    fake(_Holds)
+    assert main(["check", "--proofs", str(tmp_path)]) == 1
+    out = capsys.readouterr().out
+    assert f"STALE: {tmp_path / 'obligations.md'} is missing; run `symbolic-friction check --write`" in out
+
+
+def test_missing_proofs_dir_skips_the_staleness_check(fake, tmp_path, capsys):
+    fake(_Holds)
+    missing = tmp_path / "no-such-dir"
+    assert main(["check", "--proofs", str(missing)]) == 0
+    assert f"note: {missing} is not a directory; skipped the staleness check" in capsys.readouterr().out
+    assert not missing.exists()
+
+
+def test_write_creates_the_proofs_dir(fake, tmp_path, capsys):
+    fake(_Holds)
+    target = tmp_path / "new" / "proofs"
+    assert main(["check", "--write", "--proofs", str(target)]) == 0
+    assert (target / "obligations.md").is_file()
+
+
+def test_json_keeps_stdout_pure_and_notes_on_stderr(fake, tmp_path, capsys):
+    fake(_Holds)
+    assert main(["check", "--json", "--proofs", str(tmp_path)]) == 1  # no report yet: stale
+    captured = capsys.readouterr()
+    payload = json.loads(captured.out)
+    assert payload["obligations"][0]["id"] == "fake.holds"
+    assert payload["errata"] == [{"where": "§0", "paper_says": "1 = 2", "correct": "1 = 1", "checked_by": "fake.holds"}]
+    assert "STALE" in captured.err
+
+
+def test_sections_can_be_appended(fake, tmp_path, capsys, monkeypatch):
+    fake(_Holds)
+
+    def certificates(args):
+        return check.Section("Certificates", ("file", "status"), [("a.json", "proved")], {"certificates": ["a.json"]}, False, ["a.json: not proved"])
+
+    monkeypatch.setattr(check, "SECTIONS", [*check.SECTIONS, certificates])
+    assert main(["check", "--json", "--write", "--proofs", str(tmp_path)]) == 1
+    payload = json.loads(capsys.readouterr().out)
+    assert set(payload) == {"obligations", "errata", "certificates"}
+
+
+# --------------------------------------------------------------------------- start-up cost
+
+
+HEAVY = ("sympy", "scipy", "cvxpy", "matplotlib")
+
+
+def _modules_after(code: str) -> list[str]:
+    probe = code + f"\nimport sys\nprint(sorted(m for m in {HEAVY!r} if m in sys.modules))\n"
+    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, check=True).stdout
+    return json.loads(out.strip().splitlines()[-1].replace("'", '"'))
+
+
+def test_importing_the_cli_does_not_import_sympy():
+    assert _modules_after("import symbolic_friction.cli") == []
+
+
+def test_check_help_does_not_import_sympy():
+    code = (
+        "import contextlib, io\nfrom symbolic_friction.cli import main\n"
+        "with contextlib.redirect_stdout(io.StringIO()):\n"
+        "    try:\n        main(['check', '--help'])\n    except SystemExit:\n        pass"
+    )
+    assert _modules_after(code) == []

@@ -1,0 +1,111 @@
+"""``symbolic-friction figures``: the registry, the files, and what the figures show."""
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from symbolic_friction import Parameters
+from symbolic_friction._figures import (
+    FIG3_HORIZON,
+    FIG3_INITIAL_STATES,
+    FIGURES,
+    _pieces,
+    available_figures,
+    make_figures,
+    register,
+)
+from symbolic_friction.cli import main
+
+PNG = b"\x89PNG\r\n\x1a\n"
+EXPECTED = [
+    "fig3a_solutions.png",
+    "fig3a_phase.png",
+    "fig3a_V.png",
+    "fig3b_solutions.png",
+    "fig3b_phase.png",
+    "fig3b_V.png",
+    "fig2_region_R.png",
+    "fig4_stribeck.png",
+]
+
+
+def test_all_figures_are_written(tmp_path, capsys):
+    # the paper's figures; figures registered by other modules may add files
+    assert main(["figures", "--out", str(tmp_path), "--only", "fig2", "fig3a", "fig3b", "fig4"]) == 0
+    names = sorted(p.name for p in tmp_path.iterdir())
+    assert names == sorted(EXPECTED)
+    for name in EXPECTED:
+        data = (tmp_path / name).read_bytes()
+        assert data[:8] == PNG and len(data) > 20_000
+    assert capsys.readouterr().out.count("wrote ") == len(EXPECTED)
+    assert {"fig2", "fig3a", "fig3b", "fig4"} <= set(available_figures())
+
+
+def test_files_are_deterministic(tmp_path):
+    first = make_figures(tmp_path / "1", ["fig2", "fig4"])
+    second = make_figures(tmp_path / "2", ["fig2", "fig4"])
+    assert [p.name for p in first] == ["fig2_region_R.png", "fig4_stribeck.png"]
+    for a, b in zip(first, second):
+        assert a.read_bytes() == b.read_bytes()
+
+
+def test_registry_is_extensible(tmp_path):
+    @register("test-extra", "a figure added by another module")
+    def extra(out: Path) -> list[Path]:
+        path = out / "extra.txt"
+        path.write_text("drawn")
+        return [path]
+
+    try:
+        assert "test-extra" in available_figures()
+        assert make_figures(tmp_path, ["test-extra"]) == [tmp_path / "extra.txt"]
+        with pytest.raises(ValueError, match="a figure named 'test-extra' is already registered"):
+            register("test-extra", "again")(lambda out: [])
+    finally:
+        FIGURES.pop("test-extra")
+
+
+def test_list_and_unknown(capsys, tmp_path):
+    assert main(["figures", "--list"]) == 0
+    out = capsys.readouterr().out
+    for name in ("fig2", "fig3a", "fig3b", "fig4"):
+        assert name in out
+    assert main(["figures", "--out", str(tmp_path), "--only", "fig9"]) == 2
+    assert "unknown figure(s) 'fig9'; available: fig3a, fig3b, fig2, fig4" in capsys.readouterr().err
+
+
+def _stick_pieces(pieces):
+    return [p for p in pieces if p.mode == 0 and p.t[-1] > p.t[0]]
+
+
+def test_fig3a_shows_ramps_growing_sticks_and_a_nonincreasing_discontinuous_V():
+    params = Parameters.table_i("a")
+    pieces = _pieces(params, FIG3_INITIAL_STATES["a"][0], FIG3_HORIZON["a"])
+    sticks = _stick_pieces(pieces)
+    durations = [p.t[-1] - p.t[0] for p in sticks[:-1]]  # the last one is cut by the horizon
+    assert len(durations) >= 3 and durations == sorted(durations)
+    for p in sticks:
+        assert np.all(p.z[:, 2] == 0) and np.ptp(p.z[:, 1]) == 0  # at rest
+        slope = np.diff(p.z[:, 0]) / np.diff(p.t)
+        assert np.allclose(slope, p.z[0, 1], rtol=1e-9, atol=1e-12)  # e_i ramps with slope s
+        assert np.ptp(p.V) <= 1e-12 * p.V[0]  # V flat during stick
+    # V is nonincreasing along every solution and jumps (down) somewhere
+    jumps = 0
+    for z0 in FIG3_INITIAL_STATES["a"]:
+        ps = _pieces(params, z0, FIG3_HORIZON["a"])
+        values = np.concatenate([p.V for p in ps])
+        assert np.all(np.diff(values) <= 1e-9 * values[:-1])
+        jumps += sum(nxt.V[0] < p.V[-1] * (1 - 1e-6) for p, nxt in zip(ps, ps[1:]))
+    assert jumps >= 1
+
+
+def test_fig3b_converges_without_further_sticking():
+    params = Parameters.table_i("b")
+    bound = float(params.f_c / params.k_i)
+    for z0 in FIG3_INITIAL_STATES["b"]:
+        pieces = _pieces(params, z0, FIG3_HORIZON["b"])
+        assert len(_stick_pieces(pieces)) <= 1
+        last = pieces[-1]
+        assert last.mode != 0 and np.all(last.z[1:, 2] != 0)  # v never returns to 0
+        assert abs(abs(last.z[-1, 0]) - bound) < 1e-2 and abs(last.z[-1, 1]) < 1e-3

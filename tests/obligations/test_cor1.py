@@ -1,0 +1,162 @@
+"""Corollary 1: cor1.inflation and cor1.distances."""
+
+from __future__ import annotations
+
+import dataclasses
+import itertools
+from fractions import Fraction as F
+
+import numpy as np
+import pytest
+import sympy as sp
+
+from symbolic_friction import Parameters, _attractor
+from symbolic_friction._obligations.cor1 import Distances, Inflation, _counterexample, _expand_abs_relations
+
+
+@pytest.fixture(scope="module")
+def inflation():
+    return Inflation().derive()
+
+
+@pytest.fixture(scope="module")
+def distances():
+    return Distances().derive()
+
+
+def _fails(ob, subject, pattern):
+    out = ob.verify(subject)
+    assert out.holds is False
+    assert pattern in out.reason, out.reason
+
+
+# ------------------------------------------------------------ cor1.inflation
+
+
+def test_inflation_holds(inflation):
+    out = Inflation().verify(inflation)
+    assert out.holds, out.reason
+    rows = out.details[0][1]
+    assert "|\\rho | = 0,\\  v = 0: [-1, 1]" in rows  # ρ = 0 gives SGN
+    assert "v = |\\rho |: [- r - 1, r + 1]" in rows  # the boundary |v| = |ρ| is the wide interval
+
+
+def test_inflation_wrong_friction_level(inflation):
+    s = inflation
+    wrong = sp.Piecewise((sp.sign(s.v) + s.r, sp.Abs(s.v) > s.r), (sp.Rational(11, 10) + s.r, True))
+    _fails(Inflation(), dataclasses.replace(s, inflated_hi=wrong), "SGN_ρ(v) = [-r - 1, r + 11/10]")
+
+
+def test_inflation_wrong_interval_boundary(inflation):
+    s = inflation
+    lo = sp.Piecewise((sp.sign(s.v) - s.r, sp.Abs(s.v) >= s.r), (-1 - s.r, True))
+    hi = sp.Piecewise((sp.sign(s.v) + s.r, sp.Abs(s.v) >= s.r), (1 + s.r, True))
+    out = Inflation().verify(dataclasses.replace(s, inflated_lo=lo, inflated_hi=hi))
+    assert out.holds is False
+    assert "|ρ| > 0, v = -|ρ|" in out.reason and "|ρ| > 0, v = |ρ|" in out.reason
+    assert "|ρ| = 0, v = 0" in out.reason  # ρ = 0: SGN_0(0) would be {0}
+
+
+def test_inflation_wrong_width(inflation):
+    s = inflation
+    lo = sp.Piecewise((sp.sign(s.v) - 2 * s.r, sp.Abs(s.v) > s.r), (-1 - s.r, True))
+    _fails(Inflation(), dataclasses.replace(s, inflated_lo=lo), "v > |ρ|: SGN_ρ(v) = [1 - 2*r, r + 1]")
+
+
+def test_inflation_wrong_SGN(inflation):
+    s = inflation
+    _fails(Inflation(), dataclasses.replace(s, sgn_lo=sp.sign(s.u)), "|ρ| = 0, v = 0: SGN_ρ(v) = [-1, 1] but")
+
+
+def test_inflation_checked_against_brute_force():
+    """Independent of sympy: the inflation of SGN on a rational grid equals the paper's formula."""
+
+    def sgn(u):
+        return (u > 0) - (u < 0)
+
+    def paper(v, r):
+        return (sgn(v) - r, sgn(v) + r) if abs(v) > r else (-1 - r, 1 + r)
+
+    def inflated(v, r):
+        lo, hi = v - r, v + r
+        values = set()
+        if lo < 0:
+            values.add(-1)
+        if hi > 0:
+            values.add(1)
+        if lo <= 0 <= hi:
+            values |= {-1, 1}
+        return (min(values) - r, max(values) + r)
+
+    grid = [F(k, 4) for k in range(-12, 13)]
+    for v, r in itertools.product(grid, [F(0), F(1, 4), F(1), F(5, 2)]):
+        assert paper(v, r) == inflated(v, r), (v, r)
+
+
+def test_expand_abs_relations():
+    y, c = sp.symbols("y c", real=True)
+    assert _expand_abs_relations(sp.Abs(y) > c) == sp.Or(y > c, y < -c)
+    assert _expand_abs_relations(c >= sp.Abs(y)) == sp.And(y <= c, y >= -c)
+
+
+# ------------------------------------------------------------ cor1.distances
+
+
+def test_distances_hold(distances):
+    out = Distances().verify(distances)
+    assert out.holds, out.reason
+    assert out.details[1][1] == "4 D \\beta"
+
+
+def test_distances_moved_attractor_bound(distances):
+    s = distances
+    beta2 = 2 * s.f_c / s.k_i
+    dz = sp.Piecewise((s.e_i + beta2, s.e_i < -beta2), (s.e_i - beta2, s.e_i > beta2), (0, True))
+    dist2 = s.s**2 + s.v**2 + dz**2
+    cases = Distances().derive().cases  # split at the original ±f_c/k_i
+    out = Distances().verify(dataclasses.replace(s, dist2=dist2, bound2=2 * dist2 + 2 * (s.f_c / s.k_i) ** 2, cases=cases))
+    assert out.holds is False
+    assert "cannot decide" in out.reason or "not shown" in out.reason
+
+
+def test_distances_moved_bound_with_matching_split(distances):
+    from symbolic_friction._obligations._inequalities import line_cases
+
+    s = distances
+    beta2 = 2 * s.f_c / s.k_i
+    dz = sp.Piecewise((s.e_i + beta2, s.e_i < -beta2), (s.e_i - beta2, s.e_i > beta2), (0, True))
+    dist2 = s.s**2 + s.v**2 + dz**2
+    cases = tuple(line_cases(s.e_i, [-beta2, beta2], name="e_i", beyond="t_e", weights=("p_e", "q_e")))
+    moved = dataclasses.replace(s, dist2=dist2, bound2=2 * dist2 + 2 * (s.f_c / s.k_i) ** 2, cases=cases)
+    _fails(Distances(), moved, "|z|² ≤ 2|z|_𝒜² + 2(f_c/k_i)² not shown")
+    _fails(Distances(), moved, "it is negative at")
+
+
+def test_distances_wrong_norm(distances):
+    s = distances
+    _fails(Distances(), dataclasses.replace(s, norm2=s.s**2 + s.v**2), "|z|_𝒜² ≤ |z|² not shown")
+
+
+def test_distances_wrong_offset(distances):
+    s = distances
+    _fails(Distances(), dataclasses.replace(s, offset=s.f_c / (2 * s.k_i)), "2(|z|_𝒜 + f_c/(2*k_i))²")
+
+
+def test_distances_on_rational_points_against_the_package():
+    """The package's float distance_z satisfies both inequalities on a grid (independent check)."""
+    p = Parameters.table_i("b")
+    beta = float(p.f_c / p.k_i)
+    grid = np.array(list(itertools.product([-40.0, -12.5, -1.0, 0.0, 3.0, 12.5, 13.0], [-2.0, 0.0, 0.5], [-1.0, 0.0, 2.0])))
+    dist = _attractor.distance_z(p, grid)
+    norm = np.linalg.norm(grid, axis=1)
+    assert np.all(dist <= norm + 1e-12)
+    assert np.all(norm**2 <= 2 * dist**2 + 2 * beta**2 + 1e-9)
+    assert np.all(norm <= np.sqrt(2) * (dist + beta) + 1e-9)
+
+
+def test_counterexample_search():
+    t, b = sp.symbols("t b", positive=True)
+    x = sp.Symbol("x", real=True)
+    assert _counterexample(t**2 + x**2) is None
+    found = _counterexample(t**2 - 4 * b * t - 2 * b**2)
+    assert found is not None and (t**2 - 4 * b * t - 2 * b**2).xreplace(found) < 0

@@ -1,0 +1,122 @@
+"""The exact tools behind lemma3, prop1_stability and cor1 (_obligations/_inequalities.py)."""
+
+from __future__ import annotations
+
+import pytest
+import sympy as sp
+
+from symbolic_friction._obligations._decide import Undecided
+from symbolic_friction._obligations._inequalities import (
+    block_eigen_bounds,
+    canonical,
+    case_grid,
+    decide,
+    is_lower_bound_of,
+    is_nonneg,
+    is_nonpos,
+    is_upper_bound_of,
+    label_latex,
+    line_cases,
+    resolve,
+    sign_of,
+)
+
+a, b, c = sp.symbols("a b c", positive=True)
+n = sp.Symbol("n", nonnegative=True)
+x, y = sp.symbols("x y", real=True)
+
+
+def test_sign_of():
+    assert sign_of(a * b + 2) == 1
+    assert sign_of(-a / (b + 1)) == -1
+    assert sign_of(a - a) == 0
+    assert sign_of(a - b) is None
+    assert sign_of(x**2) is None  # x is not positive
+    assert sign_of(sp.Abs(a - b)) is None
+
+
+def test_decide_and_resolve():
+    assert decide(sp.And(a > 0, b + a > b)) is True
+    assert decide(sp.Or(a < 0, sp.Eq(a, a + 1))) is False
+    assert decide(sp.Not(a < b)) is None
+    pw = sp.Piecewise((1, a < -b), (2, a > b), (3, True))
+    assert resolve(pw.xreplace({a: b + c})) == 2
+    with pytest.raises(Undecided, match="cannot decide the branch condition"):
+        resolve(pw)
+    with pytest.raises(Undecided, match="no branch of a Piecewise applies"):
+        resolve(sp.Piecewise((1, a < 0), (2, sp.Eq(a, 0)), evaluate=False))
+
+
+@pytest.mark.parametrize(
+    "expr",
+    [
+        a * b + n,  # positive monomials
+        x**2 * a + y**4,  # even powers of real symbols
+        (x - y) ** 2 + 4 * c**2,  # a sum of squares by its form
+        x**2 - 2 * x * y + y**2,  # PSD Gram matrix
+        sp.expand((x - a) ** 2 * (b + 1)),  # factor with an even power
+        (a + b) / (a * c),
+    ],
+)
+def test_is_nonneg_proves(expr):
+    assert is_nonneg(expr)
+
+
+@pytest.mark.parametrize("expr", [x * a, a - b, x**2 - 3 * x * y + y**2, sp.sqrt(a) - 1, sp.Abs(x), x / (a - b)])
+def test_is_nonneg_does_not_prove(expr):
+    assert not is_nonneg(expr)
+
+
+def test_is_nonpos():
+    assert is_nonpos(-(x**2) - a)
+    assert not is_nonpos(x)
+
+
+def test_canonical():
+    k1, k3, k_i, k_v = sp.symbols("k1 k3 k_i k_v", positive=True)
+    assert canonical(k3 - k_i * k1 / k_v) == sp.expand(k3 * k_v - k_i * k1)
+    assert canonical(-6 * a * (b - c)) == sp.expand(c - b)
+    with pytest.raises(ValueError, match="the denominator a - b of the condition is not positive"):
+        canonical(c / (a - b))
+
+
+def test_line_cases_cover_the_line_exactly():
+    cases = line_cases(x, [-a, a], name="x", beyond="t", labels=["-a", "a"])
+    assert [cs.label for cs in cases] == ["x < -a", "x = -a", "-a < x < a", "x = a", "x > a"]
+    interior = cases[2]
+    # |x| < a is parametrised polynomially, with a itself substituted
+    assert dict(interior.values)[a] == (interior.slacks[0] + interior.slacks[1]) / 2
+    assert decide(sp.StrictLessThan(interior(x), interior(a))) and decide(sp.StrictGreaterThan(interior(x), -interior(a)))
+    general = line_cases(x, [0, a + b], name="x", beyond="t")
+    assert decide(sp.StrictGreaterThan(general[2](x), 0)) and decide(sp.StrictLessThan(general[2](x), a + b))
+    with pytest.raises(ValueError, match="breakpoints must increase strictly; cannot show b > a"):
+        line_cases(x, [a, b], name="x", beyond="t")
+    grid = case_grid(line_cases(x, [0], name="x", beyond="s"), cases)
+    assert len(grid) == 15 and grid[0].label == "x < 0, x < -a"
+
+
+def test_block_eigen_bounds():
+    M = sp.Matrix([[a, 0, c], [0, b, 0], [c, 0, a + 1]])
+    checks, values = block_eigen_bounds(M)
+    assert all(ok for _, ok in checks)
+    num = M.xreplace({a: 2, b: 1, c: 3})
+    eig = sorted(num.eigenvals())
+    assert sp.simplify(values["mu_plus"].xreplace({a: 2, c: 3}) - eig[-1]) == 0
+    assert sp.simplify(values["mu_minus"].xreplace({a: 2, c: 3}) - eig[0]) == 0
+    coupled = sp.Matrix([[a, 1, c], [1, b, 0], [c, 0, a]])
+    bad = dict(block_eigen_bounds(coupled)[0])
+    assert bad["the middle row and column of M are decoupled"] is False
+    asym = sp.Matrix([[a, 0, c], [0, b, 0], [2 * c, 0, a]])
+    assert dict(block_eigen_bounds(asym)[0])["M is symmetric"] is False
+
+
+def test_upper_and_lower_bounds():
+    assert is_upper_bound_of(sp.Max(a, b), [a, b])
+    assert is_upper_bound_of(a + b, [a, b])
+    assert not is_upper_bound_of(sp.Max(a, b) / 2, [a])
+    assert is_lower_bound_of(sp.Min(a, b), [b])
+    assert not is_lower_bound_of(a, [b])
+
+
+def test_label_latex():
+    assert label_latex("v > 0, σ < 0, φ < -f_c") == "v > 0,\\  \\sigma  < 0,\\  \\phi  < -f_c"

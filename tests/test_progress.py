@@ -1,0 +1,53 @@
+"""The tiny stderr progress bar."""
+
+from __future__ import annotations
+
+import io
+
+import pytest
+
+from symbolic_friction._progress import Progress
+
+
+class _Tty(io.StringIO):
+    def isatty(self) -> bool:
+        return True
+
+
+def test_draws_on_a_terminal_and_ends_the_line():
+    stream = _Tty()
+    with Progress(4, desc="work", stream=stream, min_interval=0.0) as bar:
+        for _ in range(4):
+            bar.update()
+    text = stream.getvalue()
+    assert text.count("\r") >= 4
+    assert "[##############################] 4/4 work" in text
+    assert text.endswith("\n")
+
+
+def test_silent_when_not_a_terminal():
+    stream = io.StringIO()
+    with Progress(3, stream=stream) as bar:
+        bar.update(3)
+    assert stream.getvalue() == "" and bar.count == 3
+
+
+def test_forced_on_or_off():
+    on, off = io.StringIO(), _Tty()
+    with Progress(2, stream=on, enabled=True):
+        pass
+    with Progress(2, stream=off, enabled=False):
+        pass
+    assert on.getvalue().startswith("\r[") and off.getvalue() == ""
+
+
+def test_render_half_way():
+    bar = Progress(10, desc="x", enabled=False, width=10)
+    bar.update(5)
+    assert bar.render().startswith("[#####.....] 5/10 x ")
+    assert Progress(0, enabled=False).render().startswith("[" + "#" * 30 + "] 0/0")
+
+
+def test_negative_total_is_rejected():
+    with pytest.raises(ValueError, match="total must be >= 0; got -1"):
+        Progress(-1)
