@@ -81,6 +81,16 @@ _LAZY: dict[str, str] = {
     "TABLE_I_FILES": "._certify",
     # simulation
     "Solution": "._simulation._base",
+    "FrictionLaw": "._simulation.friction",
+    "Coulomb": "._simulation.friction",
+    "InflatedCoulomb": "._simulation.friction",
+    "Stribeck": "._simulation.friction",
+    "Scene": "._scenes",
+    "load_scene": "._scenes",
+    "builtin_scenes": "._scenes",
+    "make_figures": "._figures",
+    "available_figures": "._figures",
+    "simulate": "._simulation",
     "SimulationMethod": "._simulation._base",
 }
 

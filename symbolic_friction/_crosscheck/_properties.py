@@ -666,10 +666,39 @@ class BatchChecker:
         a = int(seg[np.argmin(Vh[i, seg])])
         vals = {"V_hat_t1": float(Vh[i, a]), "V_hat_t2": float(Vh[i, b]), "increase": float(Vh[i, b] - Vh[i, a]),
                 "x_t1": [float(q) for q in ch.x[i, a]], "tolerance_relative": self.rtol}
+        # Exact witness: V̂ grows at x(t1) itself (eq. hatVdot fails there) if its derivative
+        # along the flow, in rational arithmetic, is positive.
+        rate = self._exact_hat_rate(cl, tuple(float(q) for q in ch.x[i, a]))
+        if rate is not None:
+            vals["dV_hat_dt_at_t1"] = float(rate)
         return Counterexample(
             **self._base("lemma3.hatV_nonincreasing", cl, h, i), t=float(ch.t[i, b]), t_start=float(ch.t[i, a]),
             x=tuple(float(q) for q in ch.x[i, b]), values=vals, relative_slack=float(rel[i, p]),
+            exact=None if rate is None else bool(rate > 0),
         )
+
+    def _exact_hat_rate(self, cl: Claims, x: tuple[float, float, float]) -> Fraction | None:
+        """``V̂'`` along eq. (xDot) at ``x ∈ R̂``, exactly (``None`` outside R̂).
+
+        Where ``σ = 0`` the derivative of ``|σ|`` is ``|σ'|`` (the largest
+        element of ``SGN(σ)σ'``, as in the paper's ``max`` of eq. hatVdot).
+        """
+        if not all(math.isfinite(q) for q in x):
+            return None
+        s, p, v = (Fraction(q) for q in x)
+        P = self.params
+        f_c = P.f_c
+        k = (v > 0) - (v < 0)
+        if k == 0 or not k * p < f_c:
+            return None
+        ex = {name: Fraction(cl.exact[name]) for name in ("k1", "k2", "k3", "k4")}
+        ds = -P.k_i * v
+        dp = s - P.k_p * v
+        dv = p - P.k_v * v - k * f_c
+        dzp = p - f_c if p > f_c else p + f_c if p < -f_c else Fraction(0)
+        dabs = ds * ((s > 0) - (s < 0)) if s != 0 else abs(ds)
+        return (ex["k1"] * s * ds + ex["k2"] * dzp * dp + ex["k3"] * (dabs * abs(v) + abs(s) * k * dv)
+                + ex["k4"] * v * dv)
 
     @staticmethod
     def _run_slack(F: np.ndarray, run: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

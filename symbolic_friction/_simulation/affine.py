@@ -368,10 +368,14 @@ class ScanTable:
         ``Δ``.
     values : ndarray, shape (5, G + 1)
         Rows ``w, w', w'', w''', w⁗`` at ``τ_j``.
+    noise : ndarray, shape (3, G)
+        Per cell, the factors of ``|σ|, |p|, |v|`` in a bound on the rounding
+        errors of the scanned values of ``v`` and ``Δ² v''/8``.
     """
 
     dt: float
     values: np.ndarray = field(repr=False)
+    noise: np.ndarray = field(repr=False)
 
     @property
     def window(self) -> float:
@@ -390,8 +394,15 @@ class ScanTable:
         w3 = -k_v * w2 - k_p * w1 - k_i * w0  # w solves p(d/dt) w = 0
         w4 = -k_v * w3 - k_p * w2 - k_i * w1
         values = np.array([w0, w1, w2, w3, w4])
+        # Per cell, what multiplies |σ|, |p|, |v| in a bound on the rounding of
+        # u (from w, w1, w2) and of the (Δ²/8)-scaled u2 (from w2, w3, w4).
+        top = np.maximum(np.abs(values[:, :-1]), np.abs(values[:, 1:]))
+        noise = 8.0 * 2.220446049250313e-16 * np.array(
+            [top[0] + dt * dt * top[2], top[1] + dt * dt * top[3], top[2] + dt * dt * top[4]]
+        )
         values.flags.writeable = False
-        return cls(dt=dt, values=values)
+        noise.flags.writeable = False
+        return cls(dt=dt, values=values, noise=noise)
 
 
 def slip_equilibrium(f_c: float, direction: int) -> np.ndarray:

@@ -39,7 +39,6 @@ from .._coordinates import x_to_z, z_to_x
 from .._errors import SimulationError
 from .._parameters import Parameters
 from ._base import SimulationMethod, Solution, Status
-from .affine import slip_equilibrium
 from .modes import mode_after_slip, select_mode, snap_to_boundary
 from .search import first_zero, slip_model
 
@@ -136,29 +135,44 @@ def integrate_events(
 def sample_segments(
     params: Parameters, segments: list[Segment], t: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray]:
-    """States ``x`` (shape (n, 3)) and modes at sorted times ``t`` within the segments."""
+    """States ``x`` (shape (n, 3)) and modes at sorted times ``t`` within the segments.
+
+    A time equal to an event time belongs to the segment that starts there.
+    All slip samples share one evaluation of ``w, w', w''`` (the closed form
+    of :mod:`.affine`), whatever segment they fall in.
+    """
     model = slip_model(params)
     expm, f_c = model.expm, model.f_c
     starts = np.array([seg[0] for seg in segments])
-    which = np.searchsorted(starts, t, side="right") - 1
-    which = np.clip(which, 0, len(segments) - 1)
+    modes = np.array([seg[2] for seg in segments], dtype=np.int8)
+    x_start = np.array([seg[3] for seg in segments], dtype=float).reshape(-1, 3)
+    which = np.clip(np.searchsorted(starts, t, side="right") - 1, 0, len(segments) - 1)
+    tau = t - starts[which]
+    mode = modes[which]
     x = np.empty((t.size, 3))
-    mode = np.empty(t.size, dtype=np.int8)
-    for i in np.unique(which):
-        t0, _, k, x0 = segments[i]
-        idx = np.nonzero(which == i)[0]
-        tau = t[idx] - t0
-        mode[idx] = k
-        if k == 0:
-            x[idx, 0] = x0[0]
-            x[idx, 1] = x0[1] + x0[0] * tau
-            x[idx, 2] = 0.0
-        else:
-            star = slip_equilibrium(f_c, k)
-            states = star + expm.apply(tau, np.asarray(x0) - star)
-            # the closed form keeps v's sign up to rounding; the mode fixes it
-            states[:, 2] = k * np.maximum(k * states[:, 2], 0.0)
-            x[idx] = states
+    stick = mode == 0
+    xs = x_start[which[stick]]
+    x[stick, 0] = xs[:, 0]
+    x[stick, 1] = xs[:, 1] + xs[:, 0] * tau[stick]
+    x[stick, 2] = 0.0
+    slip = ~stick
+    if slip.any():
+        seg = which[slip]
+        d = modes[seg].astype(float)
+        y0 = x_start[seg].copy()
+        y0[:, 1] -= d * f_c
+        w0, w1, w2 = expm.w(tau[slip])
+        b1, b2 = expm.B1, expm.B2
+        for k in range(3):
+            comp = w2 * y0[:, k]
+            comp += w1 * (b1[k, 0] * y0[:, 0] + b1[k, 1] * y0[:, 1] + b1[k, 2] * y0[:, 2])
+            comp += w0 * (b2[k, 0] * y0[:, 0] + b2[k, 1] * y0[:, 1] + b2[k, 2] * y0[:, 2])
+            if k == 1:
+                comp += d * f_c
+            elif k == 2:
+                # the closed form keeps v's sign up to rounding; the mode fixes it
+                comp = d * np.maximum(d * comp, 0.0)
+            x[slip, k] = comp
     return x, mode
 
 

@@ -37,7 +37,7 @@ from functools import lru_cache
 import numpy as np
 
 from .._parameters import Parameters
-from .affine import MatrixExponential, ScanTable, SlipBounds
+from .affine import MatrixExponential, ScanTable, SlipBounds  # noqa: F401 (ScanTable in annotations)
 
 __all__ = ["SlipModel", "slip_model", "first_zero", "first_zeros"]
 
@@ -182,20 +182,21 @@ def _march(
     return a, y
 
 
-def _blocked(w: np.ndarray, s, p, v, d, r_p, dt: float, m4: float) -> np.ndarray:
-    """Cells of a block ``w`` (shape (5, B + 1)) of the table that the scan cannot clear.
+def _blocked(table: "ScanTable", j0: int, j1: int, s, p, v, d, r_p, m4: float) -> np.ndarray:
+    """Cells ``j0 … j1-1`` of the table that the scan cannot clear.
 
     ``s, p, v, d, r_p`` are floats (one trajectory) or columns (R, 1); the
-    result has shape (B,) or (R, B).
+    result has shape (j1 - j0,) or (R, j1 - j0).
     """
+    w = table.values[:, j0 : j1 + 1]
+    dt = table.dt
     u = d * (s * w[0] + p * w[1] + v * w[2])
     u2 = np.abs(s * w[2] + p * w[3] + v * w[4])
-    # |u''| on a cell ≤ max of its ends + Δ² max|u⁗| / 8, |u⁗| ≤ m4 |y|_P
+    # |u''| on a cell ≤ max of its ends + Δ² max|u⁗| / 8, with |u⁗| ≤ m4 |y|_P
     slack = 0.125 * dt * dt * (np.maximum(u2[..., :-1], u2[..., 1:]) + 0.125 * dt * dt * m4 * r_p)
-    # rounding of the products (u and u'' values)
-    terms = np.abs(s * w[0]) + np.abs(p * w[1]) + np.abs(v * w[2])
-    terms = terms + dt * dt * (np.abs(s * w[2]) + np.abs(p * w[3]) + np.abs(v * w[4]))
-    noise = 8.0 * _EPS * np.maximum(terms[..., :-1], terms[..., 1:])
+    # plus the rounding of the products that gave u and u''
+    g = table.noise[:, j0:j1]
+    noise = np.abs(s) * g[0] + np.abs(p) * g[1] + np.abs(v) * g[2]
     return ~(np.minimum(u[..., :-1], u[..., 1:]) > slack + noise)
 
 
@@ -238,7 +239,7 @@ def first_zero(
         last = min(n_cells, math.ceil((horizon - a_w) / dt))
         for j0 in range(0, last, _BLOCK):
             j1 = min(j0 + _BLOCK, last)
-            for j in np.flatnonzero(_blocked(w[:, j0 : j1 + 1], s, p, v, d, r_p, dt, m4)):
+            for j in np.flatnonzero(_blocked(table, j0, j1, s, p, v, d, r_p, m4)):
                 a0 = a_w + float(j0 + j) * dt
                 y_a0 = y_w if j0 + j == 0 else slip.state(a0)
                 tau, y = _march(slip, model, a0, y_a0, min(a0 + dt, horizon))
@@ -294,13 +295,12 @@ def first_zeros(
             if rows.size == 0:
                 break
             j1 = min(j0 + _BLOCK, n_cells)
-            block = w[:, j0 : j1 + 1]
             cells = j0 + np.arange(j1 - j0)
             for lo in range(0, rows.size, chunk):
                 part = rows[lo : lo + chunk]
                 s, p, v = y_w[part, 0:1], y_w[part, 1:2], y_w[part, 2:3]
                 r_p = np.sqrt(np.maximum(kv_ki * s * s - 2.0 * s * v + k_p * v * v + p * p, 0.0))
-                blocked = _blocked(block, s, p, v, d[part, None], r_p, dt, m4)
+                blocked = _blocked(table, j0, j1, s, p, v, d[part, None], r_p, m4)
                 blocked &= cells[None, :] < last[part, None]
                 _march_cells(model, q0, q1, q2, d, horizon, part, a_w, j0, blocked, tau, open_)
         a_w = np.where(open_, a_w + table.window, a_w)
