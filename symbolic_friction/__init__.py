@@ -60,6 +60,10 @@ _LAZY: dict[str, str] = {
     "Result": "._obligations._base",
     "all_obligations": "._obligations",
     "run_obligations": "._obligations",
+    # conditions on k1..k4 (Lemma 3)
+    "k_conditions": "._kconditions",
+    "check_k_conditions": "._kconditions",
+    "Condition": "._kconditions",
     # certificates (search with cvxpy; exact verification with Fractions)
     "certify": "._certify",
     "certify_many": "._certify",

@@ -1,17 +1,103 @@
-"""``symbolic-friction crosscheck``: placeholder until its issue lands."""
+"""``symbolic-friction crosscheck [CERT…]``: test certificates on exact trajectories.
+
+Every inequality a certificate instantiates (Lemma 2, Lemma 3, Proposition 1
+and the Remark after Lemma 2) is checked along solutions of eq. (xDot)
+simulated by the exact event-driven method, from random, grid, special and
+adversarial initial states.  Exit status: 0 if every property holds within
+the stated tolerance, 1 if some property is violated (counterexamples are
+written to ``--out``), 2 on bad input (missing or malformed file, bad option).
+"""
 
 from __future__ import annotations
 
 import argparse
+import math
 
-from .._errors import SymbolicFrictionError
 
-HELP = "(not implemented yet)"
+HELP = "check certificates on exact simulated trajectories and measure how tight they are"
+
+
+def _positive_int(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected an integer ≥ 1; got {text!r}") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"expected an integer ≥ 1; got {value}")
+    return value
+
+
+def _positive_float(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number > 0; got {text!r}") from None
+    if not (math.isfinite(value) and value > 0):
+        raise argparse.ArgumentTypeError(f"expected a finite number > 0; got {text!r}")
+    return value
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    """No arguments yet."""
+    """``CERT…`` and the options."""
+    parser.description = (
+        f"{HELP}. Exit status: 0 if every property holds within the tolerance, 1 if one is violated "
+        "(counterexamples written to --out), 2 on bad input."
+    )
+    parser.add_argument("certificates", nargs="*", metavar="CERT",
+                        help="certificate JSON files (default: every proofs/*.json)")
+    parser.add_argument("--trajectories", type=_positive_int, default=10_000, metavar="N",
+                        help="trajectories per gain set, shared by its certificates (default 10000)")
+    parser.add_argument("--seed", type=int, default=0, help="seed of the random states and optimisers (default 0)")
+    parser.add_argument("--horizon", type=_positive_float, default=None, metavar="T",
+                        help="simulation horizon (default 20/|Re λ| of the slowest root)")
+    parser.add_argument("--samples", type=_positive_int, default=301, metavar="N",
+                        help="samples per trajectory, plus every event (default 301)")
+    parser.add_argument("--rtol", type=_positive_float, default=1e-8,
+                        help="relative tolerance of every check (default 1e-8)")
+    parser.add_argument("--theta", type=_positive_float, default=0.5,
+                        help="attractivity: |x(T)|_A <= theta |x(0)|_A required (default 0.5)")
+    parser.add_argument("--out", default="crosscheck-counterexamples", metavar="DIR",
+                        help="directory for counterexample files (written only if a property fails)")
+    parser.add_argument("--no-adversarial", action="store_true", help="skip the optimisers")
+    parser.add_argument("--decay", action="store_true", help="also fit the decay of |x(t)|_A (power law or exponential)")
+    parser.add_argument("--iss", action="store_true", help="also estimate Corollary 1's ISS gain (a few seconds per gain set)")
 
 
 def run(args: argparse.Namespace) -> int:
-    raise SymbolicFrictionError("'crosscheck' is not implemented yet")
+    """Run the cross-check, print the tables, write counterexamples; 1 if any property fails."""
+    from pathlib import Path
+
+    from .._crosscheck import crosscheck, format_report, write_counterexamples
+    from .._errors import ParameterError
+
+    files = list(args.certificates)
+    if not files:
+        files = sorted(str(p) for p in Path("proofs").glob("*.json"))
+        if not files:
+            raise FileNotFoundError("no certificate given and no proofs/*.json in the current directory")
+    if args.rtol >= 1:
+        raise ParameterError(f"--rtol must be < 1; got {args.rtol:g}")
+    if args.theta > 1:
+        raise ParameterError(f"--theta must be ≤ 1; got {args.theta:g}")
+    report = crosscheck(
+        files,
+        trajectories=args.trajectories,
+        seed=args.seed,
+        horizon=args.horizon,
+        samples=args.samples,
+        rtol=args.rtol,
+        theta=args.theta,
+        adversarial=not args.no_adversarial,
+        decay=args.decay,
+        iss=args.iss,
+    )
+    print(format_report(report))
+    if not report.passed:
+        for path in write_counterexamples(report, args.out):
+            print(f"counterexamples written to {path}")
+        return 1
+    return 0
+
+
+__all__ = ["HELP", "add_arguments", "run"]
+

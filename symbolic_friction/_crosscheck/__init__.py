@@ -1,1 +1,45 @@
-"""Cross-check (issue 5)."""
+"""Cross-check of certificates on exact simulated trajectories (issue 5).
+
+A certificate (:mod:`symbolic_friction._certify`) is *proved* exactly; the
+cross-check confirms on real solutions of eq. (xDot), simulated by the exact
+event-driven method, that every inequality it instantiates holds, and
+measures how conservative the bounds are:
+
+* :mod:`._properties` — Lemma 2 (items 1 and 2), Lemma 3, Proposition 1
+  (stability, attractivity) and the Remark after Lemma 2, checked along
+  sampled trajectories with a stated tolerance;
+* :mod:`._initial`, :mod:`._adversarial` — initial states: random spheres,
+  grids, special states, and optimisers that try to break the inequalities;
+* :mod:`._decay` — how ``|x(t)|_𝒜 → 0`` (power law or exponential);
+* :mod:`._iss` — Corollary 1: an empirical ISS gain ``γ(ρ)``;
+* :mod:`._run` — :func:`crosscheck`, the driver;
+* :mod:`._report` — tables and counterexample files.
+"""
+
+from __future__ import annotations
+
+from ._claims import Claims
+from ._decay import DecayFit, decay_fit
+from ._iss import IssEstimate, iss_gain
+from ._properties import DEFAULT_RTOL, DEFAULT_THETA, PROPERTIES, Counterexample, PropertyResult
+from ._report import format_report, write_counterexamples
+from ._run import CertificateCheck, CrosscheckReport, crosscheck, default_horizon
+
+__all__ = [
+    "Claims",
+    "crosscheck",
+    "CrosscheckReport",
+    "CertificateCheck",
+    "PropertyResult",
+    "Counterexample",
+    "PROPERTIES",
+    "DEFAULT_RTOL",
+    "DEFAULT_THETA",
+    "default_horizon",
+    "decay_fit",
+    "DecayFit",
+    "iss_gain",
+    "IssEstimate",
+    "format_report",
+    "write_counterexamples",
+]

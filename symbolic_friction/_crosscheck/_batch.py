@@ -46,6 +46,9 @@ class TrajectoryBatch:
         Initial states in ``z = (e_i, s, v)``.
     source : ndarray of str, shape (N,)
         Where each initial state came from (``"sphere r=1"``, ``"grid"``, …).
+    event_residual : ndarray, shape (N, E)
+        ``|v|`` that the closed-form flow gives at each event time before
+        ``v`` is set to 0 (a check of the event times; 0 if not known).
     """
 
     params: Parameters
@@ -59,6 +62,7 @@ class TrajectoryBatch:
     x0: np.ndarray
     z0: np.ndarray
     source: np.ndarray = field(default=None)  # type: ignore[assignment]
+    event_residual: np.ndarray = field(default=None)  # type: ignore[assignment]
 
     def __post_init__(self) -> None:
         N, n = self.mode.shape
@@ -80,6 +84,8 @@ class TrajectoryBatch:
             raise SimulationError("malformed trajectory batch: " + "; ".join(problems))
         if self.source is None:
             object.__setattr__(self, "source", np.full(N, "", dtype=object))
+        if self.event_residual is None:
+            object.__setattr__(self, "event_residual", np.zeros(self.event_t.shape))
 
     @property
     def size(self) -> int:
@@ -100,4 +106,5 @@ class TrajectoryBatch:
             x0=self.x0[index],
             z0=self.z0[index],
             source=self.source[index],
+            event_residual=self.event_residual[index],
         )

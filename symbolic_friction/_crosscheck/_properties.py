@@ -17,7 +17,8 @@ constants (see :data:`PROPERTIES`):
   from one stick phase to the next;
 * and, as a guard on the simulator itself, that each sample's mode agrees
   with its state (``sign v`` on a slip, ``v = 0`` and ``|φ| ≤ f_c`` on a
-  stick), since the values of ``V`` are read through the modes.
+  stick), since the values of ``V`` are read through the modes, and that
+  the closed-form flow gives ``v ≈ 0`` at every event time.
 
 The integral ``∫ v²``
 ---------------------
@@ -118,7 +119,7 @@ PROPERTIES: tuple[PropertySpec, ...] = (
     PropertySpec("prop1.stability", "Proposition 1, item 2 (eq. stabState)", "|x(t)|_A <= kappa |x(0)|_A"),
     PropertySpec("prop1.attractivity", "Proposition 1, item 1", "|x(T)|_A <= theta |x(0)|_A at the horizon T"),
     PropertySpec("remark.stick_sigma", "Remark after Lemma 2 (eq. armstrongRes)", "|sigma| strictly decreases between stick phases"),
-    PropertySpec("model.modes", "Claim 1 / appendix table", "sample modes agree with the states"),
+    PropertySpec("model.modes", "Claim 1 / appendix table", "modes agree with the states; v = 0 at events"),
 )
 _SPEC = {p.id: p for p in PROPERTIES}
 
@@ -461,6 +462,9 @@ class BatchChecker:
         smode = np.where(is_sample, ch.piece, 0)
         in_Rhat = valid & is_sample & (smode != 0) & (smode * xs[..., 1] < f_c)
         in_R = point & ~in_Rhat
+        # Points of 𝒜 make both sides of the homogeneous bounds vanish identically (V = V̂ = 0
+        # there, Lemma 2 item 1): they are left out of those bounds so the margins stay informative.
+        off_A = d2 > 0
 
         helpers = dict(batch=batch, ch=ch, L=L, d=d, d0=d0)
         # model.modes (certificate-independent, computed once)
@@ -501,12 +505,12 @@ class BatchChecker:
                     pid, cl, helpers, idx, S, Vv, cumI, c, scaleV))
             # Lemma 2, item 1 at every point (both limits at events too)
             rel = (Vv - cl.c1 * d2) / scaleV
-            acc["lemma2.lower_bound"].add(rel, valid, lambda idx: self._cx_point(
+            acc["lemma2.lower_bound"].add(rel, valid & off_A, lambda idx: self._cx_point(
                 "lemma2.lower_bound", cl, helpers, idx, {"V": Vv[idx], "c1": cl.c1, "dist2": d2[idx]},
                 rel[idx], exact="lower"))
             # Lemma 3 (eq. VandR): V <= c2 |x|² on R (samples and event values)
             rel = (cl.c2 * d2 - Vv) / scaleV
-            acc["lemma3.V_upper"].add(rel, in_R, lambda idx: self._cx_point(
+            acc["lemma3.V_upper"].add(rel, in_R & off_A, lambda idx: self._cx_point(
                 "lemma3.V_upper", cl, helpers, idx, {"V": Vv[idx], "c2": cl.c2, "dist2": d2[idx]},
                 rel[idx], exact="upper"))
             # Lemma 3 (eq. hatVandHatR) on R̂
@@ -514,11 +518,11 @@ class BatchChecker:
             coefH = max(cl.lambda_max_K_half(), cl.c1_hat, cl.c2_hat)
             scaleH = (coefH * Q)[:, None]
             rel = (Vh - cl.c1_hat * d2) / scaleH
-            acc["lemma3.hatV_lower"].add(rel, in_Rhat, lambda idx: self._cx_point(
+            acc["lemma3.hatV_lower"].add(rel, in_Rhat & off_A, lambda idx: self._cx_point(
                 "lemma3.hatV_lower", cl, helpers, idx, {"V_hat": Vh[idx], "c1_hat": cl.c1_hat, "dist2": d2[idx]},
                 rel[idx], exact="hat_lower"))
             rel = (cl.c2_hat * d2 - Vh) / scaleH
-            acc["lemma3.hatV_upper"].add(rel, in_Rhat, lambda idx: self._cx_point(
+            acc["lemma3.hatV_upper"].add(rel, in_Rhat & off_A, lambda idx: self._cx_point(
                 "lemma3.hatV_upper", cl, helpers, idx, {"V_hat": Vh[idx], "c2_hat": cl.c2_hat, "dist2": d2[idx]},
                 rel[idx], exact="hat_upper"))
             # Lemma 3 (eq. hatVdot): V̂ nonincreasing on intervals spent in R̂
@@ -556,6 +560,13 @@ class BatchChecker:
             acc["model.modes"].add(rel_modes, valid & is_sample, lambda idx: self._cx_point(
                 "model.modes", cl, helpers, idx, {"mode": float(ch.piece[idx]), "v": float(v[idx]),
                                                   "phi": float(xs[idx][1]), "f_c": f_c}, rel_modes[idx]))
+            # ... and every event is a zero of v: the flow up to the event time must give v ≈ 0
+            rel_ev = -batch.event_residual / L[:, None]
+            acc["model.modes"].add(rel_ev, np.isfinite(batch.event_t), lambda idx: Counterexample(
+                **self._base("model.modes", cl, helpers, idx[0]), t=float(batch.event_t[idx]), t_start=None,
+                x=tuple(float(q) for q in batch.event_x[idx]),
+                values={"v_at_event_time": float(batch.event_residual[idx]), "tolerance_relative": self.rtol},
+                relative_slack=float(rel_ev[idx])))
         self._offset += N
 
     # -- pieces ---------------------------------------------------------------------------

@@ -42,11 +42,9 @@ __all__ = [
     "decide",
     "resolve_piecewise",
     "minimum_on",
-    "maximum_on",
     "vertices",
     "affine_image",
     "interval_partitions_reals",
-    "interval_contains",
     "phi_classes",
     "sign_classes",
     "latex",
@@ -251,11 +249,6 @@ def minimum_on(f: sp.Expr, var: sp.Symbol, s: sp.Set) -> sp.Expr:
     raise Undecided(f"cannot order the candidate values {values} of the minimum over {s}")
 
 
-def maximum_on(f: sp.Expr, var: sp.Symbol, s: sp.Set) -> sp.Expr:
-    """Exact ``max_{var ∈ s} f`` (see :func:`minimum_on`)."""
-    return -minimum_on(-f, var, s)
-
-
 def affine_image(expr: sp.Expr, var: sp.Symbol, s: sp.Interval) -> sp.Interval:
     """Image of a closed interval under ``var ↦ expr`` when ``expr`` is affine in ``var``."""
     if sp.degree(sp.expand(expr), var) > 1:
@@ -299,15 +292,6 @@ def interval_partitions_reals(intervals: Sequence[sp.Interval]) -> tuple[bool, s
     return True, ""
 
 
-def interval_contains(outer: sp.Interval, inner: sp.Interval) -> bool | None:
-    """Whether ``inner ⊆ outer``, decided on the endpoints."""
-    lo = decide(sp.GreaterThan(inner.start, outer.start) if not outer.left_open or inner.left_open else sp.StrictGreaterThan(inner.start, outer.start))
-    hi = decide(sp.LessThan(inner.end, outer.end) if not outer.right_open or inner.right_open else sp.StrictLessThan(inner.end, outer.end))
-    if lo is None or hi is None:
-        return None
-    return lo and hi
-
-
 def phi_classes(c: sp.Expr, tag: str = "") -> list[tuple[str, str, sp.Expr, sp.Set]]:
     """The five classes of a real number relative to ``±c`` (``c > 0``), parametrised exactly.
 
@@ -336,8 +320,3 @@ def latex(expr: Any) -> str:
     if isinstance(expr, (list, tuple)):
         expr = sp.Tuple(*expr)
     return sp.latex(expr, order="lex")
-
-
-def all_positive_symbols(exprs: Iterable[Any]) -> bool:
-    """Whether every free symbol of ``exprs`` is declared positive."""
-    return all(s.is_positive is True for e in exprs for s in sp.sympify(e).free_symbols)

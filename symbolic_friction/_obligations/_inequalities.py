@@ -7,6 +7,11 @@ the side of "not proved": a function answers ``True`` only when it has a
 certificate, and ``False`` means "no certificate found", which makes the
 calling obligation fail rather than guess.
 
+* :func:`sign_of`, :func:`decide` and :func:`resolve` decide signs, relations
+  and ``Piecewise`` branches for rational functions of positive symbols by
+  the sign-definite decomposition of :mod:`._decide` (numerator and
+  denominator with coefficients of one sign), with a fast path for
+  polynomials.
 * :func:`is_nonneg` proves ``expr ≥ 0`` for every value of its free symbols
   allowed by their sympy assumptions (positive, nonnegative or merely real)
   by one of three *sign-definite decompositions* of the numerator: all
@@ -19,7 +24,9 @@ calling obligation fail rather than guess.
   breakpoints into open pieces and boundary points, each written with fresh
   positive symbols so that a sign decided on the parametrisation holds on the
   whole piece (an open piece ``(b, b')`` is ``(u b + w b')/(u + w)``,
-  ``u, w > 0``).  :func:`case_grid` takes the product of several splits.
+  ``u, w > 0``; the piece ``|x| < c`` of a positive symbol ``c`` is the
+  polynomial ``c = (u + w)/2, x = (w - u)/2``).  :func:`case_grid` takes the
+  product of several splits.
 * :func:`block_eigen_bounds` checks, for ``M = [[a, 0, c], [0, m, 0], [c, 0, e]]``,
   that ``μ± = (a + e ± √((a-e)² + 4c²))/2`` and ``m`` are its eigenvalues and
   that ``μ₋|u|² ≤ uᵀBu ≤ μ₊|u|²`` for the outer ``2×2`` block ``B``, which gives
@@ -51,8 +58,8 @@ __all__ = [
     "block_eigen_bounds",
     "is_upper_bound_of",
     "is_lower_bound_of",
-    "conditions_latex",
     "label_latex",
+    "rows_latex",
 ]
 
 
@@ -308,7 +315,7 @@ def canonical(expr: Any) -> sp.Expr:
     The numerator of ``together(expr)`` is factored; factors (and the
     denominator) that are positive by :func:`sign_of` are dropped,
     the integer content is divided out, and the leading sign is kept.  Two
-    conditions are the same iff their canonical forms are equal.
+    conditions with equal canonical forms are the same condition.
 
     Examples
     --------
@@ -537,14 +544,16 @@ def is_lower_bound_of(c: Any, values: Sequence[Any]) -> bool:
     return True
 
 
-def conditions_latex(conds: Sequence[tuple[sp.Expr, str]]) -> str:
-    """LaTeX of a list of ``(expr, relation)`` conditions, one per line."""
-    return r" \\ ".join(f"{latex(e)} {rel} 0" for e, rel in conds)
-
-
 _LABEL_TEX = {"σ": "\\sigma ", "φ": "\\phi ", "ρ": "\\rho ", "≤": "\\le ", "≥": "\\ge ", ",": ",\\ "}
 
 
 def label_latex(label: str) -> str:
     """A case label such as ``"v > 0, σ < 0, φ < -f_c"`` as LaTeX (math mode)."""
     return "".join(_LABEL_TEX.get(ch, ch) for ch in label)
+
+
+def rows_latex(rows: Sequence[str]) -> str:
+    """Several LaTeX rows as one display block (``gathered``), for an obligation's details."""
+    if not rows:
+        return "\\text{none}"
+    return "\\begin{gathered}" + r" \\ ".join(rows) + "\\end{gathered}"

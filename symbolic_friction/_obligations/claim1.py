@@ -31,9 +31,10 @@ import sympy as sp
 
 from .. import _symbolic
 from .._lyapunov import V_k, quadratic_form
-from ._base import Obligation, Outcome
+from ._base import Erratum, Obligation, Outcome
 from ._decide import G, Undecided, decide, is_zero, latex, minimum_on, phi_classes, pos, sign_classes, sign_of
 from .lemma2 import F0_MATRIX
+from .model import sgn_sets
 
 __all__ = ["Row", "StickBranch", "Claim1Cases", "OBLIGATIONS", "ROWS"]
 
@@ -134,6 +135,14 @@ class Claim1Cases(Obligation):
     paper = "Claim 1; Appendix (table of cases (i)-(xi))"
     statement = "for every initial condition the table's k gives an affine solution that solves (xDot) on [0, T], T > 0, with V = V_k and d/dt V_k ≤ -c ξ_v² there; all eleven rows, which partition ℝ³"
     method = "exhaustive case split (45 sign/φ classes → 11 rows, sub-cases by σ̄); Taylor signs of ξ_v at 0 (k = ±1); explicit stick solutions with the selection checked at both ends of [0, T] (k = 0); V from its definition by exact minimisation; sympy identities"
+    errata = (
+        Erratum(
+            where="Appendix (proof of Claim 1), case (v)",
+            paper_says="an appropriate selection of the value in SGN(0) obtains ξ_φ(t) - f_c SGN(ξ_v(t)) = ξ_φ(t) - f_c SGN(0) = {0}",
+            correct="ξ_φ(t) - f_c SGN(0) = [ξ_φ(t) - f_c, ξ_φ(t) + f_c] is an interval, not {0}; it contains 0 because |ξ_φ(t)| ≤ f_c, i.e. the selection w(t) = ξ_φ(t)/f_c lies in [-1, 1] on [0, -2f_c/σ̄]",
+            checked_by="claim1.cases",
+        ),
+    )
 
     def derive(self) -> Claim1Subject:
         g = G()
@@ -141,8 +150,6 @@ class Claim1Cases(Obligation):
         A, b = sp.ImmutableMatrix(_symbolic.A(g)), sp.ImmutableMatrix(_symbolic.b(g))
         sb, pb, vb, t = _bar_symbols()
         y = sp.Symbol("y", real=True)
-        from .model import sgn_sets
-
         return Claim1Subject(
             rows=table_rows(g.f_c),
             A=A,
@@ -175,7 +182,11 @@ class Claim1Cases(Obligation):
         return S.V[k].subs(dict(zip(S.state, point)), simultaneous=True)
 
     def _initial_points(self, S: Claim1Subject, row: Row):
-        """Yield ``(sub-case label, σ-class, substitution for the bar symbols)`` covering the row's region."""
+        """Yield ``(σ̄ class or None, substitution for the bar symbols)`` covering the row's region.
+
+        Unconstrained components stay free real symbols; a sign decision that
+        needs them then fails as undecided rather than guessing.
+        """
         sb, pb, vb = S.bar
         v_val = {c[0]: c[2] for c in sign_classes("q_v")}[row.v]
         phi_val = pb if row.phi is None else {c[0]: c[2] for c in phi_classes(S.f_c, "_phi")}[row.phi]
@@ -220,7 +231,7 @@ class Claim1Cases(Obligation):
     def _row_slip(self, S: Claim1Subject, row: Row, f: sp.Matrix, details: list) -> str | None:
         k = row.k
         J = f.jacobian(sp.Matrix(S.state))
-        for sigma_label, sub in self._initial_points(S, row):
+        for _sigma_label, sub in self._initial_points(S, row):
             xb = [sp.sympify(e).subs(sub) for e in S.bar]
             derivs = [sp.Matrix(xb)]
             derivs.append(f.subs(dict(zip(S.state, xb)), simultaneous=True))
@@ -257,9 +268,8 @@ class Claim1Cases(Obligation):
             rate = sp.expand((sp.Matrix([sp.diff(S.V[k], s) for s in S.state]).T * f)[0] + S.c * S.state[2] ** 2)
             if not is_zero(rate):
                 return f"d/dt V_{k} + c ξ_v² = {sp.factor(rate)} along f_{k}, not 0"
-            tag = f",\\ \\bar\\sigma {sigma_label}" if sigma_label and not row.sigma else ""
             details.append((
-                f"\\text{{({row.label})}}\\ {self._tex_region(row)}{tag},\\ k = {k}",
+                f"\\text{{({row.label})}}\\ {self._tex_region(row)},\\ k = {k}",
                 "".join(f"\\xi_v^{{({m})}}(0) = 0,\\ " for m in range(n))
                 + f"\\xi_v^{{({n})}}(0) = {latex(vd[n])}"
                 + f";\\ V(\\xi(0)) = V_{{{k}}} = {latex(sp.factor(V0))}",

@@ -26,9 +26,9 @@ from typing import Any
 import sympy as sp
 
 from .. import _symbolic
-from ._base import Obligation, Outcome
+from ._base import Erratum, Obligation, Outcome
 from ._decide import G, Undecided, is_zero, latex
-from ._inequalities import Case, decide, is_nonneg, label_latex, line_cases, resolve
+from ._inequalities import Case, decide, is_nonneg, label_latex, line_cases, resolve, rows_latex
 
 __all__ = ["OBLIGATIONS", "Inflation", "Distances", "InflationSubject", "DistancesSubject"]
 
@@ -115,7 +115,18 @@ class Inflation(Obligation):
     paper = "eq. (perturbed) and the sentence after it (inflation of SGN), Corollary 1"
     statement = (
         "SGN_ρ(v) of eq. (perturbed) equals the inflation SGN(v + |ρ|𝔹) + |ρ|𝔹 for every v and ρ, "
-        "including v = ±|ρ|; for ρ = 0 it is SGN"
+        "including v = ±|ρ|; for ρ = 0 it is SGN; and SGN_ρ(v) ⊂ [−1 − |ρ|, 1 + |ρ|]"
+    )
+    errata = (
+        Erratum(
+            where="Corollary 1, proof, first sentence",
+            paper_says="m(t) ≤ 1 + |ρ_v| because, for all t, SGN_ρv(v(t)) ≤ 1 + |ρ_v|",
+            correct=(
+                "|m(t)| ≤ 1 + |ρ_v| because SGN_ρv(v) ⊂ [−1 − |ρ_v|, 1 + |ρ_v|] for every v; the one-sided bound "
+                "as written does not make the input m bounded, which BIBO stability needs"
+            ),
+            checked_by="cor1.inflation",
+        ),
     )
     method = (
         "exhaustive case split (|ρ| = 0 or > 0; v against ±|ρ|, boundaries included) with exact interval "
@@ -184,8 +195,13 @@ class Inflation(Obligation):
                     f"{case.label}: SGN_ρ(v) = [{got_lo}, {got_hi}] but SGN(v + |ρ|𝔹) + |ρ|𝔹 = [{want_lo}, {want_hi}]"
                 )
                 continue
+            # the proof of Corollary 1 needs the input m(t) ∈ SGN_ρ(v(t)) bounded: |m(t)| ≤ 1 + |ρ|
+            r_val = case.value(s.r)
+            if not (is_nonneg(want_lo + 1 + r_val) and is_nonneg(1 + r_val - want_hi)):
+                failures.append(f"{case.label}: SGN_ρ(v) = [{want_lo}, {want_hi}] is not inside [−1 − |ρ|, 1 + |ρ|]")
+                continue
             rows.append(f"{label_latex(case.label)}: [{latex(want_lo)}, {latex(want_hi)}]")
-        details = (("\\mathrm{SGN}(v + |\\rho|\\mathbb B) + |\\rho|\\mathbb B", r" \\ ".join(rows)),)
+        details = (("\\mathrm{SGN}(v + |\\rho|\\mathbb B) + |\\rho|\\mathbb B", rows_latex(rows)),)
         if failures:
             return Outcome.fail("; ".join(failures[:6]), details)
         return Outcome(True, f"{len(s.cases)} pieces, endpoints equal exactly", details)
@@ -293,7 +309,7 @@ class Distances(Obligation):
         if not is_zero(offset - beta) or not is_nonneg(last):
             failures.append(f"2(|z|_𝒜 + {s.offset})² ≥ 2|z|_𝒜² + 2(f_c/k_i)² not shown (gap {sp.expand(last)})")
         details = (
-            ("\\text{pieces } (\\beta = f_c/k_i)", r" \\ ".join(rows)),
+            ("\\text{pieces } (\\beta = f_c/k_i)", rows_latex(rows)),
             ("2(|z|_{\\mathcal A} + \\beta)^2 - 2|z|_{\\mathcal A}^2 - 2\\beta^2", latex(sp.expand(last))),
         )
         if failures:

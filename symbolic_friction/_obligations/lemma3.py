@@ -47,6 +47,7 @@ from ._inequalities import (
     label_latex,
     line_cases,
     resolve,
+    rows_latex,
     sign_of,
 )
 
@@ -257,9 +258,9 @@ class LemmaR(Obligation):
         elif not (isinstance(s.c1, sp.Min) or sign_of(s.c1) == 1):
             failures.append(f"cannot show c₁ = {s.c1} > 0")
         details = (
-            ("pieces of R (σ free)", r" \\ ".join(rows) if rows else r"\text{none}"),
+            ("\\text{pieces of } R\\ (\\sigma \\text{ free})", rows_latex(rows)),
             ("P", latex(s.P)),
-            ("eigenvalues of P", f"1,\\ {latex(eig['mu_minus'])},\\ {latex(eig['mu_plus'])}"),
+            ("\\text{eigenvalues of } P", f"1,\\ {latex(eig['mu_minus'])},\\ {latex(eig['mu_plus'])}"),
             ("c_1 = \\lambda_{min}(P),\\ c_2 = \\lambda_{max}(P)", f"{latex(s.c1)},\\quad {latex(s.c2)}"),
             ("\\det(\\text{outer block of }P)\\text{ under Assumption 1}", latex(sp.factor(det_b))),
         )
@@ -418,11 +419,11 @@ class HatVBounds(Obligation):
             tight_rows.append(f"e_{j + 1}: {latex(sp.simplify(at_unit))}")
         details = (
             ("K", latex(s.K)),
-            ("leading principal minors of K", ",\\ ".join(latex(sp.factor(m)) for m in minors)),
+            ("\\text{leading principal minors of } K", ",\\ ".join(latex(sp.factor(m)) for m in minors)),
             ("K \\succ 0 \\iff", f"{latex(s.definiteness)} > 0"),
             ("\\hat c_1 \\text{ (nonnegative } w)", latex(s.c1_hat)),
             ("\\hat c_1 = \\tfrac12\\lambda_{min}(K),\\ \\hat c_2 = \\tfrac12\\lambda_{max}(K)", f"{latex(s.c1_hat_eig)},\\quad {latex(s.c2_hat)}"),
-            ("\\tfrac12 w^TKw - \\hat c_1|w|^2 \\text{ at the minimising unit vector}", r" \\ ".join(tight_rows)),
+            ("\\tfrac12 w^TKw - \\hat c_1|w|^2 \\text{ at the minimising unit vector}", rows_latex(tight_rows)),
         )
         if failures:
             return Outcome.fail(_fmt_failures(failures), details)
@@ -741,10 +742,21 @@ class HatVDerivative(Obligation):
                 )
             )
         details += [
-            ("\\text{derived from } \\hat V^\\circ \\le 0 \\text{ (necessary and sufficient)}", r" \\ ".join(deriv_rows)),
+            ("\\text{derived from } \\hat V^\\circ \\le 0 \\text{ (necessary and sufficient)}", rows_latex(deriv_rows)),
             ("\\text{derived from } K \\succ 0", f"{latex(definiteness.expr)} > 0" if definiteness else "-"),
-            ("\\text{stated (\\_kconditions, as in the paper)}", r" \\ ".join(f"{latex(c.lhs)} > {latex(c.rhs)}" for c in s.stated)),
+            ("\\text{stated (\\_kconditions, as in the paper)}", rows_latex([f"{latex(c.lhs)} > {latex(c.rhs)}" for c in s.stated])),
         ]
+        comparison = []
+        for key, d in sorted(derived_map.items(), key=lambda kv: sp.default_sort_key(kv[0])):
+            cond = stated.get(key)
+            if cond is None:
+                continue
+            need = ">" if d.strict else "\\ge"
+            comparison.append(
+                f"{latex(cond.lhs)} > {latex(cond.rhs)}:\\ \\text{{derived with }} {need}"
+                + ("\\ (\\text{stated strictly: sufficient, with a margin})" if not d.strict else "")
+            )
+        details.append(("\\text{stated vs derived}", rows_latex(comparison)))
         details += claim_rows
         if failures:
             return Outcome.fail(_fmt_failures(failures), tuple(details))

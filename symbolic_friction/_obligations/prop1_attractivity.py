@@ -23,7 +23,7 @@ import sympy as sp
 
 from .. import _symbolic
 from ._base import Obligation, Outcome
-from ._decide import G, Undecided, decide, is_zero, latex, phi_classes, pos, sign_classes, sign_of
+from ._decide import G, Undecided, decide, latex, phi_classes, sign_classes, sign_of
 from .model import attractor_x, sgn_sets
 
 __all__ = ["Prop1Invariance", "OBLIGATIONS"]
@@ -74,8 +74,8 @@ class Prop1Invariance(Obligation):
         t = sp.Symbol("t", nonnegative=True)
         sb, pb = sp.symbols("sigmabar phibar", real=True)
         traj = (B * t).exp() * sp.Matrix([sb, pb])
-        x_t = [sp.expand(traj[0]), sp.expand(traj[1]), sp.Integer(0)]
-        w_t = sp.expand((S.A * sp.Matrix(x_t))[2] / S.b[2])  # 0 = v' = (A x)_3 - b_3 w
+        x_t = [sp.expand(sp.simplify(traj[0])), sp.expand(sp.simplify(traj[1])), sp.Integer(0)]
+        w_t = sp.expand(sp.cancel((S.A * sp.Matrix(x_t))[2] / S.b[2]))  # 0 = v' = (A x)_3 - b_3 w
         details = [
             ("(\\sigma, \\phi)(t) \\text{ while } v \\equiv 0", latex(sp.Matrix(x_t[:2]).T)),
             ("w(t) = (Ax)_3 / f_c", latex(w_t)),

@@ -301,7 +301,7 @@ def _quad_bound(g: tuple[Fraction, ...], params: Parameters) -> float:
 
 @dataclass(frozen=True)
 class SlipBounds:
-    """Constants bounding the derivatives of ``v`` along a slip (used to bracket events).
+    r"""Constants bounding the derivatives of ``v`` along a slip (used to bracket events).
 
     Along a slip ``y = x - x*_k`` solves ``y' = A y`` and, by the paper's own
     identity behind eq. (dVdt), ``AᵀP + PA = -c e₃e₃ᵀ``, so

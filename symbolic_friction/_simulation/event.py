@@ -4,26 +4,23 @@ of the inclusion ``x' ∈ A x - b SGN(v)`` (eq. xDot), unique by Lemma 1.
 The solution is a concatenation of the three affine flows of Claim 1
 (eq. subcasesAffine), each in closed form (:mod:`.affine`):
 
-* **Mode selection** at ``v = 0`` by the appendix's table (:mod:`.modes`).
+* **Mode selection** by the appendix's table (:mod:`.modes`).
 * **Stick** (``k = 0``): ``φ(t) = φ̄ + σ̄ t`` reaches ``sign(σ̄) f_c`` at
   ``t = (sign(σ̄) f_c - φ̄)/σ̄`` (closed form), where row (iii) or (ix)
   starts a slip; with ``σ̄ = 0`` the state is an equilibrium in 𝒜 and the
-  method stops stepping (:attr:`Status.EQUILIBRIUM`).
-* **Slip** (``k = ±1``): the event is the *first* zero of ``v(t)`` after the
-  start.  It is bracketed rigorously, never skipping a crossing: along a slip
-  ``|y|_P`` (``y = x - x*_k``, ``P`` of eq. lyapLikeP) does not increase, so
-  ``|v''| ≤ m₂|y(a)|_P`` and ``|v'''| ≤ m₃|y(a)|_P`` after any time ``a``
-  (:class:`.affine.SlipBounds`).  From ``a`` the Taylor lower bound
-  ``u + u'τ - ½M₂τ²`` (``u = k·v``) certifies ``u > 0`` up to its first root,
-  which is the next step (a third-order bound is used where ``u'(a) ≥ 0``,
-  needed at a start on rows (iii)/(ix) where ``u = u' = 0``).  Once the upper
-  bound ``u + u'τ + ½M₂τ²`` also has a root, ``u`` is strictly decreasing
-  between the two roots and has exactly one zero there, refined to machine
-  precision by the Illinois method on the closed form.
+  method stops stepping (:attr:`Status.EQUILIBRIUM`, later samples constant).
+* **Slip** (``k = ±1``): the event is the *first* zero of ``v`` after the
+  start, bracketed rigorously and refined to machine precision
+  (:mod:`.search`: a certified scan plus a certified Taylor march, both
+  resting on ``|x - x*_k|_P`` being nonincreasing with the paper's ``P``).
 * After a slip, ``v`` is set to exactly 0 and the next mode is selected with
-  :func:`.modes.mode_after_slip` (a tolerance-free clamp, then a snap of
-  ``φ`` within a few ulps of ``±f_c`` so that ``σ`` decides).  ``max_events``
-  caps the number of mode changes (:attr:`Status.MAX_EVENTS`).
+  :func:`.modes.mode_after_slip`: a tolerance-free clamp (a slip in direction
+  ``k`` can only end with ``k·φ ≤ f_c``), then ``φ`` within a few ulps of
+  ``±f_c`` is snapped so that ``σ`` decides as rows (iii)/(v)/(vii)/(ix) do.
+  A grazing contact (row (iii)/(ix) again) continues the slip without an
+  event.  ``max_events`` caps the number of mode changes
+  (:attr:`Status.MAX_EVENTS`; later samples are omitted), so rounding at a
+  switching surface can never make the method spin forever.
 
 Only numpy and the standard library are imported (no scipy, no sympy).
 """

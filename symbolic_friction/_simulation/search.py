@@ -19,8 +19,8 @@ and ``u = k v``, positive inside the slip.  Two rigorous tools are combined:
    ``u' ≥ 0 < u''``, needed at a start on rows (iii)/(ix) where
    ``u = u' = 0``).  As soon as the upper bound ``u + u'τ + ½M₂τ²`` has a
    root too, ``u`` decreases strictly between the two roots and vanishes
-   exactly once there; the Illinois method on the closed form refines that
-   zero to machine precision.  At an exact tangency the steps shrink
+   exactly once there; Newton's method on the closed form, kept inside the
+   bracket, refines that zero to machine precision.  At an exact tangency the steps shrink
    geometrically and the contact point is returned.
 
 Everything is written twice: with plain floats for one trajectory
@@ -98,27 +98,31 @@ class _Slip:
         return self.d * self.state(tau)[2]
 
 
-def _illinois(f, lo: float, f_lo: float, hi: float, f_hi: float) -> float:
-    """Zero of ``f`` in ``[lo, hi]`` with ``f(lo) > 0 ≥ f(hi)``, to machine precision."""
-    side = 0
-    for _ in range(200):
-        if f_hi == 0.0 or hi - lo <= 2.0 * _EPS * max(abs(lo), abs(hi)):
-            break
-        m = (lo * f_hi - hi * f_lo) / (f_hi - f_lo)
-        if not lo < m < hi:
-            m = 0.5 * (lo + hi)
-        f_m = f(m)
-        if f_m > 0.0:
-            lo, f_lo = m, f_m
-            if side == -1:
-                f_hi *= 0.5
-            side = -1
+def _newton(slip: "_Slip", k_v: float, lo: float, hi: float) -> float:
+    """Zero of ``u`` in ``[lo, hi]`` where ``u`` decreases strictly from ``u(lo) ≥ 0`` to ``u(hi) ≤ 0``.
+
+    Newton's method on the closed form, kept inside the bracket (bisection
+    when a step leaves it), until the step is below two ulps.
+    """
+    d = slip.d
+    x = 0.5 * (lo + hi)
+    for _ in range(100):
+        s, p, v = slip.state(x)
+        u = d * v
+        if u == 0.0:
+            return x
+        if u > 0.0:
+            lo = x
         else:
-            hi, f_hi = m, f_m
-            if side == 1:
-                f_lo *= 0.5
-            side = 1
-    return hi if abs(f_hi) <= abs(f_lo) else lo
+            hi = x
+        du = d * (p - k_v * v)
+        x_new = x - u / du if du < 0.0 else 0.5 * (lo + hi)
+        if not lo <= x_new <= hi:
+            x_new = 0.5 * (lo + hi)
+        if abs(x_new - x) <= 2.0 * _EPS * abs(x) or hi - lo <= 2.0 * _EPS * abs(hi):
+            return x_new
+        x = x_new
+    return x
 
 
 def _march(
@@ -160,13 +164,7 @@ def _march(
                 if slip.u(stop) > 0.0:
                     return None, y
                 hi = stop
-            f_lo, f_hi = slip.u(lo), slip.u(hi)
-            if f_lo <= 0.0:
-                tau = lo
-            elif f_hi > 0.0:
-                tau = hi
-            else:
-                tau = _illinois(slip.u, lo, f_lo, hi, f_hi)
+            tau = _newton(slip, k_v, lo, hi)
             return tau, slip.state(tau)
         if du >= 0.0:
             if dd > 0.0:
@@ -410,7 +408,7 @@ def _march_vec(model, q0, q1, q2, d, a, stop):
             if keep.any():
                 rk = rows_e[keep]
                 found[rk] = True
-                where[rk] = _illinois_vec(expm, q0[rk], q1[rk], q2[rk], d[rk], lo[keep], hi[keep])
+                where[rk] = _newton_vec(expm, q0[rk], q1[rk], q2[rk], d[rk], lo[keep], hi[keep])
     # rows still active after the cap: a tangency; return the contact point
     rest = np.flatnonzero(active)
     found[rest] = a[rest] > 0.0
@@ -418,40 +416,31 @@ def _march_vec(model, q0, q1, q2, d, a, stop):
     return found, where
 
 
-def _illinois_vec(expm, q0, q1, q2, d, lo, hi):
-    """Vectorised :func:`_illinois` on brackets where ``u(lo) > 0`` is expected and ``u(hi) ≤ 0``."""
-    f = lambda t, sel: d[sel] * _states(expm, q0[sel], q1[sel], q2[sel], t)[:, 2]  # noqa: E731
-    every = np.arange(lo.size)
-    f_lo = f(lo, every)
-    f_hi = f(hi, every)
-    result = np.where(f_lo <= 0.0, lo, np.where(f_hi > 0.0, hi, np.nan))
-    open_ = np.isnan(result)
-    side = np.zeros(lo.size, dtype=int)
+def _newton_vec(expm, q0, q1, q2, d, lo, hi):
+    """Vectorised :func:`_newton` on brackets ``[lo, hi]`` (one row each)."""
+    k_v = expm.k_v
     lo, hi = lo.copy(), hi.copy()
-    for _ in range(200):
-        idx = np.flatnonzero(open_)
+    x = 0.5 * (lo + hi)
+    result = np.full(lo.size, np.nan)
+    idx = np.arange(lo.size)
+    for _ in range(100):
         if idx.size == 0:
             break
-        l, h, fl, fh = lo[idx], hi[idx], f_lo[idx], f_hi[idx]
-        close = (fh == 0.0) | (h - l <= 2.0 * _EPS * np.maximum(np.abs(l), np.abs(h)))
-        if close.any():
-            ci = idx[close]
-            result[ci] = np.where(np.abs(f_hi[ci]) <= np.abs(f_lo[ci]), hi[ci], lo[ci])
-            open_[ci] = False
-            idx, l, h, fl, fh = idx[~close], l[~close], h[~close], fl[~close], fh[~close]
-            if idx.size == 0:
-                break
-        m = (l * fh - h * fl) / (fh - fl)
-        bad = ~((l < m) & (m < h))
-        m = np.where(bad, 0.5 * (l + h), m)
-        fm = f(m, idx)
-        pos = fm > 0.0
-        # Illinois: halve the stale end's value when the same side moves twice
-        ip, ineg = idx[pos], idx[~pos]
-        f_hi[ip] = np.where(side[ip] == -1, 0.5 * f_hi[ip], f_hi[ip])
-        lo[ip], f_lo[ip], side[ip] = m[pos], fm[pos], -1
-        f_lo[ineg] = np.where(side[ineg] == 1, 0.5 * f_lo[ineg], f_lo[ineg])
-        hi[ineg], f_hi[ineg], side[ineg] = m[~pos], fm[~pos], 1
-    rest = np.flatnonzero(open_)
-    result[rest] = np.where(np.abs(f_hi[rest]) <= np.abs(f_lo[rest]), hi[rest], lo[rest])
+        xi = x[idx]
+        y = _states(expm, q0[idx], q1[idx], q2[idx], xi)
+        di = d[idx]
+        u = di * y[:, 2]
+        du = di * (y[:, 1] - k_v * y[:, 2])
+        pos = u > 0.0
+        lo[idx] = np.where(pos, xi, lo[idx])
+        hi[idx] = np.where(pos, hi[idx], xi)
+        l, h = lo[idx], hi[idx]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            x_new = np.where(du < 0.0, xi - u / du, 0.5 * (l + h))
+        x_new = np.where((l <= x_new) & (x_new <= h), x_new, 0.5 * (l + h))
+        done = (u == 0.0) | (np.abs(x_new - xi) <= 2.0 * _EPS * np.abs(xi)) | (h - l <= 2.0 * _EPS * np.abs(h))
+        result[idx[done]] = np.where(u[done] == 0.0, xi[done], x_new[done])
+        x[idx] = x_new
+        idx = idx[~done]
+    result[idx] = x[idx]
     return result

@@ -13,6 +13,8 @@ import sympy as sp
 from symbolic_friction import Parameters, _attractor
 from symbolic_friction._obligations.cor1 import Distances, Inflation, _counterexample, _expand_abs_relations
 
+from ..tolerance import assert_close
+
 
 @pytest.fixture(scope="module")
 def inflation():
@@ -143,15 +145,17 @@ def test_distances_wrong_offset(distances):
 
 
 def test_distances_on_rational_points_against_the_package():
-    """The package's float distance_z satisfies both inequalities on a grid (independent check)."""
+    """The package's distance_z matches an exact reference, which satisfies both inequalities exactly."""
     p = Parameters.table_i("b")
-    beta = float(p.f_c / p.k_i)
-    grid = np.array(list(itertools.product([-40.0, -12.5, -1.0, 0.0, 3.0, 12.5, 13.0], [-2.0, 0.0, 0.5], [-1.0, 0.0, 2.0])))
-    dist = _attractor.distance_z(p, grid)
-    norm = np.linalg.norm(grid, axis=1)
-    assert np.all(dist <= norm + 1e-12)
-    assert np.all(norm**2 <= 2 * dist**2 + 2 * beta**2 + 1e-9)
-    assert np.all(norm <= np.sqrt(2) * (dist + beta) + 1e-9)
+    beta = p.f_c / p.k_i
+    points = list(itertools.product([F(-40), F(-25, 2), F(-1), F(0), F(3), F(25, 2), F(13)], [F(-2), F(0), F(1, 2)], [F(-1), F(0), F(2)]))
+    for e_i, s_, v in points:
+        d = e_i - beta if e_i > beta else (e_i + beta if e_i < -beta else F(0))
+        dist2 = s_**2 + v**2 + d**2
+        norm2 = e_i**2 + s_**2 + v**2
+        assert dist2 <= norm2 <= 2 * dist2 + 2 * beta**2
+        got = _attractor.distance_z(p, np.array([[float(e_i), float(s_), float(v)]]))[0]
+        assert_close(got**2, float(dist2), rtol=1e-13, atol=1e-13, what=f"|z|²_𝒜 at {(e_i, s_, v)}")
 
 
 def test_counterexample_search():
@@ -160,3 +164,20 @@ def test_counterexample_search():
     assert _counterexample(t**2 + x**2) is None
     found = _counterexample(t**2 - 4 * b * t - 2 * b**2)
     assert found is not None and (t**2 - 4 * b * t - 2 * b**2).xreplace(found) < 0
+
+
+def test_inflation_bounded_input(inflation):
+    """A consistent but doubled friction map still inflates correctly, but is not within 1 + |ρ|."""
+    s = inflation
+    nonzero = sp.Ne(s.u, 0)
+    big = sp.Abs(s.v) > s.r
+    doubled = dataclasses.replace(
+        s,
+        sgn_lo=sp.Piecewise((2 * sp.sign(s.u), nonzero), (-2, True)),
+        sgn_hi=sp.Piecewise((2 * sp.sign(s.u), nonzero), (2, True)),
+        inflated_lo=sp.Piecewise((2 * sp.sign(s.v) - s.r, big), (-2 - s.r, True)),
+        inflated_hi=sp.Piecewise((2 * sp.sign(s.v) + s.r, big), (2 + s.r, True)),
+    )
+    _fails(Inflation(), doubled, "is not inside [−1 − |ρ|, 1 + |ρ|]")
+    (erratum,) = Inflation.errata
+    assert "|m(t)| ≤ 1 + |ρ_v|" in erratum.correct

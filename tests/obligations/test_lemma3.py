@@ -112,12 +112,21 @@ def test_R_needs_assumption1(r_subject):
     _fails(LemmaR(), dataclasses.replace(r_subject, P=P), "cannot show λ_min(P) > 0 under Assumption 1")
 
 
+def _outward(value: sp.Expr, *, up: bool) -> F:
+    """A rational within 1e-30 of the algebraic number ``value``, rounded outward."""
+    scaled = (sp.ceiling if up else sp.floor)(value * 10**30)
+    return F(int(scaled), 10**30)
+
+
 def test_R_matches_the_package_V_on_rational_points(r_subject):
-    """Independent of sympy: the package's exact V equals wᵀPw on R and sits between the eigenvalue bounds."""
+    """Exact: the package's V equals wᵀPw on R and lies between the subject's c₁, c₂ times |x|²_𝒜."""
+    g = lemma3.G()
     for case in ("a", "b"):
         p = Parameters.table_i(case)
-        P = np.array(_lyapunov.lyapunov_matrix(p))
-        lam = np.linalg.eigvalsh(P)
+        sub = {g.k_p: sp.Rational(str(p.k_p)), g.k_i: sp.Rational(str(p.k_i)), g.k_v: sp.Rational(str(p.k_v))}
+        c1 = _outward(r_subject.c1.xreplace(sub), up=False)
+        c2 = _outward(r_subject.c2.xreplace(sub), up=True)
+        assert 0 < c1 < c2
         values = [F(-3), F(-1), F(-1, 2), F(0), F(1, 3), F(1), F(5, 2)]
         checked = 0
         for x in itertools.product(values, repeat=3):
@@ -127,11 +136,11 @@ def test_R_matches_the_package_V_on_rational_points(r_subject):
             sigma, phi, v = x
             d = phi - p.f_c if phi > p.f_c else (phi + p.f_c if phi < -p.f_c else F(0))
             w = (sigma, d, v)
-            quad = sum(F(r) * wi * wj for row, wi in zip(_lyapunov.lyapunov_matrix_entries(p.k_p, p.k_i, p.k_v), w) for r, wj in zip(row, w))
+            entries = _lyapunov.lyapunov_matrix_entries(p.k_p, p.k_i, p.k_v)
+            quad = sum(F(r) * wi * wj for row, wi in zip(entries, w) for r, wj in zip(row, w))
             assert _lyapunov.V(p, x) == quad
-            dist2 = float(sigma**2 + d**2 + v**2)
-            assert lam[0] * dist2 <= float(quad) * (1 + 1e-12) + 1e-12
-            assert float(quad) <= lam[-1] * dist2 * (1 + 1e-12) + 1e-12
+            dist2 = sigma**2 + d**2 + v**2
+            assert c1 * dist2 <= quad <= c2 * dist2
             checked += 1
         assert checked > 100
 
@@ -190,8 +199,8 @@ def test_bounds_sharp_constant_beats_eigenvalue_and_matches_package(bounds_subje
     ks = (F(1), F(1), F(2), F(5))
     K = np.array(_lyapunov.vhat_matrix_entries(*[float(k) for k in ks]))
     lam = np.linalg.eigvalsh(K)
-    assert min(1, 1, 5) / 2 >= lam[0] / 2
     sub = dict(zip(s.k, [sp.Rational(str(k)) for k in ks]))
+    assert bool(s.c1_hat.xreplace(sub) > s.c1_hat_eig.xreplace(sub))  # ½min(k₁,k₂,k₄) beats ½λ_min(K), exactly
     assert_close(float(s.c2_hat.xreplace(sub)), lam[-1] / 2, rtol=1e-12, what="ĉ2")
     for x in itertools.product([F(-2), F(-1, 3), F(0), F(1, 2), F(3)], repeat=3):
         sigma, phi, v = x

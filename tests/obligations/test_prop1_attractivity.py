@@ -44,7 +44,7 @@ def test_attractor_with_nonzero_sigma_fails(invariance):
     ob, subject = invariance
     out = ob.verify(dataclasses.replace(subject, attractor=(g.f_c, sp.Interval(-g.f_c, g.f_c), 0)))
     assert out.holds is False
-    assert "cannot decide σ" in out.reason or "is not in 𝒜" in out.reason
+    assert "cannot decide σ = s_sigma against 𝒜" in out.reason
 
 
 def test_no_ramp_makes_more_invariant_points(invariance):
@@ -84,3 +84,30 @@ def test_undecidable_motion_fails(invariance):
     out = ob.verify(dataclasses.replace(subject, A=sp.ImmutableMatrix(A)))
     assert out.holds is False
     assert "not polynomial in t" in out.reason
+
+
+def test_undecidable_selection_range_fails(invariance):
+    ob, subject = invariance
+    sgn = dict(subject.sgn)
+    sgn[0] = sp.Interval(-1, g.k_p)
+    out = ob.verify(dataclasses.replace(subject, sgn=sgn))
+    assert out.holds is False
+    assert "cannot decide whether w(0) = 1 + p_phi/f_c lies in [-1, k_p]" in out.reason
+
+
+def test_undecidable_drift_fails(invariance):
+    ob, subject = invariance
+    A = sp.Matrix(subject.A)
+    A[1, 0] = g.k_p - 1
+    out = ob.verify(dataclasses.replace(subject, A=sp.ImmutableMatrix(A)))
+    assert out.holds is False
+    assert "cannot decide whether (σ', φ')" in out.reason and "vanishes" in out.reason
+
+
+def test_drift_that_never_breaks_stick_fails(invariance):
+    ob, subject = invariance
+    A = sp.Matrix(subject.A)
+    A[2, 1] = 0  # v' no longer feels φ: σ ≠ 0 drifts φ but never breaks the stick
+    out = ob.verify(dataclasses.replace(subject, A=sp.ImmutableMatrix(A)))
+    assert out.holds is False
+    assert "is not shown to leave [-1, 1]" in out.reason

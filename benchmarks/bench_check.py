@@ -1,0 +1,76 @@
+"""Benchmark: ``symbolic-friction check`` wall time and time per obligation.
+
+Run from the repository root with the package installed::
+
+    python benchmarks/bench_check.py             # 3 repetitions
+    python benchmarks/bench_check.py --repeat 1  # quicker
+
+It prints
+
+1. the wall time of ``symbolic-friction check --proofs DIR`` as a subprocess
+   (what a user waits for, imports included), min and median over the runs;
+2. in a fresh process per repetition: ``derive`` + ``verify`` seconds of each
+   obligation (median and max over the repetitions) and their sum.
+
+Target (issue 2): the whole command under 30 s on a 2-core machine.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+_PER_OBLIGATION = """
+import json, time
+from symbolic_friction._obligations import all_obligations
+start = time.perf_counter()
+rows = [(r.id, r.seconds, r.status) for r in (ob.run() for ob in all_obligations())]
+print(json.dumps({"rows": rows, "total": time.perf_counter() - start}))
+"""
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeat", type=int, default=3, help="repetitions (default 3)")
+    args = parser.parse_args()
+
+    walls = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for _ in range(args.repeat):
+            start = time.perf_counter()
+            proc = subprocess.run(
+                [sys.executable, "-m", "symbolic_friction", "check", "--proofs", os.path.join(tmp, "none")],
+                capture_output=True, text=True,
+            )
+            walls.append(time.perf_counter() - start)
+            if proc.returncode != 0:
+                print(proc.stdout[-2000:], proc.stderr[-2000:], sep="\n")
+                raise SystemExit(f"check exited with {proc.returncode}")
+    print(f"symbolic-friction check (subprocess, {args.repeat} runs): min {min(walls):.2f} s, median {statistics.median(walls):.2f} s")
+
+    per: dict[str, list[float]] = {}
+    totals = []
+    for _ in range(args.repeat):
+        out = subprocess.run([sys.executable, "-c", _PER_OBLIGATION], capture_output=True, text=True, check=True).stdout
+        data = json.loads(out)
+        totals.append(data["total"])
+        for ident, seconds, status in data["rows"]:
+            per.setdefault(ident, []).append(seconds)
+            if status != "holds":
+                print(f"warning: {ident} {status}")
+    width = max(len(k) for k in per)
+    print(f"\n{'obligation':{width}}  median s  max s")
+    for ident, values in per.items():
+        print(f"{ident:{width}}  {statistics.median(values):8.3f}  {max(values):5.3f}")
+    print(f"{'sum (in process)':{width}}  {statistics.median(totals):8.3f}  {max(totals):5.3f}")
+    print(f"\nmachine: {os.cpu_count()} CPUs, load average {os.getloadavg()[0]:.2f} at the end")
+
+
+if __name__ == "__main__":
+    main()

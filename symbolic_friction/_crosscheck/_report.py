@@ -1,0 +1,131 @@
+"""Text tables and counterexample files of a cross-check run."""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+from pathlib import Path
+from typing import Any
+
+from ._run import SEARCH_MODES, CertificateCheck, CrosscheckReport
+
+__all__ = ["format_report", "write_counterexamples", "TOLERANCE_NOTE"]
+
+TOLERANCE_NOTE = (
+    "margin = smallest relative slack (rhs - lhs)/scale; a failure is a slack below -rtol = {rtol:g}. "
+    "The event simulator matches an mpmath reference to ~1e-10 relative, so quadratic forms err by "
+    "~2e-10 of their scale: rtol leaves a safety factor of 50."
+)
+
+
+def _fmt(x: float) -> str:
+    if x is None or (isinstance(x, float) and math.isnan(x)):
+        return "-"
+    if x == math.inf:
+        return "inf"
+    return f"{x:+.2e}"
+
+
+def format_check(check: CertificateCheck) -> str:
+    """The table of one certificate."""
+    cl = check.claims
+    lines = [
+        f"{check.label}: k_p={cl.exact['k_p']} k_i={cl.exact['k_i']} k_v={cl.exact['k_v']} f_c={cl.exact['f_c']}, "
+        f"kappa={cl.exact['overshoot_bound']}  ({check.source or 'in memory'})",
+        f"  {check.trajectories} trajectories on [0, {check.horizon:g}], {check.seconds:.1f} s for this gain set",
+        f"  {'property':28s} {'paper':40s} {'traj':>6s} {'checked':>9s} {'margin':>10s} {'fail':>6s}",
+    ]
+    for r in check.results:
+        extra = f"  ({r.inconclusive} within tolerance of 0)" if r.id == "remark.stick_sigma" and r.inconclusive else ""
+        lines.append(
+            f"  {r.id:28s} {r.paper[:40]:40s} {r.trajectories:6d} {r.samples:9d} {_fmt(r.worst_margin):>10s} "
+            f"{r.failures:6d}{'  FAIL' if r.failures else ''}{extra}"
+        )
+    tight = check.tightness
+    parts = [f"{mode} {check.max_overshoot[mode]:.4f} ({tight[mode]:.3f})" for mode in SEARCH_MODES if mode in tight]
+    lines.append(f"  overshoot max_t |x(t)|_A/|x(0)|_A (observed/kappa): " + "; ".join(parts))
+    if "all" in tight:
+        w = check.worst_state
+        lines.append(
+            f"  tightness ratio {tight['all']:.4f} at x(0) = ({w[0]:.6g}, {w[1]:.6g}, {w[2]:.6g})"
+        )
+    att = next((r for r in check.results if r.id == "prop1.attractivity"), None)
+    if att is not None and att.details:
+        d = att.details
+        more = ""
+        if d.get("extended"):
+            more = f"; {d['extended']} needed a longer horizon (latest reached theta at t = {d['latest_time_to_theta']:.4g})"
+        lines.append(
+            f"  attractivity: median |x(T)|_A/|x(0)|_A = {d['median_final_ratio']:.3g}, "
+            f"max {d['max_final_ratio']:.3g}{more}"
+        )
+    return "\n".join(lines)
+
+
+def format_report(report: CrosscheckReport) -> str:
+    """All tables, the decay and ISS summaries, and the verdict."""
+    out = [TOLERANCE_NOTE.format(rtol=report.rtol)]
+    for check in report.checks:
+        out.append("")
+        out.append(format_check(check))
+    for label, fit in report.decay.items():
+        out.append("")
+        out.append(f"decay of |x(t)|_A for {label}: {fit.describe()}")
+    for label, est in report.iss.items():
+        out.append("")
+        out.append(f"Corollary 1, empirical ISS gain for {label} (moreau, h={est.h:g}, tail [T/2, T], T={est.horizon:g}):")
+        out.append(f"  {'law':11s} {'rho':>8s} {'gamma':>10s} {'from A':>10s} {'tail':>10s} {'tail events':>12s}")
+        for law, rho, g, ga, gt, ev in est.rows():
+            out.append(f"  {law:11s} {rho:8.3g} {g:10.4g} {ga:10.4g} {gt:10.4g} {ev:12d}")
+        for law, slope in est.slope.items():
+            out.append(f"  {law}: log-log slope of gamma at small rho = {slope:.3f}")
+    out.append("")
+    failed = [c.label for c in report.checks if not c.passed]
+    if failed:
+        out.append(f"FAILED: {', '.join(failed)} ({report.seconds:.1f} s)")
+    else:
+        out.append(f"PASSED: {len(report.checks)} certificate(s), every property within rtol = {report.rtol:g} "
+                   f"({report.seconds:.1f} s)")
+    return "\n".join(out)
+
+
+def _json_safe(value: Any) -> Any:
+    if isinstance(value, float):
+        return value if math.isfinite(value) else None
+    if isinstance(value, dict):
+        return {k: _json_safe(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_json_safe(v) for v in value]
+    return value
+
+
+def _slug(label: str) -> str:
+    return re.sub(r"[^A-Za-z0-9_.-]+", "_", label).strip("_") or "certificate"
+
+
+def write_counterexamples(report: CrosscheckReport, out_dir: str | Path) -> list[Path]:
+    """Write one JSON file per certificate that has counterexamples; return the files.
+
+    Files are written atomically (temporary file + ``os.replace``).
+    """
+    from .._certify.certificate import atomic_write_text
+
+    written = []
+    for check in report.checks:
+        cxs = check.counterexamples()
+        if not cxs:
+            continue
+        data = {
+            "certificate": check.label,
+            "source": check.source,
+            "exact": {k: str(v) for k, v in check.claims.exact.items()},
+            "rtol": report.rtol,
+            "seed": report.seed,
+            "counterexamples": [_json_safe(cx.to_dict()) for cx in cxs],
+        }
+        path = Path(out_dir) / f"{_slug(check.label)}.counterexamples.json"
+        atomic_write_text(path, json.dumps(data, indent=2, ensure_ascii=False, allow_nan=False) + "\n")
+        written.append(path)
+    return written
+

@@ -1,0 +1,155 @@
+"""Figures of the cross-check (issue 5): how tight the certified overshoot
+bound κ of Proposition 1 (eq. stabState) is, and the empirical ISS gain of
+Corollary 1.
+
+* :func:`plot_tightness` — observed ``sup_t |x(t)|_𝒜/|x(0)|_𝒜`` of every
+  cross-checked trajectory against ``|x(0)|_𝒜``, by search mode, with the
+  certified κ of each certificate of the gain set;
+* :func:`plot_iss` — ``γ̂(ρ)`` against ``ρ`` (log–log) for the worst-case
+  inflated law and for Stribeck laws inside it.
+
+Both are registered for ``symbolic-friction figures`` (names
+``crosscheck_tightness`` and ``crosscheck_iss``) once this module is listed
+in :data:`symbolic_friction._figures.FIGURE_MODULES`.  matplotlib (Agg) is
+imported only when a figure is drawn.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+from ._figures import _pyplot, _save, register
+
+__all__ = [
+    "plot_tightness",
+    "plot_iss",
+    "table_i_certificates",
+    "figure_tightness",
+    "figure_iss",
+    "TIGHTNESS_TRAJECTORIES",
+]
+
+TIGHTNESS_TRAJECTORIES = 2000
+"""Trajectories per gain set behind the tightness figure (the CLI default is 10000)."""
+
+_MODE_STYLE = {
+    "random spheres": ("tab:blue", "."),
+    "grid": ("tab:green", "+"),
+    "special": ("tab:purple", "x"),
+    "adversarial": ("tab:red", "o"),
+}
+
+
+def table_i_certificates(directory: str | Path = "proofs") -> list[Any]:
+    """The four Table I certificates: from ``directory`` if present, else certified now (exactly verified)."""
+    from ._certify import certify, verify_certificate
+    from ._parameters import Parameters
+
+    out = []
+    for case in ("a", "b"):
+        for mode in ("feasible", "tightest"):
+            path = Path(directory) / f"case_{case}_{mode}.json"
+            if path.exists():
+                out.append(path)
+            else:
+                cert = certify(Parameters.table_i(case), mode=mode, label=f"Table I, case ({case})")
+                verify_certificate(cert).raise_if_failed()
+                out.append(cert)
+    return out
+
+
+def plot_tightness(checks: Sequence[Any], path: str | Path) -> Path:
+    """Draw the tightness figure from :class:`~._crosscheck.CertificateCheck` results.
+
+    One panel per gain set: each dot is a trajectory, at ``(|x(0)|_𝒜,
+    observed overshoot)``; horizontal lines are the κ of the certificates.
+    """
+    import numpy as np
+
+    plt = _pyplot()
+    groups: dict[Any, list[Any]] = {}
+    for c in checks:
+        groups.setdefault(c.claims.params, []).append(c)
+    fig, axes = plt.subplots(1, len(groups), figsize=(5.6 * len(groups), 4.4), squeeze=False)
+    for ax, (params, members) in zip(axes[0], groups.items()):
+        first = members[0]
+        ov, d0, modes = first.overshoots, first.initial_distance, first.modes
+        ok = np.isfinite(ov) & (d0 > 0)
+        for mode, (color, marker) in _MODE_STYLE.items():
+            m = ok & (modes == mode)
+            if np.any(m):
+                ax.scatter(d0[m], ov[m], s=6 if marker == "." else 14, c=color, marker=marker, alpha=0.6,
+                           linewidths=0.7, label=f"{mode} (max {ov[m].max():.3f})")
+        for c, ls in zip(members, ("-", "--", ":", "-.")):
+            ax.axhline(c.claims.kappa, color="black", ls=ls, lw=1.2,
+                       label=f"κ {c.label}: {c.claims.kappa:.4g} (ratio {c.tightness.get('all', float('nan')):.3f})")
+        ax.axhline(1.0, color="grey", lw=0.6)
+        ax.set_xscale("log")
+        ax.set_xlabel(r"$|x(0)|_{\mathcal{A}}$")
+        ax.set_ylabel(r"observed $\sup_t |x(t)|_{\mathcal{A}} / |x(0)|_{\mathcal{A}}$")
+        ax.set_title(
+            f"k_p={float(params.k_p):g}, k_i={float(params.k_i):g}, k_v={float(params.k_v):g}, f_c={float(params.f_c):g}: "
+            f"{first.trajectories} trajectories",
+            fontsize=9,
+        )
+        ax.legend(fontsize=7, loc="upper right")
+        top = max(c.claims.kappa for c in members)
+        ax.set_ylim(0.9, 1.15 * top)
+    fig.suptitle("Proposition 1: observed overshoot against the certified bound κ", fontsize=10)
+    fig.tight_layout()
+    return _save(fig, Path(path))
+
+
+def plot_iss(estimates: Sequence[Any], path: str | Path, *, labels: Sequence[str] | None = None) -> Path:
+    """Draw ``γ̂(ρ)`` (log–log) for :class:`~._crosscheck.IssEstimate` results."""
+    import numpy as np
+
+    plt = _pyplot()
+    fig, ax = plt.subplots(figsize=(6.4, 4.6))
+    colors = ("tab:blue", "tab:orange", "tab:green", "tab:red")
+    for j, est in enumerate(estimates):
+        name = labels[j] if labels else f"k_p={float(est.params.k_p):g}, k_i={float(est.params.k_i):g}, k_v={float(est.params.k_v):g}"
+        rho = np.array(est.rhos)
+        for law, ls, marker in (("worst-case", "-", "o"), ("stribeck", "--", "s")):
+            if law not in est.gamma:
+                continue
+            g = np.asarray(est.gamma[law])
+            m = rho > 0
+            ax.plot(rho[m], g[m], ls=ls, marker=marker, color=colors[j % len(colors)], ms=4,
+                    label=f"{name}: {'SGN_ρ worst case' if law == 'worst-case' else 'Stribeck f_s=(1+ρ)f_c'}")
+            base = est.gamma[law][list(rho).index(0.0)] if 0.0 in list(rho) else None
+            if base is not None and law == "worst-case":
+                ax.axhline(base, color=colors[j % len(colors)], lw=0.6, ls=":")
+    rr = np.geomspace(1e-3, 1, 20)
+    ax.plot(rr, 0.5 * np.sqrt(rr), color="grey", lw=0.8, ls="-.", label=r"$\propto\sqrt{\rho}$")
+    ax.plot(rr, 2.0 * rr, color="grey", lw=0.8, ls=(0, (1, 3)), label=r"$\propto\rho$")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel(r"inflation $\rho$")
+    ax.set_ylabel(r"ultimate bound $\hat\gamma(\rho)$ of $|z|_{\mathcal{A}}$")
+    ax.set_title("Corollary 1: empirical ISS gain (dotted: transient left at ρ = 0)", fontsize=9)
+    ax.legend(fontsize=6.5, loc="lower right")
+    fig.tight_layout()
+    return _save(fig, Path(path))
+
+
+@register("crosscheck_tightness", "Cross-check: observed overshoot against the certified kappa (Table I certificates)")
+def figure_tightness(out: Path) -> list[Path]:
+    """Cross-check the Table I certificates and draw :func:`plot_tightness`."""
+    from ._crosscheck import crosscheck
+
+    report = crosscheck(table_i_certificates(), trajectories=TIGHTNESS_TRAJECTORIES, progress=False)
+    return [plot_tightness(report.checks, Path(out) / "crosscheck_tightness.png")]
+
+
+@register("crosscheck_iss", "Cross-check: empirical ISS gain gamma(rho) of Corollary 1 (Table I cases)")
+def figure_iss(out: Path) -> list[Path]:
+    """Estimate ``γ̂(ρ)`` for Table I's cases and draw :func:`plot_iss`."""
+    from ._crosscheck import iss_gain
+    from ._parameters import Parameters
+
+    rhos = ("0", "0.001", "0.003", "0.01", "0.03", "0.1", "0.3", "1")
+    estimates = [iss_gain(Parameters.table_i(c), rhos) for c in ("a", "b")]
+    return [plot_iss(estimates, Path(out) / "crosscheck_iss.png", labels=["case (a)", "case (b)"])]
