@@ -60,6 +60,8 @@ _LAZY: dict[str, str] = {
     "Result": "._obligations._base",
     "all_obligations": "._obligations",
     "run_obligations": "._obligations",
+    "all_errata": "._obligations",
+    "Erratum": "._obligations._base",
     # conditions on k1..k4 (Lemma 3)
     "k_conditions": "._kconditions",
     "check_k_conditions": "._kconditions",

@@ -135,7 +135,37 @@ def obligations_section(args: argparse.Namespace) -> Section:
     )
 
 
-SECTIONS: list[Callable[[argparse.Namespace], Section]] = [obligations_section]
+def certificates_section(args: argparse.Namespace) -> Section:
+    """Verify every certificate under ``--proofs`` exactly and detect stale ones.
+
+    A certificate is stale when it, or its Markdown report, differs from what
+    ``symbolic-friction certify`` would write now (this re-runs the search,
+    so it imports cvxpy).  Table I's four certificates must exist.
+    """
+    proofs = Path(args.proofs)
+    if not proofs.is_dir():
+        return Section("Certificates", ("file", "proved", "up to date"), [], {"certificates": []}, True,
+                       [f"note: {proofs} is not a directory; no certificates checked"])
+    from .._certify import TABLE_I_FILES, check_committed_certificates
+
+    entries = check_committed_certificates(proofs, expected=TABLE_I_FILES)
+    rows = [
+        (str(e.path), "yes" if e.proved else "NO", "no" if e.stale else "yes",
+         e.report.certificate.overshoot_bound if e.report is not None else "-")
+        for e in entries
+    ]
+    ok = all(e.ok for e in entries)
+    notes = [f"{sum(e.ok for e in entries)} of {len(entries)} certificates proved exactly and up to date"]
+    notes += [e.describe() for e in entries if not e.ok]
+    payload = [
+        {"file": str(e.path), "proved": e.proved, "stale": e.stale, "reason": e.reason}
+        for e in entries
+    ]
+    return Section("Certificates (exact re-verification)", ("file", "proved", "up to date", "kappa"), rows,
+                   {"certificates": payload}, ok, notes)
+
+
+SECTIONS: list[Callable[[argparse.Namespace], Section]] = [obligations_section, certificates_section]
 """The parts of ``check``, in order; append to extend the command."""
 
 

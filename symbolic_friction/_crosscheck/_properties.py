@@ -260,13 +260,19 @@ class _Acc:
         rel: np.ndarray,
         mask: np.ndarray,
         make: Callable[[tuple[int, ...]], Counterexample],
+        *,
+        count_trajectories: bool = True,
     ) -> None:
-        """Fold in relative slacks ``rel`` where ``mask`` (first axis = trajectory)."""
+        """Fold in relative slacks ``rel`` where ``mask`` (first axis = trajectory).
+
+        ``count_trajectories=False`` for a second call on the same trajectories.
+        """
         if not np.any(mask):
             return
         self.samples += int(np.count_nonzero(mask))
-        per_traj = mask.reshape(mask.shape[0], -1).any(axis=1)
-        self.trajectories += int(np.count_nonzero(per_traj))
+        if count_trajectories:
+            per_traj = mask.reshape(mask.shape[0], -1).any(axis=1)
+            self.trajectories += int(np.count_nonzero(per_traj))
         r = np.where(mask, rel, np.inf)
         # NaN slack (should not happen) counts as a failure rather than being hidden
         r = np.where(np.isnan(r) & mask, -np.inf, r)
@@ -566,7 +572,7 @@ class BatchChecker:
                 **self._base("model.modes", cl, helpers, idx[0]), t=float(batch.event_t[idx]), t_start=None,
                 x=tuple(float(q) for q in batch.event_x[idx]),
                 values={"v_at_event_time": float(batch.event_residual[idx]), "tolerance_relative": self.rtol},
-                relative_slack=float(rel_ev[idx])))
+                relative_slack=float(rel_ev[idx])), count_trajectories=False)
         self._offset += N
 
     # -- pieces ---------------------------------------------------------------------------

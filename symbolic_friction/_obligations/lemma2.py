@@ -165,6 +165,7 @@ class Lemma2LowerBound(Obligation):
         dz2 = sp.expand(S.dist2 - S.sigma**2 - S.v**2)
         if dz2.has(S.sigma) or dz2.has(S.v):
             return Outcome.fail(f"|x|²_𝒜 - σ² - v² = {dz2} depends on σ or v")
+        # The form is the homogeneous quadratic of P, so it vanishes at σ = v = 0, φ - f = 0.
         # Friction term: min over f ∈ f_c SGN(v) of (φ - f)² ≥ dz(φ)², and = 0 on 𝒜.
         w = sp.Symbol("w", real=True)
         friction = (S.form - S.form.subs(S.y, 0)).subs(S.y, S.phi - S.f_c * w)

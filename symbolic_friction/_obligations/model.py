@@ -375,9 +375,11 @@ def _equilibria_match(M: sp.ImmutableMatrix, b: sp.ImmutableMatrix, target: tupl
     for sgn_v in (1, -1):
         (wv,) = sgn[sgn_v].args
         sol = M.LUsolve(b * wv).applyfunc(sp.cancel)
-        if not is_zero(sol[2]):
-            if sign_of(sgn_v * sol[2]) == 1:
-                return False, f"x = {list(sol)} is an equilibrium with {names[2]} of sign {sgn_v}", details
+        # The unique solution is an equilibrium only if its v really has the sign assumed.
+        consistent = sign_of(sgn_v * sol[2])
+        if consistent == 1:
+            return False, f"x = {list(sol)} is an equilibrium with {names[2]} of sign {sgn_v}", details
+        if consistent is None:
             return False, f"cannot exclude an equilibrium with {names[2]} of sign {sgn_v}: {list(sol)}", details
     # v = 0: solve M x = b w for the other two components, w ∈ SGN(0).
     eqs = list(M * X.subs(xs[2], 0) - b * w)

@@ -21,7 +21,7 @@ from .._errors import SimulationError
 from .._parameters import Parameters
 from ._base import Solution, Status
 from .event import _SNAP_ULPS, _check_positive_int
-from .modes import modes_after_slip, select_modes
+from .modes import modes_after_slip, modes_at_rest
 from .search import first_zeros, slip_model
 
 __all__ = ["BatchSolution", "simulate_batch"]
@@ -116,6 +116,18 @@ def _matvec(m: np.ndarray, y: np.ndarray) -> np.ndarray:
     return np.column_stack([m[i, 0] * y[:, 0] + m[i, 1] * y[:, 1] + m[i, 2] * y[:, 2] for i in range(3)])
 
 
+class _State:
+    """The event loop's state of every trajectory (see :class:`.event.Segment`)."""
+
+    def __init__(self, n: int) -> None:
+        self.t = np.zeros(n)
+        self.sigma = np.zeros(n)
+        self.base = np.zeros(n, dtype=np.int8)
+        self.offset = np.zeros(n)
+        self.v = np.zeros(n)
+        self.mode = np.zeros(n, dtype=np.int8)
+
+
 class _Filler:
     """Writes closed-form segments into the (N, m) sample arrays."""
 
@@ -135,38 +147,44 @@ class _Filler:
         col = lo[rep] + (np.arange(rep.size) - offsets[rep])
         return rep, col
 
-    def stick(self, rows: np.ndarray, t0: np.ndarray, t1: np.ndarray, x0: np.ndarray, final: bool) -> None:
-        rep, col = self._cells(rows, t0, t1, final)
-        r = rows[rep]
-        tau = self.t_eval[col] - t0[rep]
-        self.x[r, col, 0] = x0[rep, 0]
-        self.x[r, col, 1] = x0[rep, 1] + x0[rep, 0] * tau
-        self.x[r, col, 2] = 0.0
-        self.mode[r, col] = 0
-
-    def slip(
-        self, rows: np.ndarray, t0: np.ndarray, t1: np.ndarray, x0: np.ndarray, d: np.ndarray, final: bool
-    ) -> None:
+    def segment(self, st: _State, rows: np.ndarray, t1: np.ndarray, final: bool) -> None:
+        """Samples in ``[t, t1)`` (``[t, t1]`` if ``final``) of the rows' current segments."""
+        if rows.size == 0:
+            return
+        t0 = st.t[rows]
         rep, col = self._cells(rows, t0, t1, final)
         if rep.size == 0:
             return
         r = rows[rep]
         tau = self.t_eval[col] - t0[rep]
-        # offsets from each row's slip equilibrium, and B1, B2 applied per row (not per sample)
-        y0 = x0.copy()
-        y0[:, 1] -= d * self.f_c
-        q1 = _matvec(self.expm.B1, y0)
-        q2 = _matvec(self.expm.B2, y0)
-        w0, w1, w2 = self.expm.w(tau)
-        dd = d[rep].astype(float)
-        for k in range(3):
-            comp = w2 * y0[rep, k] + w1 * q1[rep, k] + w0 * q2[rep, k]
-            if k == 1:
-                comp = comp + dd * self.f_c
-            elif k == 2:
-                comp = dd * np.maximum(dd * comp, 0.0)
-            self.x[r, col, k] = comp
-        self.mode[r, col] = d[rep]
+        f_c = self.f_c
+        mode = st.mode[rows]
+        sigma, base, offset, v = st.sigma[rows], st.base[rows].astype(float), st.offset[rows], st.v[rows]
+        self.mode[r, col] = mode[rep]
+        stick = mode[rep] == 0
+        if stick.any():
+            rs, cs, k = r[stick], col[stick], rep[stick]
+            self.x[rs, cs, 0] = sigma[k]
+            self.x[rs, cs, 1] = base[k] * f_c + (offset[k] + sigma[k] * tau[stick])
+            self.x[rs, cs, 2] = 0.0
+        slip = ~stick
+        if slip.any():
+            d = mode.astype(float)
+            # offsets from each row's slip equilibrium (exact when base = d), B1 and B2 per row
+            y0 = np.column_stack([sigma, np.where(base == d, offset, (base - d) * f_c + offset), v])
+            q1 = _matvec(self.expm.B1, y0)
+            q2 = _matvec(self.expm.B2, y0)
+            k = rep[slip]
+            w0, w1, w2 = self.expm.w(tau[slip])
+            dd = d[k]
+            rs, cs = r[slip], col[slip]
+            for c in range(3):
+                comp = w2 * y0[k, c] + w1 * q1[k, c] + w0 * q2[k, c]
+                if c == 1:
+                    comp = comp + dd * f_c
+                elif c == 2:
+                    comp = dd * np.maximum(dd * comp, 0.0)  # v keeps the mode's sign (rounding)
+                self.x[rs, cs, c] = comp
 
 
 def simulate_batch(
@@ -222,125 +240,106 @@ def simulate_batch(
     f_c = model.f_c
     k_p, k_i, _, _ = params.as_floats()
     n = Z0.shape[0]
+    st = _State(n)
     X = z_to_x(params, Z0)
-    on_zero = X[:, 2] == 0.0
-    tol0 = _SNAP_ULPS * _EPS * (f_c + k_i * np.abs(Z0[:, 0]) + k_p * np.abs(Z0[:, 1]))
-    phi = X[:, 1]
-    phi = np.where(on_zero & (np.abs(phi - f_c) <= tol0), f_c, phi)
-    phi = np.where(on_zero & (np.abs(phi + f_c) <= tol0), -f_c, phi)
-    X[:, 1] = phi
-    mode = select_modes(X[:, 0], X[:, 1], X[:, 2], f_c).astype(np.int8)
+    st.sigma[:], st.offset[:], st.v[:] = X[:, 0], X[:, 1], X[:, 2]
+    moving = st.v != 0.0
+    st.mode[moving] = np.where(st.v[moving] > 0.0, 1, -1)
+    rest = ~moving
+    # as initial_state: φ = -k_i e_i - k_p s is rounded, a few ulps of its terms
+    tol0 = _SNAP_ULPS * _EPS * (k_i * np.abs(Z0[:, 0]) + k_p * np.abs(Z0[:, 1]))
+    st.base[rest], st.offset[rest], st.mode[rest] = modes_at_rest(
+        st.sigma[rest], st.base[rest], st.offset[rest], f_c, tol0[rest]
+    )
 
     fill = _Filler(params, t_eval, n)
-    t = np.zeros(n)
+    end = np.full(n, t_end)
     active = np.ones(n, dtype=bool)
     status = np.full(n, Status.T_END, dtype=object)
     t_stop = np.full(n, t_end)
     n_events = np.zeros(n, dtype=np.int64)
-    log_t: list[np.ndarray] = []
-    log_rows: list[np.ndarray] = []
-    log_before: list[np.ndarray] = []
-    log_after: list[np.ndarray] = []
+    log: list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]] = []
 
     def record(rows: np.ndarray, times: np.ndarray, before: np.ndarray, after: np.ndarray) -> None:
-        log_t.append(times)
-        log_rows.append(rows)
-        log_before.append(before.astype(np.int8))
-        log_after.append(after.astype(np.int8))
+        log.append((rows, times, before.astype(np.int8), after.astype(np.int8)))
         n_events[rows] += 1
 
     for _ in range(4 * max_events + 16):
         if not active.any():
             break
-        # -- stick: closed-form exit time -------------------------------
-        rows = np.flatnonzero(active & (mode == 0))
+        # -- stick: closed-form exit time ---------------------------------
+        rows = np.flatnonzero(active & (st.mode == 0))
         if rows.size:
-            sig, ph = X[rows, 0], X[rows, 1]
+            sig = st.sigma[rows]
             eq = sig == 0.0
-            if eq.any():
-                r = rows[eq]
-                fill.stick(r, t[r], np.full(r.size, t_end), X[r], final=True)
-                status[r] = Status.EQUILIBRIUM
-                active[r] = False
-            rows, sig, ph = rows[~eq], sig[~eq], ph[~eq]
+            r = rows[eq]
+            fill.segment(st, r, end[r], final=True)
+            status[r] = Status.EQUILIBRIUM
+            active[r] = False
+            rows, sig = rows[~eq], sig[~eq]
             d = np.where(sig > 0.0, 1, -1).astype(np.int8)
-            t_next = t[rows] + (d * f_c - ph) / sig
+            base, offset = st.base[rows], st.offset[rows]
+            # exactly -offset when leaving where the last slip ended (see event.integrate_events)
+            gap = np.where(base == d, -offset, (d - base.astype(float)) * f_c - offset)
+            t_next = st.t[rows] + gap / sig
             ends = t_next >= t_end
-            if ends.any():
-                r = rows[ends]
-                fill.stick(r, t[r], np.full(r.size, t_end), X[r], final=True)
-                active[r] = False
+            r = rows[ends]
+            fill.segment(st, r, end[r], final=True)
+            active[r] = False
             go = ~ends
             r, d, t_next = rows[go], d[go], t_next[go]
-            fill.stick(r, t[r], t_next, X[r], final=False)
-            record(r, t_next, np.zeros(r.size, dtype=np.int8), d)
-            t[r] = t_next
-            X[r, 1] = d * f_c
-            X[r, 2] = 0.0
-            mode[r] = d
+            fill.segment(st, r, t_next, final=False)
+            record(r, t_next, np.zeros(r.size), d)
+            st.t[r], st.base[r], st.offset[r], st.mode[r] = t_next, d, 0.0, d
         # -- slip (including those that just left a stick): first zero of v --
-        rows = np.flatnonzero(active & (mode != 0))
+        rows = np.flatnonzero(active & (st.mode != 0))
         if rows.size:
-            d = mode[rows].astype(np.int8)
-            star = d * f_c
-            y0 = np.column_stack([X[rows, 0], X[rows, 1] - star, X[rows, 2]])
-            tau, y = first_zeros(model, y0, d, t_end - t[rows])
+            d = st.mode[rows]
+            base, offset = st.base[rows], st.offset[rows]
+            y0 = np.column_stack(
+                [st.sigma[rows], np.where(base == d, offset, (base.astype(float) - d) * f_c + offset), st.v[rows]]
+            )
+            tau, y = first_zeros(model, y0, d, t_end - st.t[rows])
             none = np.isnan(tau)
-            if none.any():
-                r = rows[none]
-                fill.slip(r, t[r], np.full(r.size, t_end), X[r], d[none], final=True)
-                active[r] = False
+            r = rows[none]
+            fill.segment(st, r, end[r], final=True)
+            active[r] = False
             hit = ~none
-            r, d, tau, y, y0h = rows[hit], d[hit], tau[hit], y[hit], y0[hit]
-            t_next = t[r] + tau
-            fill.slip(r, t[r], t_next, X[r], d, final=False)
-            tol = _SNAP_ULPS * _EPS * (f_c + np.max(np.abs(y0h), axis=1))
-            phi_end, new = modes_after_slip(y[:, 0], y[:, 1] + d * f_c, d, f_c, tol)
-            t[r] = t_next
-            X[r, 0], X[r, 1], X[r, 2] = y[:, 0], phi_end, 0.0
+            r, d, tau, y, y0 = rows[hit], d[hit], tau[hit], y[hit], y0[hit]
+            t_next = st.t[r] + tau
+            fill.segment(st, r, t_next, final=False)
+            tol = _SNAP_ULPS * _EPS * np.max(np.abs(y0), axis=1)
+            new_base, new_offset, new = modes_after_slip(y[:, 0], y[:, 1], d, f_c, tol)
+            st.t[r], st.sigma[r], st.base[r], st.offset[r], st.v[r] = t_next, y[:, 0], new_base, new_offset, 0.0
             changed = new != d
             record(r[changed], t_next[changed], d[changed], new[changed])
-            mode[r] = new
-            late = t_next >= t_end
-            if late.any():
-                rl = r[late]
-                sticks = mode[rl] == 0
-                fill.stick(rl[sticks], t[rl[sticks]], np.full(int(sticks.sum()), t_end), X[rl[sticks]], final=True)
-                fill.slip(
-                    rl[~sticks], t[rl[~sticks]], np.full(int((~sticks).sum()), t_end), X[rl[~sticks]],
-                    mode[rl[~sticks]], final=True,
-                )
-                active[rl] = False
-        capped = active & (n_events >= max_events)
-        if capped.any():
-            r = np.flatnonzero(capped)
-            # the state at the stopping time (an event time) closes the record
-            for_stick = mode[r] == 0
-            fill.stick(r[for_stick], t[r[for_stick]], t[r[for_stick]], X[r[for_stick]], final=True)
-            fill.slip(r[~for_stick], t[r[~for_stick]], t[r[~for_stick]], X[r[~for_stick]], mode[r[~for_stick]], final=True)
-            status[r] = Status.MAX_EVENTS
-            t_stop[r] = t[r]
-            active[r] = False
+            st.mode[r] = new
+            late = r[t_next >= t_end]
+            fill.segment(st, late, end[late], final=True)
+            active[late] = False
+        capped = np.flatnonzero(active & (n_events >= max_events))
+        # the state at the stopping time (an event time) closes the record
+        fill.segment(st, capped, st.t[capped], final=True)
+        status[capped] = Status.MAX_EVENTS
+        t_stop[capped] = st.t[capped]
+        active[capped] = False
     else:
         r = np.flatnonzero(active)
         status[r] = Status.MAX_EVENTS
-        t_stop[r] = t[r]
+        t_stop[r] = st.t[r]
 
-    k = int(n_events.max()) if n > 0 else 0
+    k = int(n_events.max())
     event_times = np.full((n, k), np.nan)
     event_modes = np.zeros((n, k, 2), dtype=np.int8)
-    if log_t:
-        rows_all = np.concatenate(log_rows)
-        times_all = np.concatenate(log_t)
+    if log:
+        rows_all = np.concatenate([e[0] for e in log])
         order = np.argsort(rows_all, kind="stable")  # each row's events were logged in time order
-        rows_all, times_all = rows_all[order], times_all[order]
-        before_all = np.concatenate(log_before)[order]
-        after_all = np.concatenate(log_after)[order]
+        rows_all = rows_all[order]
         first = np.searchsorted(rows_all, np.arange(n), side="left")
         slot = np.arange(rows_all.size) - first[rows_all]
-        event_times[rows_all, slot] = times_all
-        event_modes[rows_all, slot, 0] = before_all
-        event_modes[rows_all, slot, 1] = after_all
+        event_times[rows_all, slot] = np.concatenate([e[1] for e in log])[order]
+        event_modes[rows_all, slot, 0] = np.concatenate([e[2] for e in log])[order]
+        event_modes[rows_all, slot, 1] = np.concatenate([e[3] for e in log])[order]
 
     # z = T⁻¹ x (eq. CoC inverted), written out per component for speed
     c_e, c_s = k_p / k_i**2, -1.0 / k_i
@@ -348,9 +347,7 @@ def simulate_batch(
     z[..., 0] = c_e * fill.x[..., 0] + c_s * fill.x[..., 1]
     z[..., 1] = c_s * fill.x[..., 0]
     z[..., 2] = fill.x[..., 2]
-    at_zero = t_eval == 0.0
-    if at_zero.any():
-        z[:, at_zero, :] = Z0[:, None, :]
+    z[:, t_eval == 0.0, :] = Z0[:, None, :]  # the given states, not their round trip through x
     return BatchSolution(
         params=params,
         t=t_eval,

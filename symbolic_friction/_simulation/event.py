@@ -16,7 +16,9 @@ The solution is a concatenation of the three affine flows of Claim 1
 * After a slip, ``v`` is set to exactly 0 and the next mode is selected with
   :func:`.modes.mode_after_slip`: a tolerance-free clamp (a slip in direction
   ``k`` can only end with ``k·φ ≤ f_c``), then ``φ`` within a few ulps of
-  ``±f_c`` is snapped so that ``σ`` decides as rows (iii)/(v)/(vii)/(ix) do.
+  ``±f_c`` counts as on it, so that ``σ`` decides as rows (iii)/(v)/(vii)/(ix)
+  do.  ``φ`` is carried as an exact boundary plus an offset, so a stick after
+  a tiny slip gets its exact duration ``-offset/σ``.
   A grazing contact (row (iii)/(ix) again) continues the slip without an
   event.  ``max_events`` caps the number of mode changes
   (:attr:`Status.MAX_EVENTS`; later samples are omitted), so rounding at a
@@ -27,8 +29,7 @@ Only numpy and the standard library are imported (no scipy, no sympy).
 
 from __future__ import annotations
 
-import math
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -36,10 +37,10 @@ from .._coordinates import x_to_z, z_to_x
 from .._errors import SimulationError
 from .._parameters import Parameters
 from ._base import SimulationMethod, Solution, Status
-from .modes import mode_after_slip, select_mode, snap_to_boundary
+from .modes import mode_after_slip, mode_at_rest
 from .search import first_zero, slip_model
 
-__all__ = ["EventDriven", "Segment", "integrate_events", "sample_segments", "initial_mode"]
+__all__ = ["EventDriven", "Segment", "integrate_events", "sample_segments", "initial_state"]
 
 _EPS = 2.220446049250313e-16
 # ulps allowed between a computed φ and ±f_c before σ decides (rows iii/v/vii/ix)
@@ -54,18 +55,33 @@ def _check_positive_int(name: str, value: Any, minimum: int) -> None:
 # ---------------------------------------------------------------------------
 # The event loop and dense output
 # ---------------------------------------------------------------------------
-Segment = tuple[float, float, int, tuple[float, float, float]]
-"""``(t_start, t_stop, mode, x_start)`` of one closed-form piece."""
+class Segment(NamedTuple):
+    """One closed-form piece: mode ``k`` on ``[t0, t1]`` from ``(σ, φ, v)``.
+
+    ``φ = base·f_c + offset`` with ``base ∈ {-1, 0, 1}``: keeping the exact
+    boundary apart from the offset preserves ``φ ∓ f_c`` exactly (see
+    :func:`.modes.mode_at_rest`).
+    """
+
+    t0: float
+    t1: float
+    mode: int
+    sigma: float
+    base: int
+    offset: float
+    v: float
 
 
-def initial_mode(params: Parameters, z0: np.ndarray, x0: np.ndarray) -> tuple[np.ndarray, int]:
-    """Snap ``φ(0)`` within rounding of ``±f_c`` (only if ``v(0) = 0``) and select the mode."""
+def initial_state(params: Parameters, z0: np.ndarray) -> tuple[float, int, float, float, int]:
+    """``(σ, base, offset, v, mode)`` at ``t = 0``; ``φ(0)`` within its rounding of ``±f_c`` counts as on it."""
     k_p, k_i, _, f_c = params.as_floats()
-    x0 = np.array(x0, dtype=float)
-    if x0[2] == 0.0:
-        tol = _SNAP_ULPS * _EPS * (f_c + k_i * abs(z0[0]) + k_p * abs(z0[1]))
-        x0[1] = snap_to_boundary(float(x0[1]), f_c, tol)
-    return x0, select_mode(float(x0[0]), float(x0[1]), float(x0[2]), f_c)
+    sigma, phi, v = (float(c) for c in z_to_x(params, z0))
+    if v != 0.0:
+        return sigma, 0, phi, v, 1 if v > 0 else -1
+    # φ = -k_i e_i - k_p s is rounded: a few ulps of its terms
+    tol = _SNAP_ULPS * _EPS * (k_i * abs(float(z0[0])) + k_p * abs(float(z0[1])))
+    base, offset, mode = mode_at_rest(sigma, 0, phi, f_c, tol)
+    return sigma, base, offset, 0.0, mode
 
 
 def integrate_events(
@@ -78,53 +94,51 @@ def integrate_events(
     """
     model = slip_model(params)
     f_c = model.f_c
-    x, mode = initial_mode(params, z0, z_to_x(params, z0))
-    state = (float(x[0]), float(x[1]), float(x[2]))
+    sigma, base, offset, v, mode = initial_state(params, z0)
     t = 0.0
     segments: list[Segment] = []
     events: list[tuple[float, int, int]] = []
     status = Status.T_END
     # grazing contacts continue a slip without an event; bound the loop anyway
     for _ in range(4 * max_events + 16):
-        sigma, phi, v = state
         if mode == 0:
             if sigma == 0.0:
-                segments.append((t, t_end, 0, state))
+                segments.append(Segment(t, t_end, 0, sigma, base, offset, v))
                 status = Status.EQUILIBRIUM
                 break
             d = 1 if sigma > 0.0 else -1
-            t_next = t + (d * f_c - phi) / sigma
+            # distance to the exit d·f_c: exactly -offset when leaving where the last slip ended
+            gap = -offset if base == d else (d - base) * f_c - offset
+            t_next = t + gap / sigma
+            segments.append(Segment(t, min(t_next, t_end), 0, sigma, base, offset, v))
             if t_next >= t_end:
-                segments.append((t, t_end, 0, state))
                 break
-            segments.append((t, t_next, 0, state))
-            t, state, mode = t_next, (sigma, d * f_c, 0.0), d
+            t, base, offset, mode = t_next, d, 0.0, d  # rows (iii)/(ix): slip d
             events.append((t, 0, d))
         else:
             d = mode
-            star = d * f_c
-            y0 = (sigma, phi - star, v)
+            y0 = (sigma, offset if base == d else (base - d) * f_c + offset, v)
             tau, y = first_zero(model, y0, d, t_end - t)
             if tau is None:
-                segments.append((t, t_end, d, state))
+                segments.append(Segment(t, t_end, d, sigma, base, offset, v))
                 break
             t_next = t + tau
-            segments.append((t, t_next, d, state))
-            tol = _SNAP_ULPS * _EPS * (f_c + max(abs(c) for c in y0))
-            phi_end, new_mode = mode_after_slip(y[0], y[1] + star, d, f_c, tol)
-            t, state = t_next, (y[0], phi_end, 0.0)
+            segments.append(Segment(t, t_next, d, sigma, base, offset, v))
+            tol = _SNAP_ULPS * _EPS * max(abs(c) for c in y0)
+            base, offset, new_mode = mode_after_slip(y[0], y[1], d, f_c, tol)
+            t, sigma, v = t_next, y[0], 0.0
             if new_mode != d:
                 events.append((t, d, new_mode))
                 mode = new_mode
             if t >= t_end:
-                segments.append((t, t_end, mode, state))
+                segments.append(Segment(t, t_end, mode, sigma, base, offset, v))
                 break
         if len(events) >= max_events:
-            segments.append((t, t, mode, state))
+            segments.append(Segment(t, t, mode, sigma, base, offset, v))
             status = Status.MAX_EVENTS
             break
     else:
-        segments.append((t, t, mode, state))
+        segments.append(Segment(t, t, mode, sigma, base, offset, v))
         status = Status.MAX_EVENTS
     return segments, events, status
 
@@ -140,24 +154,23 @@ def sample_segments(
     """
     model = slip_model(params)
     expm, f_c = model.expm, model.f_c
-    starts = np.array([seg[0] for seg in segments])
-    modes = np.array([seg[2] for seg in segments], dtype=np.int8)
-    x_start = np.array([seg[3] for seg in segments], dtype=float).reshape(-1, 3)
-    which = np.clip(np.searchsorted(starts, t, side="right") - 1, 0, len(segments) - 1)
-    tau = t - starts[which]
+    seg = np.array([s[:1] + s[3:] for s in segments], dtype=float)  # t0, σ, base, offset, v
+    modes = np.array([s.mode for s in segments], dtype=np.int8)
+    which = np.clip(np.searchsorted(seg[:, 0], t, side="right") - 1, 0, len(segments) - 1)
+    tau = t - seg[which, 0]
     mode = modes[which]
     x = np.empty((t.size, 3))
     stick = mode == 0
-    xs = x_start[which[stick]]
-    x[stick, 0] = xs[:, 0]
-    x[stick, 1] = xs[:, 1] + xs[:, 0] * tau[stick]
+    rows = seg[which[stick]]
+    x[stick, 0] = rows[:, 1]
+    x[stick, 1] = rows[:, 2] * f_c + (rows[:, 3] + rows[:, 1] * tau[stick])
     x[stick, 2] = 0.0
     slip = ~stick
     if slip.any():
-        seg = which[slip]
-        d = modes[seg].astype(float)
-        y0 = x_start[seg].copy()
-        y0[:, 1] -= d * f_c
+        rows = seg[which[slip]]
+        d = modes[which[slip]].astype(float)
+        # offsets from the slip equilibrium (0, d f_c, 0); exact when base = d
+        y0 = np.column_stack([rows[:, 1], np.where(rows[:, 2] == d, rows[:, 3], (rows[:, 2] - d) * f_c + rows[:, 3]), rows[:, 4]])
         w0, w1, w2 = expm.w(tau[slip])
         b1, b2 = expm.B1, expm.B2
         for k in range(3):

@@ -21,12 +21,14 @@ row    initial condition                                    k
 (xi)   ``v̄ < 0``                                            -1
 ====== ==================================================== ====
 
-The comparisons are exact: with :class:`~fractions.Fraction` input the
-boundaries ``φ = ±f_c`` and the edge ``σ = 0`` (rows (iv), (viii): points of
-the attractor 𝒜, i.e. equilibria) are decided exactly.  Floating-point
-callers that reach ``v = 0`` by computation use :func:`snap_to_boundary`
-first, so that rounding within a few ulps of ``±f_c`` is decided by ``σ`` as
-rows (iii)/(v)/(vii)/(ix) do, instead of by the sign of a rounding error.
+The comparisons in :func:`select_mode` are exact: with
+:class:`~fractions.Fraction` input the boundaries ``φ = ±f_c`` and the edge
+``σ = 0`` (rows (iv), (viii): points of the attractor 𝒜, i.e. equilibria) are
+decided exactly.  Floating-point callers that reach ``v = 0`` by computation
+use :func:`mode_at_rest` / :func:`mode_after_slip`, which keep ``φ`` as an
+exact boundary plus an offset and decide a ``φ`` within rounding of ``±f_c``
+by ``σ``, as rows (iii)/(v)/(vii)/(ix) do, instead of by the sign of a
+rounding error.
 """
 
 from __future__ import annotations
@@ -40,10 +42,13 @@ __all__ = [
     "table_row",
     "select_mode",
     "select_modes",
-    "snap_to_boundary",
+    "mode_at_rest",
+    "modes_at_rest",
     "mode_after_slip",
     "modes_after_slip",
 ]
+
+_EPS = 2.220446049250313e-16
 
 TABLE: tuple[tuple[str, str, int], ...] = (
     ("i", "v > 0", 1),
@@ -113,42 +118,82 @@ def select_modes(sigma: Any, phi: Any, v: Any, f_c: float) -> np.ndarray:
     return plus.astype(np.int8) - minus.astype(np.int8)
 
 
-def snap_to_boundary(phi: float, f_c: float, tol: float) -> float:
-    """``±f_c`` if ``phi`` is within ``tol`` of it, else ``phi`` unchanged.
+def _gap_tol(k: Any, f_c: float, tol: Any) -> Any:
+    """Uncertainty of ``k·f_c + offset`` when ``offset`` is known within ``tol``."""
+    return tol + 4.0 * _EPS * np.abs(k) * f_c
 
-    Used only at ``v = 0`` on computed (rounded) states, with ``tol`` a few
-    ulps of the magnitudes that produced ``phi``; the table then decides by
-    the sign of ``σ`` (rows (iii)–(v), (vii)–(ix)).
+
+def mode_at_rest(sigma: float, base: int, offset: float, f_c: float, tol: float) -> tuple[int, float, int]:
+    """The table's mode at ``v = 0`` for ``φ = base·f_c + offset``, with rounding decided by ``σ``.
+
+    The state is kept as an exact boundary ``base ∈ {-1, 0, 1}`` plus an
+    ``offset``, so that ``φ ∓ f_c`` is *exactly* ``offset`` when
+    ``base = ±1``: after a slip ``φ - k f_c`` is what the closed form
+    computes, and adding ``f_c`` first would lose it (a stick that follows a
+    tiny slip would get its duration wrong by ``ε f_c/σ``).  ``φ`` within
+    ``tol`` (the uncertainty of ``offset``, plus the rounding of adding
+    ``±f_c``) of ``±f_c`` is put on the boundary, where ``σ`` decides as rows
+    (iii)–(v) and (vii)–(ix) do.  With ``tol = 0`` and exact numbers this is
+    exactly :func:`select_mode`.
+
+    Returns
+    -------
+    base, offset : int, float
+        ``(±1, 0)`` if ``φ`` was put on ``±f_c``, else unchanged.
+    mode : int
     """
-    if abs(phi - f_c) <= tol:
-        return f_c
-    if abs(phi + f_c) <= tol:
-        return -f_c
-    return phi
+    gap_plus = offset if base == 1 else (base - 1) * f_c + offset  # φ - f_c
+    gap_minus = offset if base == -1 else (base + 1) * f_c + offset  # φ + f_c
+    if abs(gap_plus) <= _gap_tol(base - 1, f_c, tol):
+        return 1, 0.0 * offset, 1 if sigma > 0 else 0  # rows (iii), (iv), (v)
+    if abs(gap_minus) <= _gap_tol(base + 1, f_c, tol):
+        return -1, 0.0 * offset, -1 if sigma < 0 else 0  # rows (vii), (viii), (ix)
+    if gap_plus > 0:
+        return base, offset, 1  # row (ii)
+    if gap_minus < 0:
+        return base, offset, -1  # row (x)
+    return base, offset, 0  # row (vi)
 
 
-def mode_after_slip(sigma: float, phi: float, direction: int, f_c: float, tol: float) -> tuple[float, int]:
-    """``(φ, k)`` at the end of a slip in ``direction`` (``v`` has just reached 0).
+def modes_at_rest(
+    sigma: np.ndarray, base: np.ndarray, offset: np.ndarray, f_c: float, tol: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Vectorised :func:`mode_at_rest`: arrays ``(base, offset, mode)`` (int8, float, int8)."""
+    sigma = np.asarray(sigma, dtype=float)
+    base = np.asarray(base, dtype=np.int8)
+    offset = np.asarray(offset, dtype=float)
+    b = base.astype(float)
+    gap_plus = np.where(base == 1, offset, (b - 1.0) * f_c + offset)
+    gap_minus = np.where(base == -1, offset, (b + 1.0) * f_c + offset)
+    on_plus = np.abs(gap_plus) <= _gap_tol(b - 1.0, f_c, tol)
+    on_minus = ~on_plus & (np.abs(gap_minus) <= _gap_tol(b + 1.0, f_c, tol))
+    mode = np.where(gap_plus > 0, 1, np.where(gap_minus < 0, -1, 0))
+    mode = np.where(on_plus, np.where(sigma > 0, 1, 0), mode)
+    mode = np.where(on_minus, np.where(sigma < 0, -1, 0), mode)
+    new_base = np.where(on_plus, 1, np.where(on_minus, -1, base)).astype(np.int8)
+    new_offset = np.where(on_plus | on_minus, 0.0, offset)
+    return new_base, new_offset, mode.astype(np.int8)
 
-    A solution can only leave the slip ``v > 0`` (resp. ``v < 0``) through
-    ``v = 0`` with ``v' = φ - f_c ≤ 0`` (resp. ``φ + f_c ≥ 0``), i.e. with
-    ``direction·φ ≤ f_c``; a computed ``φ`` on the wrong side of ``±f_c`` is a
-    rounding error and is clamped (a tolerance-free rule).  Then ``φ`` within
-    ``tol`` of ``±f_c`` is snapped (:func:`snap_to_boundary`) and the table
-    decides.  The mode may equal ``direction`` (a grazing contact, row (iii)
-    or (ix)): the slip then simply goes on.
+
+def mode_after_slip(sigma: float, offset: float, direction: int, f_c: float, tol: float) -> tuple[int, float, int]:
+    """:func:`mode_at_rest` at the end of a slip in ``direction`` (``v`` has just reached 0).
+
+    ``offset = φ - direction·f_c`` as the closed form gives it.  A solution
+    can only leave the slip through ``v = 0`` with ``direction·v' =
+    direction·offset ≤ 0``; a computed offset of the other sign is a
+    rounding error and is set to 0 (a tolerance-free rule).  The mode may
+    equal ``direction`` (a grazing contact, row (iii) or (ix)): the slip then
+    simply goes on.
     """
-    if direction * phi > f_c:
-        phi = direction * f_c
-    phi = snap_to_boundary(phi, f_c, tol)
-    return phi, select_mode(sigma, phi, 0.0, f_c)
+    if direction * offset > 0:
+        offset = 0.0 * offset
+    return mode_at_rest(sigma, direction, offset, f_c, tol)
 
 
 def modes_after_slip(
-    sigma: np.ndarray, phi: np.ndarray, direction: np.ndarray, f_c: float, tol: np.ndarray
-) -> tuple[np.ndarray, np.ndarray]:
-    """Vectorised :func:`mode_after_slip`: ``(φ, k)`` arrays."""
+    sigma: np.ndarray, offset: np.ndarray, direction: np.ndarray, f_c: float, tol: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Vectorised :func:`mode_after_slip`."""
     d = np.asarray(direction, dtype=float)
-    phi = np.where(d * phi > f_c, d * f_c, phi)
-    phi = np.where(np.abs(phi - f_c) <= tol, f_c, np.where(np.abs(phi + f_c) <= tol, -f_c, phi))
-    return phi, select_modes(sigma, phi, 0.0, f_c)
+    offset = np.where(d * offset > 0, 0.0, offset)
+    return modes_at_rest(sigma, np.asarray(direction, dtype=np.int8), offset, f_c, tol)

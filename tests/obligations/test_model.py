@@ -303,3 +303,11 @@ def test_distance_needs_one_interval_component(distance):
     out = ob.verify(dataclasses.replace(subject, attractor=(0, 0, 0)))
     assert out.holds is False
     assert "exactly one interval component" in out.reason
+
+
+def test_equilibria_undecidable_velocity_fails(equilibria):
+    ob, subject = equilibria
+    A = _with(subject.A, 0, 1, (g.k_i - g.k_p) / g.f_c)
+    out = ob.verify(dataclasses.replace(subject, A=A))
+    assert out.holds is False
+    assert "cannot exclude an equilibrium with v of sign 1" in out.reason
