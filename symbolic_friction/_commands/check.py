@@ -32,7 +32,11 @@ HELP = "re-derive the paper's proof obligations for symbolic gains; exit 0 only 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """``--json``, ``--write`` and ``--proofs DIR``."""
     parser.add_argument("--json", action="store_true", help='print {"obligations": [...], "errata": [...]} as JSON instead of a table')
-    parser.add_argument("--write", action="store_true", help="regenerate DIR/obligations.md (atomically) instead of checking it")
+    parser.add_argument(
+        "--write",
+        action="store_true",
+        help="regenerate DIR/obligations.md and Table I's certificates (atomically) instead of checking them",
+    )
     parser.add_argument(
         "--proofs",
         metavar="DIR",
@@ -146,8 +150,13 @@ def certificates_section(args: argparse.Namespace) -> Section:
     if not proofs.is_dir():
         return Section("Certificates", ("file", "proved", "up to date"), [], {"certificates": []}, True,
                        [f"note: {proofs} is not a directory; no certificates checked"])
-    from .._certify import TABLE_I_FILES, check_committed_certificates
+    from .._certify import TABLE_I_FILES, certify_table_i, check_committed_certificates
 
+    written: list[str] = []
+    if args.write:
+        # --write regenerates everything under proofs/, certificates included, so one
+        # command brings a checkout up to date; they are then verified like any other.
+        written = [f"wrote {p}" for p in certify_table_i(proofs)]
     entries = check_committed_certificates(proofs, expected=TABLE_I_FILES)
     rows = [
         (str(e.path), "yes" if e.proved else "NO", "no" if e.stale else "yes",
@@ -157,6 +166,7 @@ def certificates_section(args: argparse.Namespace) -> Section:
     ok = all(e.ok for e in entries)
     notes = [f"{sum(e.ok for e in entries)} of {len(entries)} certificates proved exactly and up to date"]
     notes += [e.describe() for e in entries if not e.ok]
+    notes += written
     payload = [
         {"file": str(e.path), "proved": e.proved, "stale": e.stale, "reason": e.reason}
         for e in entries

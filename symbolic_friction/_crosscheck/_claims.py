@@ -80,7 +80,7 @@ class Claims:
             exact[name] = getattr(certificate, name)
         bound = getattr(certificate, "overshoot_bound", None)
         if bound is None:
-            raise CertificateFormatError(f"a certificate for the cross-check needs 'overshoot_bound'; got none")
+            raise CertificateFormatError("a certificate for the cross-check needs 'overshoot_bound'; got none")
         exact["overshoot_bound"] = bound
         for name, value in exact.items():
             try:

@@ -77,6 +77,7 @@ from typing import Any, Callable
 
 import numpy as np
 
+from .._errors import ParameterError
 from .._parameters import Parameters
 from ._batch import TrajectoryBatch
 from ._claims import Claims
@@ -385,7 +386,9 @@ class BatchChecker:
 
         for cl in claims:
             if cl.params != params:
-                raise ValueError(f"certificate {cl.label} has gains {cl.params}, not {params}")
+                raise ParameterError(
+                    f"certificate {cl.label} has gains {cl.params}; a checker for {params} takes only those gains"
+                )
         self.params = params
         self.claims = list(claims)
         self.rtol = float(rtol)
@@ -436,7 +439,7 @@ class BatchChecker:
         ``attractivity=False`` skips the horizon test (for short adversarial runs).
         """
         if batch.params != self.params:
-            raise ValueError("the batch was simulated with other gains")
+            raise ParameterError(f"the batch was simulated with {batch.params}; this checker is for {self.params}")
         N = batch.size
         if N == 0:
             return
@@ -800,26 +803,37 @@ class BatchChecker:
         from .._coordinates import x_to_z
         from ._simulate import simulate_trajectories
 
-        outcome: list[tuple[bool, float, float, tuple]] = []
-        for gi, z0, x0, d0, L, source, T in self._pending:
-            z = np.asarray(z0, dtype=float)
-            start, window = 0.0, T
-            target = self.theta * d0
-            result = None
-            for _ in range(doublings):
-                t = np.concatenate([[0.0], np.geomspace(window / samples, window, samples)])
-                b = simulate_trajectories(self.params, z[None, :], t)
-                d = distance_x(self.params, b.x[0])
-                hit = np.nonzero(d[1:] <= target)[0]
+        n = len(self._pending)
+        if n == 0:
+            return
+        # all pending trajectories advance together, window by window (one batch per window)
+        z = np.array([p[1] for p in self._pending], dtype=float)
+        target = np.array([self.theta * p[3] for p in self._pending])
+        window = max(p[6] for p in self._pending)
+        start = 0.0
+        outcome: list[tuple[bool, float, float, tuple]] = [
+            (False, 0.0, float(p[3]), tuple(float(q) for q in p[2])) for p in self._pending
+        ]
+        active = np.arange(n)
+        for _ in range(doublings):
+            if active.size == 0:
+                break
+            t = np.concatenate([[0.0], np.geomspace(window / samples, window, samples)])
+            b = simulate_trajectories(self.params, z[active], t)
+            d = distance_x(self.params, b.x)
+            still = []
+            for row, k in enumerate(active):
+                hit = np.nonzero(d[row, 1:] <= target[k])[0]
                 if hit.size:
                     j = int(hit[0]) + 1
-                    result = (True, start + float(t[j]), float(d[j]), tuple(float(q) for q in b.x[0, j]))
-                    break
-                z = x_to_z(self.params, b.x[0, -1])
-                start += window
-                window *= 2.0
-                result = (False, start, float(d[-1]), tuple(float(q) for q in b.x[0, -1]))
-            outcome.append(result)  # type: ignore[arg-type]
+                    outcome[k] = (True, start + float(t[j]), float(d[row, j]), tuple(float(q) for q in b.x[row, j]))
+                else:
+                    outcome[k] = (False, start + window, float(d[row, -1]), tuple(float(q) for q in b.x[row, -1]))
+                    z[k] = x_to_z(self.params, b.x[row, -1])
+                    still.append(k)
+            active = np.array(still, dtype=int)
+            start += window
+            window *= 2.0
         for ci, cl in enumerate(self.claims):
             acc = self._accs[ci]["prop1.attractivity"]
             times = []

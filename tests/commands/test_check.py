@@ -57,7 +57,8 @@ def test_every_obligation_holds(full_run):
 
 def test_json_schema(full_run):
     _, payload, _, _ = full_run
-    assert set(payload) == {"obligations", "errata"}
+    assert set(payload) == {"obligations", "errata", "certificates"}
+    assert [c["proved"] and not c["stale"] for c in payload["certificates"]] == [True] * 4
     ids = [o["id"] for o in payload["obligations"]]
     assert len(ids) == len(set(ids))
     assert [i for i in ids if i in MY_IDS] == list(MY_IDS)  # all present, in paper order
@@ -139,9 +140,10 @@ class _Crashes(_Holds):
 
 @pytest.fixture
 def fake(monkeypatch):
-    """Replace the obligation list by the given fake classes."""
+    """Replace the obligation list by the given fake classes (and check only obligations)."""
 
     def use(*classes):
+        monkeypatch.setattr(check, "SECTIONS", [check.obligations_section])
         monkeypatch.setattr(obligations, "all_obligations", lambda: [c() for c in classes])
         monkeypatch.setattr(obligations, "all_errata", lambda: [e for c in classes for e in c.errata])
 
@@ -266,3 +268,45 @@ def test_check_help_does_not_import_sympy():
         "    try:\n        main(['check', '--help'])\n    except SystemExit:\n        pass"
     )
     assert _modules_after(code) == []
+
+
+# --------------------------------------------------------------------------- the certificates section
+
+
+def _copy_proofs(tmp_path):
+    import shutil
+
+    dst = tmp_path / "proofs"
+    shutil.copytree(REPO / "proofs", dst)
+    return dst
+
+
+def test_certificates_section_passes_on_committed_proofs(tmp_path):
+    section = check.certificates_section(check_args(_copy_proofs(tmp_path)))
+    assert section.ok and len(section.rows) == 4
+    assert all(row[1:3] == ("yes", "yes") for row in section.rows)
+
+
+def test_certificates_section_fails_on_a_stale_or_wrong_certificate(tmp_path):
+    proofs = _copy_proofs(tmp_path)
+    target = proofs / "case_a_feasible.json"
+    data = json.loads(target.read_text(encoding="utf-8"))
+    data["overshoot_bound"] = "1.5"  # below sqrt(c2 ĉ2 / (c1 ĉ1)): no longer a proof
+    target.write_text(json.dumps(data), encoding="utf-8")
+    section = check.certificates_section(check_args(proofs))
+    assert not section.ok
+    assert any("case_a_feasible.json" in note and "FAILED" in note for note in section.notes)
+
+
+def test_certificates_section_requires_table_i_files(tmp_path):
+    proofs = _copy_proofs(tmp_path)
+    (proofs / "case_b_tightest.json").unlink()
+    section = check.certificates_section(check_args(proofs))
+    assert not section.ok
+    assert any("case_b_tightest.json" in note and "missing" in note for note in section.notes)
+
+
+def check_args(proofs, *, write=False):
+    import argparse
+
+    return argparse.Namespace(proofs=str(proofs), write=write, json=False)
