@@ -147,7 +147,6 @@ def test_c_ten_times_too_large_is_caught(wrong_report):
     cx = r.counterexample
     assert cx.values["integral_v2"] > 0 and cx.t > cx.t_start
     assert cx.values["lhs"] > cx.values["rhs"]  # V(t2) - V(t1) > -c ∫ v²
-    assert cx.values["c"] == pytest.approx(10 * float(2 * (wrong["c"].k_v * wrong["c"].k_p - wrong["c"].k_i)) / 10 * 10 / 10 * 10 / 10 * 10 / 10, rel=1e-12) or True
     assert cx.values["c"] == pytest.approx(float(wrong["c"].c), rel=1e-15)
     # V itself still never increases: only the rate c is wrong
     assert _result(checks["c"], "lemma2.nonincreasing").failures == 0
@@ -266,10 +265,9 @@ def test_V_increasing_on_a_stick_is_caught():
 
 
 def test_V_jumping_up_at_an_event_is_caught():
-    # a stick entered with |φ| > f_c at the event: V jumps up from V_1 to V(x_e)... and must be flagged
+    # a slip ending at x*_1 = (0, f_c, 0) (V = 0) whose event records σ = 0.5: V jumps up there
     p = Parameters.table_i("a")
     cl = Claims.from_certificate(_cert("a"))
-    xe = [0.0, 1.0, 0.0]  # V_1(xe) = 0, V_0(xe) = 0, but record it with a large σ after the event
     b = _synthetic(
         p, [0.0, 2.0], [[0.0, 1.0, 0.0], [0.5, 1.0, 0.0]], [1, 0],
         ev_t=[1.0], ev_x=[[0.5, 1.0, 0.0]], before=[1], after=[0],
@@ -278,7 +276,7 @@ def test_V_jumping_up_at_an_event_is_caught():
     chk.add(b, attractivity=False)
     res = {r.id: r for r in chk.results()[0]}
     assert res["lemma2.nonincreasing"].failures >= 1
-    assert xe  # documentation of the construction
+    assert res["lemma2.nonincreasing"].counterexample.t == 1.0
 
 
 def test_sigma_growing_between_stick_phases_is_caught():
