@@ -90,7 +90,8 @@ def plot_tightness(checks: Sequence[Any], path: str | Path) -> Path:
         ax.set_xlabel(r"$|x(0)|_{\mathcal{A}}$")
         ax.set_ylabel(r"observed $\sup_t |x(t)|_{\mathcal{A}} / |x(0)|_{\mathcal{A}}$")
         ax.set_title(
-            f"k_p={float(params.k_p):g}, k_i={float(params.k_i):g}, k_v={float(params.k_v):g}, f_c={float(params.f_c):g}: "
+            f"k_p={float(params.k_p):g}, k_i={float(params.k_i):g}, k_v={float(params.k_v):g}, "
+            f"f_c={float(params.f_c):g}: "
             f"{first.trajectories} trajectories",
             fontsize=9,
         )
@@ -110,7 +111,8 @@ def plot_iss(estimates: Sequence[Any], path: str | Path, *, labels: Sequence[str
     fig, ax = plt.subplots(figsize=(6.4, 4.6))
     colors = ("tab:blue", "tab:orange", "tab:green", "tab:red")
     for j, est in enumerate(estimates):
-        name = labels[j] if labels else f"k_p={float(est.params.k_p):g}, k_i={float(est.params.k_i):g}, k_v={float(est.params.k_v):g}"
+        p = est.params
+        name = labels[j] if labels else f"k_p={float(p.k_p):g}, k_i={float(p.k_i):g}, k_v={float(p.k_v):g}"
         rho = np.array(est.rhos)
         for law, ls, marker in (("worst-case", "-", "o"), ("stribeck", "--", "s")):
             if law not in est.gamma:

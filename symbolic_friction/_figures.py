@@ -56,7 +56,7 @@ class FigureSpec:
 FIGURES: dict[str, FigureSpec] = {}
 """Registered figures, in registration order."""
 
-FIGURE_MODULES: tuple[str, ...] = ("symbolic_friction._figures",)
+FIGURE_MODULES: tuple[str, ...] = ("symbolic_friction._figures", "symbolic_friction._crosscheck_figures")
 """Modules imported by :func:`available_figures` so that they register their figures.
 Add a module here (e.g. the cross-check's figures) to extend ``symbolic-friction figures``."""
 

@@ -494,3 +494,41 @@ def test_report_is_json_safe(paper_report):
     for check in paper_report.checks:
         for r in check.results:
             assert math.isfinite(r.worst_margin) or r.samples == 0
+
+
+def test_k4_violating_only_definiteness_cannot_make_V_hat_increase():
+    # k1 k4 > k3² fails (2·7 < 4²) but the four derivative conditions of eq. (hatVdot) hold
+    # (k3 = 4 > max(k_i/k_v k1, k2) = 2, k4 = 7 > max(k_i/k_v k3, k_p k2) = 6); those four
+    # are necessary and sufficient for V̂° ≤ 0 on R̂ (symbolic_friction._kconditions), so no
+    # trajectory can show V̂ increasing in R̂, and the cross-check must not report one.
+    cert = dataclasses.replace(_cert("a"), k1=2, k2=2, k3=4, k4=7, c1_hat=1, c2_hat=Fraction(427, 100))
+    assert not cert.k1 * cert.k4 > cert.k3**2
+    cl = Claims.from_certificate(cert, label="definiteness only")
+    report = crosscheck([cl], trajectories=200, seed=3, progress=False)
+    res = {r.id: r for r in report.checks[0].results}
+    assert res["lemma3.hatV_nonincreasing"].failures == 0 and res["lemma3.hatV_nonincreasing"].samples > 0
+    assert res["lemma3.hatV_lower"].failures == 0  # ½wᵀKw ≥ ½min(k1,k2,k4)|w|² on w ≥ 0 anyway
+    from symbolic_friction._crosscheck._adversarial import rate_maximisers
+
+    X = rate_maximisers(cl.params, cl, seed=0, count=4)
+    assert np.nanmax(hat_V_rate(cl.params, cl, X)) <= 1e-12
+
+
+def test_V_read_through_the_modes_is_the_papers_V():
+    # the checker evaluates V through the mode pieces V_k (Claim 1, item 2); at every sample whose
+    # velocity sign is unambiguous this must be the closed-form V of eq. (lyapLike)
+    from symbolic_friction._crosscheck._properties import _build_chain
+    from symbolic_friction._lyapunov import V
+
+    p = Parameters.table_i("a")
+    cl = Claims.from_certificate(_cert("a"))
+    rng = np.random.default_rng(5)
+    X0 = rng.normal(size=(40, 3)) * 2
+    b = simulate_trajectories(p, x0_to_z0(p, X0), sample_times(30.0, 121))
+    chk = BatchChecker(p, [cl])
+    ch = _build_chain(b)
+    got = chk._V_piece(ch.x, ch.piece)
+    want = V(p, ch.x)
+    sure = ch.valid & ((ch.kind == 1) | ((ch.kind == 3) & ((ch.piece == 0) | (np.abs(ch.x[..., 2]) > 1e-9))))
+    assert np.count_nonzero(sure) > 1000
+    assert_close(got[sure], want[sure], rtol=1e-13, what="V through modes vs closed form")

@@ -59,8 +59,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--out", default="crosscheck-counterexamples", metavar="DIR",
                         help="directory for counterexample files (written only if a property fails)")
     parser.add_argument("--no-adversarial", action="store_true", help="skip the optimisers")
-    parser.add_argument("--decay", action="store_true", help="also fit the decay of |x(t)|_A (power law or exponential)")
-    parser.add_argument("--iss", action="store_true", help="also estimate Corollary 1's ISS gain (a few seconds per gain set)")
+    parser.add_argument("--decay", action="store_true",
+                        help="also fit the decay of |x(t)|_A (power law or exponential)")
+    parser.add_argument("--iss", action="store_true",
+                        help="also estimate Corollary 1's ISS gain (a few seconds per gain set)")
 
 
 def run(args: argparse.Namespace) -> int:

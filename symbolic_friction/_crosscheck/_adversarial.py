@@ -109,7 +109,8 @@ def pointwise_extremes(params: Parameters, claims: list[Claims], *, seed: int, m
             return np.where(ok, sign * V / d2, big)
 
     add(_de(lambda U: ratio_V(U, 1.0, "all"), seed=seed, maxiter=maxiter, popsize=20)[0], "adversarial min V/|x|²")
-    add(_de(lambda U: ratio_V(U, -1.0, "R"), seed=seed + 1, maxiter=maxiter, popsize=20)[0], "adversarial max V/|x|² on R")
+    add(_de(lambda U: ratio_V(U, -1.0, "R"), seed=seed + 1, maxiter=maxiter, popsize=20)[0],
+        "adversarial max V/|x|² on R")
     for j, cl in enumerate(claims):
         def ratio_H(U: np.ndarray, sign: float, cl: Claims = cl) -> np.ndarray:
             from .._attractor import squared_distance_x
@@ -129,7 +130,8 @@ def pointwise_extremes(params: Parameters, claims: list[Claims], *, seed: int, m
             f"adversarial min V̂/|x|² on R̂ [{cl.label}]")
         add(_de(lambda U: ratio_H(U, -1.0), seed=seed + 20 + j, maxiter=maxiter, popsize=20)[0],
             f"adversarial max V̂/|x|² on R̂ [{cl.label}]")
-        add(_de(rate_H, seed=seed + 30 + j, maxiter=maxiter, popsize=20)[0], f"adversarial max V̂'/V̂ on R̂ [{cl.label}]")
+        add(_de(rate_H, seed=seed + 30 + j, maxiter=maxiter, popsize=20)[0],
+            f"adversarial max V̂'/V̂ on R̂ [{cl.label}]")
     return InitialStates(np.array(out), np.array(labels, dtype=object))
 
 

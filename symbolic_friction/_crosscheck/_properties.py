@@ -110,7 +110,9 @@ class PropertySpec:
 
 
 PROPERTIES: tuple[PropertySpec, ...] = (
-    PropertySpec("lemma2.decrease", "Lemma 2, item 2 (eq. Vdecrease)", "V(x(t2)) - V(x(t1)) <= -c ∫ v² dt, all t1 < t2"),
+    PropertySpec(
+        "lemma2.decrease", "Lemma 2, item 2 (eq. Vdecrease)", "V(x(t2)) - V(x(t1)) <= -c ∫ v² dt, all t1 < t2"
+    ),
     PropertySpec("lemma2.nonincreasing", "Lemma 2, item 2", "V(x(t2)) <= V(x(t1)), both sides of every event"),
     PropertySpec("lemma2.lower_bound", "Lemma 2, item 1", "c1 |x|²_A <= V(x)"),
     PropertySpec("lemma3.V_upper", "Lemma 3 (eq. VandR)", "V(x) <= c2 |x|²_A on R"),
@@ -119,7 +121,9 @@ PROPERTIES: tuple[PropertySpec, ...] = (
     PropertySpec("lemma3.hatV_nonincreasing", "Lemma 3 (eq. hatVdot)", "V̂(x(t2)) <= V̂(x(t1)) on intervals in R̂"),
     PropertySpec("prop1.stability", "Proposition 1, item 2 (eq. stabState)", "|x(t)|_A <= kappa |x(0)|_A"),
     PropertySpec("prop1.attractivity", "Proposition 1, item 1", "|x(T)|_A <= theta |x(0)|_A at the horizon T"),
-    PropertySpec("remark.stick_sigma", "Remark after Lemma 2 (eq. armstrongRes)", "|sigma| strictly decreases between stick phases"),
+    PropertySpec(
+        "remark.stick_sigma", "Remark after Lemma 2 (eq. armstrongRes)", "|sigma| strictly decreases between stick phases"
+    ),
     PropertySpec("model.modes", "Claim 1 / appendix table", "modes agree with the states; v = 0 at events"),
 )
 _SPEC = {p.id: p for p in PROPERTIES}
@@ -285,6 +289,15 @@ class _Acc:
             if low < -self.rtol:
                 self.counterexample = make(tuple(int(i) for i in idx))
 
+    def extreme(self, key: str, values: np.ndarray, mask: np.ndarray, *, largest: bool) -> None:
+        """Track the smallest (or largest) of ``values`` where ``mask`` in ``details[key]``."""
+        if not np.any(mask):
+            return
+        v = float(np.max(values[mask]) if largest else np.min(values[mask]))
+        old = self.details.get(key)
+        if old is None or (v > old if largest else v < old):
+            self.details[key] = v
+
     def result(self) -> PropertyResult:
         return PropertyResult(
             id=self.spec.id,
@@ -381,7 +394,9 @@ class BatchChecker:
     Feed batches with :meth:`add`; read :meth:`results`.
     """
 
-    def __init__(self, params: Parameters, claims: list[Claims], *, rtol: float = DEFAULT_RTOL, theta: float = DEFAULT_THETA) -> None:
+    def __init__(
+        self, params: Parameters, claims: list[Claims], *, rtol: float = DEFAULT_RTOL, theta: float = DEFAULT_THETA
+    ) -> None:
         from .._lyapunov import lyapunov_matrix
 
         for cl in claims:
@@ -402,8 +417,8 @@ class BatchChecker:
         self._overshoot: list[np.ndarray] = []
         self._sources: list[np.ndarray] = []
         self._final_ratio: list[np.ndarray] = []
+        self._final_z: list[np.ndarray] = []
         self._pending: list[tuple] = []
-        self._resolved: list[tuple[int, float, float, tuple]] = []  # (pending index, time, ratio, x)
         from .._simulation.affine import MatrixExponential
 
         self._expm = MatrixExponential.from_params(params)
@@ -496,6 +511,13 @@ class BatchChecker:
         if attractivity:
             with np.errstate(divide="ignore", invalid="ignore"):
                 self._final_ratio.append(np.where(d0 > 0, d_final / d0, 0.0))
+            # In z (Proposition 1, item 1): s, v → 0 and e_i enters [-f_c/k_i, f_c/k_i].
+            from .._coordinates import x_to_z
+
+            zT = x_to_z(self.params, batch.x[:, -1, :])
+            bound = f_c / self.k_i
+            self._final_z.append(np.stack([np.abs(zT[:, 1]), np.abs(zT[:, 2]),
+                                           np.maximum(np.abs(zT[:, 0]) - bound, 0.0)], axis=1))
         self._overshoot.append(overshoot)
         self._sources.append(np.asarray(batch.source))
 
@@ -534,11 +556,23 @@ class BatchChecker:
             acc["lemma3.hatV_upper"].add(rel, in_Rhat & off_A, lambda idx: self._cx_point(
                 "lemma3.hatV_upper", cl, helpers, idx, {"V_hat": Vh[idx], "c2_hat": cl.c2_hat, "dist2": d2[idx]},
                 rel[idx], exact="hat_upper"))
+            # How tight each constant is: the extreme observed ratios V/|x|²_𝒜 and V̂/|x|²_𝒜,
+            # away from 𝒜 (|x|²_𝒜 ≥ 1e-6 L², where rounding cannot blur the ratio).
+            far = d2 >= 1e-6 * Q[:, None]
+            with np.errstate(divide="ignore", invalid="ignore"):
+                rV = Vv / d2
+                rH = Vh / d2
+            acc["lemma2.lower_bound"].extreme("min V/|x|²", rV, valid & far, largest=False)
+            acc["lemma3.V_upper"].extreme("max V/|x|² on R", rV, in_R & far, largest=True)
+            acc["lemma3.hatV_lower"].extreme("min V̂/|x|² on R̂", rH, in_Rhat & far, largest=False)
+            acc["lemma3.hatV_upper"].extreme("max V̂/|x|² on R̂", rH, in_Rhat & far, largest=True)
             # Lemma 3 (eq. hatVdot): V̂ nonincreasing on intervals spent in R̂
             run = self._rhat_pairs(batch, ch, in_Rhat, dt_pos, k_int)
             slack, first = self._run_slack(Vh, run)
             rel = slack / scaleH
-            acc["lemma3.hatV_nonincreasing"].add(rel, run, lambda idx: self._cx_hat_pair(cl, helpers, idx, Vh, first, rel))
+            acc["lemma3.hatV_nonincreasing"].add(
+                rel, run, lambda idx: self._cx_hat_pair(cl, helpers, idx, Vh, first, rel)
+            )
             # Proposition 1, stability, at samples and events
             rel = (cl.kappa * d0[:, None] - d) / L[:, None]
             acc["prop1.stability"].add(rel, point, lambda idx: self._cx_point(
@@ -617,10 +651,11 @@ class BatchChecker:
         N = batch.size
         E = batch.event_t.shape[1]
         T = float(batch.t[-1])
-        starts_t = np.concatenate([np.zeros((N, 1)), np.where(np.isfinite(batch.event_t), batch.event_t, np.inf)], axis=1)
+        ev_ok = np.isfinite(batch.event_t)
+        starts_t = np.concatenate([np.zeros((N, 1)), np.where(ev_ok, batch.event_t, np.inf)], axis=1)
         starts_x = np.concatenate([batch.x0[:, None, :], batch.event_x], axis=1)
         starts_sig = starts_x[..., 0]
-        is_start = np.concatenate([(batch.mode[:, :1] == 0), (batch.event_after == 0) & np.isfinite(batch.event_t)], axis=1)
+        is_start = np.concatenate([(batch.mode[:, :1] == 0), (batch.event_after == 0) & ev_ok], axis=1)
         # length of the stick phase: up to the next event (or the horizon)
         nxt = np.concatenate([starts_t[:, 1:], np.full((N, 1), np.inf)], axis=1)
         end = np.minimum(nxt, T)
@@ -788,13 +823,14 @@ class BatchChecker:
             return (not inR) and not (V_hat(p, xq, kk) <= ex["c2_hat"] * d2)
         return None
 
-    def resolve_attractivity(self, *, doublings: int = 40, samples: int = 40) -> None:
+    def resolve_attractivity(self, *, doublings: int = 60, samples: int = 40) -> None:
         """Follow the trajectories that had not reached ``θ|x(0)|_𝒜`` by their horizon.
 
         Each is continued (the solution is a semigroup: restart from the last
-        state) on windows of doubling length ``T, 2T, 4T, …`` until a sample
-        has ``|x(t)|_𝒜 ≤ θ|x(0)|_𝒜``; it fails only if ``doublings`` windows
-        (``2^doublings·T`` time units) do not bring it there.  Near 𝒜 the
+        state) on windows of doubling length ``T, 2T, 4T, …`` (at most
+        ``300/|Re λ|``, λ the slowest root) until a sample has
+        ``|x(t)|_𝒜 ≤ θ|x(0)|_𝒜``; it fails only if ``doublings`` windows do
+        not bring it there.  Near 𝒜 the
         stick phases last ``≈ 2f_c/|σ|``, so the time needed grows like
         ``1/|x(0)|_𝒜``; restarting window by window also keeps every single
         simulation short.
@@ -810,6 +846,11 @@ class BatchChecker:
         z = np.array([p[1] for p in self._pending], dtype=float)
         target = np.array([self.theta * p[3] for p in self._pending])
         window = max(p[6] for p in self._pending)
+        # Windows stop growing at 300/|Re λ| (λ the slowest root): a slip converging to x*_k
+        # for much longer underflows to denormals, where the event search of the simulator
+        # crawls (see the report of issue 5); e^{-300} is still far from underflow.
+        slowest = float(np.max(np.roots([1.0, self.k_v, self.k_p, self.k_i]).real))
+        cap = max(window, 300.0 / abs(slowest))
         start = 0.0
         outcome: list[tuple[bool, float, float, tuple]] = [
             (False, 0.0, float(p[3]), tuple(float(q) for q in p[2])) for p in self._pending
@@ -833,7 +874,7 @@ class BatchChecker:
                     still.append(k)
             active = np.array(still, dtype=int)
             start += window
-            window *= 2.0
+            window = min(2.0 * window, cap)
         for ci, cl in enumerate(self.claims):
             acc = self._accs[ci]["prop1.attractivity"]
             times = []
@@ -864,19 +905,25 @@ class BatchChecker:
         for ci, cl in enumerate(self.claims):
             accs = self._accs[ci]
             if ov.size:
-                accs["prop1.stability"].details = {
+                accs["prop1.stability"].details |= {
                     "max_overshoot": float(ov.max()),
                     "kappa": cl.kappa,
                     "tightness": float(ov.max()) / cl.kappa,
                 }
             if final.size:
                 times = getattr(accs["prop1.attractivity"], "details_times", [])
-                accs["prop1.attractivity"].details = {
+                accs["prop1.attractivity"].details |= {
                     "theta": self.theta,
                     "median_final_ratio": float(np.median(final)),
                     "max_final_ratio": float(final.max()),
                     "extended": len(times),
                     "latest_time_to_theta": max(times) if times else None,
+                }
+                fz = np.concatenate(self._final_z)
+                accs["prop1.attractivity"].details |= {
+                    "median |s(T)|": float(np.median(fz[:, 0])),
+                    "median |v(T)|": float(np.median(fz[:, 1])),
+                    "share e_i(T) in [-f_c/k_i, f_c/k_i]": float(np.mean(fz[:, 2] == 0.0)),
                 }
             out.append([accs[spec.id].result() for spec in PROPERTIES])
         return out

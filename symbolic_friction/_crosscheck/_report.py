@@ -42,6 +42,16 @@ def format_check(check: CertificateCheck) -> str:
             f"  {r.id:28s} {r.paper[:40]:40s} {r.trajectories:6d} {r.samples:9d} {_fmt(r.worst_margin):>10s} "
             f"{r.failures:6d}{'  FAIL' if r.failures else ''}{extra}"
         )
+    ratios = []
+    for r, const, name in (
+        ("lemma2.lower_bound", cl.c1, "c1"), ("lemma3.V_upper", cl.c2, "c2"),
+        ("lemma3.hatV_lower", cl.c1_hat, "c1_hat"), ("lemma3.hatV_upper", cl.c2_hat, "c2_hat"),
+    ):
+        res = next((x for x in check.results if x.id == r), None)
+        for key, value in (res.details.items() if res else ()):
+            ratios.append(f"{key} = {value:.5g} ({name} = {const:.5g})")
+    if ratios:
+        lines.append("  observed ratios: " + "; ".join(ratios))
     tight = check.tightness
     parts = [f"{mode} {check.max_overshoot[mode]:.4f} ({tight[mode]:.3f})" for mode in SEARCH_MODES if mode in tight]
     lines.append(f"  overshoot max_t |x(t)|_A/|x(0)|_A (observed/kappa): " + "; ".join(parts))
@@ -55,11 +65,17 @@ def format_check(check: CertificateCheck) -> str:
         d = att.details
         more = ""
         if d.get("extended"):
-            more = f"; {d['extended']} needed a longer horizon (latest reached theta at t = {d['latest_time_to_theta']:.4g})"
+            more = (f"; {d['extended']} needed a longer horizon "
+                    f"(latest reached theta at t = {d['latest_time_to_theta']:.4g})")
         lines.append(
             f"  attractivity: median |x(T)|_A/|x(0)|_A = {d['median_final_ratio']:.3g}, "
             f"max {d['max_final_ratio']:.3g}{more}"
         )
+        if "median |s(T)|" in d:
+            lines.append(
+                f"  in z at T: median |s| = {d['median |s(T)|']:.3g}, median |v| = {d['median |v(T)|']:.3g}, "
+                f"e_i in [-f_c/k_i, f_c/k_i] for {100 * d['share e_i(T) in [-f_c/k_i, f_c/k_i]']:.1f} %"
+            )
     return "\n".join(lines)
 
 
@@ -74,7 +90,8 @@ def format_report(report: CrosscheckReport) -> str:
         out.append(f"decay of |x(t)|_A for {label}: {fit.describe()}")
     for label, est in report.iss.items():
         out.append("")
-        out.append(f"Corollary 1, empirical ISS gain for {label} (moreau, h={est.h:g}, tail [T/2, T], T={est.horizon:g}):")
+        out.append(f"Corollary 1, empirical ISS gain for {label} "
+                   f"(moreau, h={est.h:g}, tail [T/2, T], T={est.horizon:g}):")
         out.append(f"  {'law':11s} {'rho':>8s} {'gamma':>10s} {'from A':>10s} {'tail':>10s} {'tail events':>12s}")
         for law, rho, g, ga, gt, ev in est.rows():
             out.append(f"  {law:11s} {rho:8.3g} {g:10.4g} {ga:10.4g} {gt:10.4g} {ev:12d}")

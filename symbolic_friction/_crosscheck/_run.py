@@ -315,7 +315,9 @@ class _GroupRun:
 
         return distance_x(self.params, self.x0_all) if self._x0 else np.zeros(0)
 
-    def evaluate(self, X0: np.ndarray, label: str, *, t: np.ndarray | None = None, attractivity: bool = True) -> np.ndarray:
+    def evaluate(
+        self, X0: np.ndarray, label: str, *, t: np.ndarray | None = None, attractivity: bool = True
+    ) -> np.ndarray:
         """Simulate and check the states ``X0`` (rows, in ``x``); return their overshoots."""
         from ._simulate import simulate_trajectories, x0_to_z0
 

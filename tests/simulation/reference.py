@@ -19,6 +19,11 @@ be *different* from the package's:
   from the paper with exact comparisons.
 
 The reference is slow (mpmath), so tests use it on a few hundred sample times.
+
+Limitation: ``φ`` is carried as an absolute number, so when a solution
+*creeps* (stick–slip cycles in which ``σ`` shrinks geometrically, each stick
+lasting ``-(φ ∓ f_c)/σ``) the event times lose accuracy once ``|φ ∓ f_c|``
+falls below about ``10^{12-dps} f_c``.  Raise ``dps`` for such solutions.
 """
 
 from __future__ import annotations

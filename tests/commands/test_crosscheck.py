@@ -1,0 +1,138 @@
+"""``symbolic-friction crosscheck``: exit 0 passed, 1 violated (with counterexample files), 2 bad input."""
+
+from __future__ import annotations
+
+import io
+import json
+import subprocess
+import sys
+from fractions import Fraction
+from pathlib import Path
+
+import pytest
+
+from symbolic_friction.cli import main
+
+REPO = Path(__file__).resolve().parents[2]
+PROOFS = REPO / "proofs"
+FAST = ["--trajectories", "60", "--no-adversarial", "--samples", "101"]
+
+
+def _case(case: str = "a", mode: str = "tightest") -> dict:
+    return json.loads((PROOFS / f"case_{case}_{mode}.json").read_text(encoding="utf-8"))
+
+
+def _write(tmp_path: Path, data: dict, name: str) -> str:
+    path = tmp_path / name
+    path.write_text(json.dumps(data, indent=2), encoding="utf-8")
+    return str(path)
+
+
+def test_paper_certificates_pass(capsys):
+    files = [str(PROOFS / f"case_{c}_tightest.json") for c in "ab"]
+    assert main(["crosscheck", *files, *FAST]) == 0
+    out = capsys.readouterr().out
+    assert "PASSED: 2 certificate(s)" in out
+    for pid in ("lemma2.decrease", "lemma3.hatV_nonincreasing", "prop1.stability", "remark.stick_sigma"):
+        assert pid in out
+    assert "traj" in out and "checked" in out and "margin" in out and "fail" in out
+    assert "tightness ratio" in out
+    assert "rtol = 1e-08" in out and "1e-10" in out  # the tolerance and its justification
+
+
+def test_default_is_every_committed_certificate(monkeypatch, capsys):
+    monkeypatch.chdir(REPO)
+    assert main(["crosscheck", "--trajectories", "30", "--no-adversarial", "--samples", "51"]) == 0
+    out = capsys.readouterr().out
+    assert "PASSED: 4 certificate(s)" in out
+    for stem in ("case_a_feasible", "case_a_tightest", "case_b_feasible", "case_b_tightest"):
+        assert stem in out
+
+
+def test_wrong_certificate_exits_1_and_writes_a_counterexample(tmp_path, capsys):
+    data = _case("a")
+    c = Fraction(data["constants"]["c"])
+    data["constants"]["c"] = str(10 * c).replace(" ", "")  # 10 × 2(k_v k_p - k_i): the verifier would reject it
+    path = _write(tmp_path, data, "wrong_c.json")
+    out_dir = tmp_path / "cx"
+    assert main(["crosscheck", path, *FAST, "--out", str(out_dir)]) == 1
+    out = capsys.readouterr().out
+    assert "FAILED: wrong_c" in out and "counterexamples written to" in out
+    files = list(out_dir.glob("*.json"))
+    assert len(files) == 1
+    saved = json.loads(files[0].read_text(encoding="utf-8"))
+    cx = next(c for c in saved["counterexamples"] if c["property"] == "lemma2.decrease")
+    assert cx["values"]["integral_v2"] > 0 and cx["t"] > cx["t_start"]
+    assert len(cx["z0"]) == 3 and cx["relative_slack"] < -1e-8
+
+
+def test_no_certificate_found(monkeypatch, tmp_path, capsys):
+    monkeypatch.chdir(tmp_path)
+    assert main(["crosscheck"]) == 2
+    assert "no certificate given and no proofs/*.json" in capsys.readouterr().err
+
+
+def test_malformed_certificate(tmp_path, capsys):
+    path = tmp_path / "bad.json"
+    path.write_text("{not json", encoding="utf-8")
+    assert main(["crosscheck", str(path), *FAST]) == 2
+    assert "not valid JSON" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize(
+    "option, value, message",
+    [("--rtol", "2", "--rtol must be < 1; got 2"), ("--theta", "1.5", "--theta must be ≤ 1; got 1.5")],
+)
+def test_option_ranges(option, value, message, capsys):
+    assert main(["crosscheck", str(PROOFS / "case_a_tightest.json"), option, value]) == 2
+    assert message in capsys.readouterr().err
+
+
+@pytest.mark.parametrize(
+    "option, value, message",
+    [
+        ("--trajectories", "0", "expected an integer ≥ 1; got 0"),
+        ("--trajectories", "many", "expected an integer ≥ 1; got 'many'"),
+        ("--horizon", "-3", "expected a finite number > 0; got '-3'"),
+        ("--horizon", "soon", "expected a number > 0; got 'soon'"),
+    ],
+)
+def test_argument_types(option, value, message, capsys):
+    with pytest.raises(SystemExit) as exc:
+        main(["crosscheck", option, value])
+    assert exc.value.code == 2
+    assert message in capsys.readouterr().err
+
+
+def test_decay_option(capsys):
+    assert main(["crosscheck", str(PROOFS / "case_a_tightest.json"), *FAST, "--decay"]) == 0
+    assert "decay of |x(t)|_A" in capsys.readouterr().out
+
+
+def test_iss_table_in_report():
+    from symbolic_friction import Parameters
+    from symbolic_friction._crosscheck import crosscheck, format_report, iss_gain
+
+    report = crosscheck([PROOFS / "case_a_tightest.json"], trajectories=20, adversarial=False, samples=51)
+    est = iss_gain(Parameters.table_i("a"), ("0", "0.1"), horizon=10.0, h=1e-2)
+    text = format_report(type(report)(**{**report.__dict__, "iss": {"case_a_tightest": est}}))
+    assert "empirical ISS gain" in text and "worst-case" in text and "stribeck" in text
+
+
+def test_progress_bar_when_enabled(monkeypatch):
+    from symbolic_friction._crosscheck import crosscheck
+
+    err = io.StringIO()
+    monkeypatch.setattr(sys, "stderr", err)
+    crosscheck([PROOFS / "case_a_tightest.json"], trajectories=20, adversarial=False, samples=51, progress=True)
+    assert "crosscheck" in err.getvalue() and "20/20" in err.getvalue()
+
+
+def test_command_module_imports_only_the_standard_library():
+    code = (
+        "import sys\n"
+        "import symbolic_friction._commands.crosscheck\n"
+        "print(sorted(m for m in ('numpy', 'scipy', 'sympy', 'matplotlib', 'cvxpy') if m in sys.modules))\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "[]"
