@@ -17,7 +17,16 @@ from .._errors import SimulationError
 from .._parameters import Parameters
 from ._base import SimulationMethod, Solution, Status
 
-__all__ = ["simulate", "METHODS", "get_method", "Solution", "SimulationMethod", "Status"]
+__all__ = [
+    "simulate",
+    "simulate_batch",
+    "BatchSolution",
+    "METHODS",
+    "get_method",
+    "Solution",
+    "SimulationMethod",
+    "Status",
+]
 
 # method name -> "module:Class", relative to this package
 METHODS: dict[str, str] = {
@@ -119,3 +128,12 @@ def simulate(
     t = _check_horizon(t_end)
     te = _check_t_eval(t_eval, t)
     return solver._solve(params, z, t, te, merged)
+
+
+def __getattr__(name: str) -> Any:
+    # simulate_batch lives with the event method; import it only when asked for
+    if name in ("simulate_batch", "BatchSolution"):
+        from . import batch
+
+        return getattr(batch, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -22,7 +22,7 @@ from .._parameters import Parameters
 from ._base import Solution, Status
 from .event import _SNAP_ULPS, _check_positive_int
 from .modes import modes_after_slip, modes_at_rest
-from .search import first_zeros, slip_model
+from .search import UNDERFLOW, first_zeros, slip_model
 
 __all__ = ["BatchSolution", "simulate_batch"]
 
@@ -222,7 +222,7 @@ def simulate_batch(
     >>> p = Parameters.table_i("a")
     >>> sol = simulate_batch(p, [[0, 5, 0], [0, 0, 3]], 30.0, t_eval=[0.0, 15.0, 30.0])
     >>> sol.z.shape, sol.n_events.tolist()
-    ((2, 3, 3), [10, 8])
+    ((2, 3, 3), [10, 6])
     """
     from . import _check_horizon, _check_t_eval
 
@@ -264,6 +264,14 @@ def simulate_batch(
         log.append((rows, times, before.astype(np.int8), after.astype(np.int8)))
         n_events[rows] += 1
 
+    def cap() -> None:
+        capped = np.flatnonzero(active & (n_events >= max_events))
+        # the state at the stopping time (an event time) closes the record
+        fill.segment(st, capped, st.t[capped], final=True)
+        status[capped] = Status.MAX_EVENTS
+        t_stop[capped] = st.t[capped]
+        active[capped] = False
+
     for _ in range(4 * max_events + 16):
         if not active.any():
             break
@@ -291,6 +299,7 @@ def simulate_batch(
             fill.segment(st, r, t_next, final=False)
             record(r, t_next, np.zeros(r.size), d)
             st.t[r], st.base[r], st.offset[r], st.mode[r] = t_next, d, 0.0, d
+            cap()
         # -- slip (including those that just left a stick): first zero of v --
         rows = np.flatnonzero(active & (st.mode != 0))
         if rows.size:
@@ -308,6 +317,7 @@ def simulate_batch(
             r, d, tau, y, y0 = rows[hit], d[hit], tau[hit], y[hit], y0[hit]
             t_next = st.t[r] + tau
             fill.segment(st, r, t_next, final=False)
+            y[np.max(np.abs(y), axis=1) <= UNDERFLOW] = 0.0  # decayed onto x*_k ∈ 𝒜 (see search.UNDERFLOW)
             tol = _SNAP_ULPS * _EPS * np.max(np.abs(y0), axis=1)
             new_base, new_offset, new = modes_after_slip(y[:, 0], y[:, 1], d, f_c, tol)
             st.t[r], st.sigma[r], st.base[r], st.offset[r], st.v[r] = t_next, y[:, 0], new_base, new_offset, 0.0
@@ -317,12 +327,7 @@ def simulate_batch(
             late = r[t_next >= t_end]
             fill.segment(st, late, end[late], final=True)
             active[late] = False
-        capped = np.flatnonzero(active & (n_events >= max_events))
-        # the state at the stopping time (an event time) closes the record
-        fill.segment(st, capped, st.t[capped], final=True)
-        status[capped] = Status.MAX_EVENTS
-        t_stop[capped] = st.t[capped]
-        active[capped] = False
+            cap()
     else:
         r = np.flatnonzero(active)
         status[r] = Status.MAX_EVENTS

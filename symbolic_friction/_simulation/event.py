@@ -20,7 +20,9 @@ The solution is a concatenation of the three affine flows of Claim 1
   do.  ``φ`` is carried as an exact boundary plus an offset, so a stick after
   a tiny slip gets its exact duration ``-offset/σ``.
   A grazing contact (row (iii)/(ix) again) continues the slip without an
-  event.  ``max_events`` caps the number of mode changes
+  event.  A slip that decays to within 1e-280 of its equilibrium
+  ``(0, ±f_c, 0) ∈ 𝒜`` (where double precision underflows) is put on it:
+  an equilibrium.  ``max_events`` caps the number of mode changes
   (:attr:`Status.MAX_EVENTS`; later samples are omitted), so rounding at a
   switching surface can never make the method spin forever.
 
@@ -29,6 +31,7 @@ Only numpy and the standard library are imported (no scipy, no sympy).
 
 from __future__ import annotations
 
+from types import MappingProxyType
 from typing import Any, NamedTuple
 
 import numpy as np
@@ -38,7 +41,7 @@ from .._errors import SimulationError
 from .._parameters import Parameters
 from ._base import SimulationMethod, Solution, Status
 from .modes import mode_after_slip, mode_at_rest
-from .search import first_zero, slip_model
+from .search import UNDERFLOW, first_zero, slip_model
 
 __all__ = ["EventDriven", "Segment", "integrate_events", "sample_segments", "initial_state"]
 
@@ -124,6 +127,8 @@ def integrate_events(
                 break
             t_next = t + tau
             segments.append(Segment(t, t_next, d, sigma, base, offset, v))
+            if max(abs(c) for c in y) <= UNDERFLOW:  # decayed onto x*_k ∈ 𝒜 (see search.UNDERFLOW)
+                y = (0.0, 0.0, 0.0)
             tol = _SNAP_ULPS * _EPS * max(abs(c) for c in y0)
             base, offset, new_mode = mode_after_slip(y[0], y[1], d, f_c, tol)
             t, sigma, v = t_next, y[0], 0.0
@@ -170,7 +175,8 @@ def sample_segments(
         rows = seg[which[slip]]
         d = modes[which[slip]].astype(float)
         # offsets from the slip equilibrium (0, d f_c, 0); exact when base = d
-        y0 = np.column_stack([rows[:, 1], np.where(rows[:, 2] == d, rows[:, 3], (rows[:, 2] - d) * f_c + rows[:, 3]), rows[:, 4]])
+        p_off = np.where(rows[:, 2] == d, rows[:, 3], (rows[:, 2] - d) * f_c + rows[:, 3])
+        y0 = np.column_stack([rows[:, 1], p_off, rows[:, 4]])
         w0, w1, w2 = expm.w(tau[slip])
         b1, b2 = expm.B1, expm.B2
         for k in range(3):
@@ -199,7 +205,7 @@ class EventDriven(SimulationMethod):
     """
 
     name = "event"
-    options = {"max_events": 10_000, "grid_points": 1001}
+    options = MappingProxyType({"max_events": 10_000, "grid_points": 1001})
 
     def _validate(self, options: dict[str, Any]) -> None:
         _check_positive_int("max_events", options["max_events"], 1)

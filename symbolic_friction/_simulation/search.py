@@ -5,9 +5,10 @@ Along a slip in direction ``k = ±1`` let ``y = x - x*_k`` (so ``y' = A y``)
 and ``u = k v``, positive inside the slip.  Two rigorous tools are combined:
 
 1. **A certified scan** (:class:`.affine.ScanTable`).  From a window start
-   ``a`` with offset ``y(a) = (σ, p, v)``, ``u`` and ``u''`` are evaluated on
-   the grid ``a + jΔ`` by two products with a precomputed table of ``w`` and
-   its derivatives.  On a cell ``|u''| ≤ max(|u''_j|, |u''_{j+1}|) +
+   ``a`` with offset ``y(a) = (σ, p, v)`` (computed in closed form from the
+   slip's start), ``u`` and ``u''`` are evaluated on the window's grid
+   ``a + jΔ``, ``j ≤ 128``, by two products with a precomputed table of ``w``
+   and its derivatives.  On a cell ``|u''| ≤ max(|u''_j|, |u''_{j+1}|) +
    Δ² m₄ |y(a)|_P / 8`` (``|u⁗| ≤ m₄|y(a)|_P`` after ``a``), and a cell
    with ``min(u_j, u_{j+1})`` above the interpolation error
    ``Δ² max|u''| / 8`` (plus rounding) has no zero.
@@ -20,8 +21,8 @@ and ``u = k v``, positive inside the slip.  Two rigorous tools are combined:
    ``u = u' = 0``).  As soon as the upper bound ``u + u'τ + ½M₂τ²`` has a
    root too, ``u`` decreases strictly between the two roots and vanishes
    exactly once there; Newton's method on the closed form, kept inside the
-   bracket, refines that zero to machine precision.  At an exact tangency the steps shrink
-   geometrically and the contact point is returned.
+   bracket, refines that zero to machine precision.  At an exact tangency
+   the steps shrink geometrically and the contact point is returned.
 
 Everything is written twice: with plain floats for one trajectory
 (:func:`first_zero`) and vectorised over many (:func:`first_zeros`, used by
@@ -39,14 +40,18 @@ import numpy as np
 from .._parameters import Parameters
 from .affine import MatrixExponential, ScanTable, SlipBounds  # noqa: F401 (ScanTable in annotations)
 
-__all__ = ["SlipModel", "slip_model", "first_zero", "first_zeros"]
+__all__ = ["SlipModel", "slip_model", "first_zero", "first_zeros", "UNDERFLOW"]
 
 _EPS = 2.220446049250313e-16
 # The Taylor march is only run on one grid cell at a time; this cap is reached
 # only at an exact tangency, where the steps shrink geometrically.
 _MAX_STEPS = 2_000
-# cells of the scan table examined at a time (slips usually end within a few blocks)
-_BLOCK = 128
+# A slip that has decayed to within this (absolute) distance of its equilibrium
+# x*_k = (0, k f_c, 0), a point of 𝒜, cannot be followed further in double
+# precision (the closed form's products become subnormal and v = 0 by
+# underflow).  The search reports a zero there, and the event loop puts the
+# state on x*_k, an equilibrium.
+UNDERFLOW = 1e-280
 
 
 @dataclass(frozen=True, eq=False)
@@ -65,6 +70,23 @@ def slip_model(params: Parameters) -> SlipModel:
     expm = MatrixExponential.from_params(params)
     bounds = SlipBounds.from_params(params)
     return SlipModel(expm=expm, bounds=bounds, table=ScanTable.build(expm), f_c=float(params.f_c))
+
+
+def _p_norm(s: float, p: float, v: float, kv_ki: float, k_p: float) -> float:
+    """``|y|_P`` for ``y = (s, p, v)``, scaled so that squares neither overflow nor underflow."""
+    m = max(abs(s), abs(p), abs(v))
+    if m == 0.0 or not math.isfinite(m):
+        return m
+    s, p, v = s / m, p / m, v / m
+    return m * math.sqrt(max(kv_ki * s * s - 2.0 * s * v + k_p * v * v + p * p, 0.0))
+
+
+def _p_norm_vec(s: np.ndarray, p: np.ndarray, v: np.ndarray, kv_ki: float, k_p: float) -> np.ndarray:
+    """Vectorised :func:`_p_norm`."""
+    m = np.maximum(np.maximum(np.abs(s), np.abs(p)), np.abs(v))
+    safe = np.where(m > 0.0, m, 1.0)
+    s, p, v = s / safe, p / safe, v / safe
+    return m * np.sqrt(np.maximum(kv_ki * s * s - 2.0 * s * v + k_p * v * v + p * p, 0.0))
 
 
 # ---------------------------------------------------------------------------
@@ -102,20 +124,23 @@ def _newton(slip: "_Slip", k_v: float, lo: float, hi: float) -> float:
     """Zero of ``u`` in ``[lo, hi]`` where ``u`` decreases strictly from ``u(lo) ≥ 0`` to ``u(hi) ≤ 0``.
 
     Newton's method on the closed form, kept inside the bracket (bisection
-    when a step leaves it), until the step is below two ulps.
+    when a step leaves it), until the step is below two ulps or ``|u|`` is
+    below the rounding error of its own evaluation.
     """
     d = slip.d
+    (_, p0, v0), (_, p1, v1), (_, p2, v2) = slip.q0, slip.q1, slip.q2
     x = 0.5 * (lo + hi)
     for _ in range(100):
-        s, p, v = slip.state(x)
+        w0, w1, w2 = slip.w_scalar(x)
+        v = w2 * v0 + w1 * v1 + w0 * v2
         u = d * v
-        if u == 0.0:
-            return x
+        if abs(u) <= 8.0 * _EPS * (abs(w2 * v0) + abs(w1 * v1) + abs(w0 * v2)):
+            return x  # a zero to the precision u can be computed with
         if u > 0.0:
             lo = x
         else:
             hi = x
-        du = d * (p - k_v * v)
+        du = d * (w2 * p0 + w1 * p1 + w0 * p2 - k_v * v)
         x_new = x - u / du if du < 0.0 else 0.5 * (lo + hi)
         if not lo <= x_new <= hi:
             x_new = 0.5 * (lo + hi)
@@ -140,14 +165,18 @@ def _march(
         u = d * v
         if u <= 0.0 and not fresh:
             return a, y  # reached by a certified step: a zero up to rounding
+        if max(abs(s), abs(p), abs(v)) <= UNDERFLOW:
+            return a, y  # at the slip's equilibrium to double precision
         fresh = False
-        du = d * (p - k_v * v)
-        r_p = math.sqrt(max(kv_ki * s * s - 2.0 * s * v + k_p * v * v + p * p, 0.0))
-        dd = d * (s - k_v * p + (k_v * k_v - k_p) * v)
-        # |u''| on [a, stop]: globally ≤ m2|y|_P, and ≤ |u''(a)| + m3|y|_P (stop - a)
-        big_m2 = min(m2 * r_p, abs(dd) + m3 * r_p * (stop - a))
-        if big_m2 == 0.0:
+        r_p = _p_norm(s, p, v, kv_ki, k_p)
+        if r_p == 0.0:
             return (a, y) if a > 0.0 else (None, y)  # y = 0: the slip's equilibrium
+        # everything below is homogeneous in y: work with y/|y|_P (no overflow)
+        u = u / r_p
+        du = d * (p - k_v * v) / r_p
+        dd = d * (s - k_v * p + (k_v * k_v - k_p) * v) / r_p
+        # |u''| on [a, stop]: globally ≤ m2|y|_P, and ≤ |u''(a)| + m3|y|_P (stop - a)
+        big_m2 = max(min(m2, abs(dd) + m3 * (stop - a)), 1e-300)
         root = math.sqrt(du * du + 2.0 * big_m2 * u)
         # u > 0 on [a, a + step): the first root of u + du τ - M2 τ²/2
         if du > 0.0:
@@ -169,31 +198,33 @@ def _march(
         if du >= 0.0:
             if dd > 0.0:
                 # u + du τ + dd τ²/2 - M3 τ³/6 ≥ τ² (dd/2 - M3 τ/6) > 0 below 3 dd/M3
-                step = max(step, 2.9 * dd / (m3 * r_p))
+                step = max(step, 2.9 * dd / m3)
         a_next = a + step
         if a_next >= stop:
             return None, y
         if a_next == a:
-            return (a, y) if a > 0.0 else (None, y)  # tangential contact
+            return a, y  # no certified progress: a tangential contact (v = v' = 0 within rounding)
         a = a_next
         y = slip.state(a)
     return a, y
 
 
-def _blocked(table: "ScanTable", j0: int, j1: int, s, p, v, d, r_p, m4: float) -> np.ndarray:
-    """Cells ``j0 … j1-1`` of the table that the scan cannot clear.
+def _blocked(table: "ScanTable", last: int, s, p, v, d, r_p, m4: float) -> np.ndarray:
+    """Cells ``0 … last-1`` of a window that the scan cannot clear.
 
-    ``s, p, v, d, r_p`` are floats (one trajectory) or columns (R, 1); the
-    result has shape (j1 - j0,) or (R, j1 - j0).
+    ``s, p, v`` is the offset at the window's start, ``r_p`` its P-norm;
+    ``s, p, v, d, r_p`` are floats (one trajectory) or columns (R, 1), and
+    the result has shape (last,) or (R, cells).
     """
-    w = table.values[:, j0 : j1 + 1]
+    n = last if np.ndim(s) == 0 else table.cells
+    w = table.values[:, : n + 1]
     dt = table.dt
     u = d * (s * w[0] + p * w[1] + v * w[2])
     u2 = np.abs(s * w[2] + p * w[3] + v * w[4])
     # |u''| on a cell ≤ max of its ends + Δ² max|u⁗| / 8, with |u⁗| ≤ m4 |y|_P
     slack = 0.125 * dt * dt * (np.maximum(u2[..., :-1], u2[..., 1:]) + 0.125 * dt * dt * m4 * r_p)
     # plus the rounding of the products that gave u and u''
-    g = table.noise[:, j0:j1]
+    g = table.noise[:, :n]
     noise = np.abs(s) * g[0] + np.abs(p) * g[1] + np.abs(v) * g[2]
     return ~(np.minimum(u[..., :-1], u[..., 1:]) > slack + noise)
 
@@ -224,25 +255,23 @@ def first_zero(
     """
     slip = _Slip(model.expm, y0, direction)
     table = model.table
-    dt = table.dt
-    w = table.values
-    n_cells = w.shape[1] - 1
+    dt, n_cells = table.dt, table.cells
     kv_ki, k_p = model.expm.k_v / model.expm.k_i, model.expm.k_p
     m4 = model.bounds.m[4]
     d = direction
+    # windows of `cells` cells, each anchored at the exact state at its start, so that
+    # the bound m4 |y(a)|_P follows the decay of the solution
     a_w, y_w = 0.0, y0
     while a_w < horizon:
         s, p, v = y_w
-        r_p = math.sqrt(max(kv_ki * s * s - 2.0 * s * v + k_p * v * v + p * p, 0.0))
+        r_p = _p_norm(s, p, v, kv_ki, k_p)
         last = min(n_cells, math.ceil((horizon - a_w) / dt))
-        for j0 in range(0, last, _BLOCK):
-            j1 = min(j0 + _BLOCK, last)
-            for j in np.flatnonzero(_blocked(table, j0, j1, s, p, v, d, r_p, m4)):
-                a0 = a_w + float(j0 + j) * dt
-                y_a0 = y_w if j0 + j == 0 else slip.state(a0)
-                tau, y = _march(slip, model, a0, y_a0, min(a0 + dt, horizon))
-                if tau is not None:
-                    return tau, y
+        for j in np.flatnonzero(_blocked(table, last, s, p, v, d, r_p, m4)):
+            a0 = a_w + float(j) * dt
+            y_a0 = y_w if j == 0 else slip.state(a0)
+            tau, y = _march(slip, model, a0, y_a0, min(a0 + dt, horizon))
+            if tau is not None:
+                return tau, y
         a_w += table.window
         if a_w < horizon:
             y_w = slip.state(a_w)
@@ -258,7 +287,7 @@ def _states(expm: MatrixExponential, q0: np.ndarray, q1: np.ndarray, q2: np.ndar
 
 
 def first_zeros(
-    model: SlipModel, y0: np.ndarray, direction: np.ndarray, horizon: np.ndarray, *, chunk: int = 2048
+    model: SlipModel, y0: np.ndarray, direction: np.ndarray, horizon: np.ndarray, *, chunk: int = 4096
 ) -> tuple[np.ndarray, np.ndarray]:
     """Vectorised :func:`first_zero` for offsets ``y0`` (N, 3), directions and horizons (N,).
 
@@ -274,33 +303,27 @@ def first_zeros(
     q1 = y0 @ expm.B1.T
     q2 = y0 @ expm.B2.T
     table = model.table
-    dt, w = table.dt, table.values
-    n_cells = w.shape[1] - 1
+    dt, n_cells = table.dt, table.cells
     kv_ki, k_p = expm.k_v / expm.k_i, expm.k_p
     m4 = model.bounds.m[4]
+    cells = np.arange(n_cells)
 
     tau = np.full(n, np.nan)
     open_ = np.ones(n, dtype=bool)  # still searching
     a_w = np.zeros(n)
     y_w = y0.copy()
     while True:
-        in_window = open_ & (a_w < horizon)
-        if not in_window.any():
+        rows = np.flatnonzero(open_ & (a_w < horizon))
+        if rows.size == 0:
             break
         last = np.minimum(n_cells, np.ceil((horizon - a_w) / dt)).astype(int)
-        for j0 in range(0, n_cells, _BLOCK):
-            rows = np.flatnonzero(in_window & open_ & (last > j0))
-            if rows.size == 0:
-                break
-            j1 = min(j0 + _BLOCK, n_cells)
-            cells = j0 + np.arange(j1 - j0)
-            for lo in range(0, rows.size, chunk):
-                part = rows[lo : lo + chunk]
-                s, p, v = y_w[part, 0:1], y_w[part, 1:2], y_w[part, 2:3]
-                r_p = np.sqrt(np.maximum(kv_ki * s * s - 2.0 * s * v + k_p * v * v + p * p, 0.0))
-                blocked = _blocked(table, j0, j1, s, p, v, d[part, None], r_p, m4)
-                blocked &= cells[None, :] < last[part, None]
-                _march_cells(model, q0, q1, q2, d, horizon, part, a_w, j0, blocked, tau, open_)
+        for lo in range(0, rows.size, chunk):
+            part = rows[lo : lo + chunk]
+            s, p, v = y_w[part, 0:1], y_w[part, 1:2], y_w[part, 2:3]
+            r_p = _p_norm_vec(s, p, v, kv_ki, k_p)
+            blocked = _blocked(table, n_cells, s, p, v, d[part, None], r_p, m4)
+            blocked &= cells[None, :] < last[part, None]
+            _march_cells(model, q0, q1, q2, d, horizon, part, a_w, blocked, tau, open_)
         a_w = np.where(open_, a_w + table.window, a_w)
         moving = np.flatnonzero(open_ & (a_w < horizon))
         if moving.size:
@@ -309,7 +332,7 @@ def first_zeros(
     return tau, _states(expm, q0, q1, q2, at)
 
 
-def _march_cells(model, q0, q1, q2, d, horizon, part, a_w, j0, blocked, tau, open_) -> None:
+def _march_cells(model, q0, q1, q2, d, horizon, part, a_w, blocked, tau, open_) -> None:
     """Run the Taylor march, vectorised, on each row's blocked cells in order."""
     dt = model.table.dt
     pending = blocked.copy()
@@ -322,7 +345,7 @@ def _march_cells(model, q0, q1, q2, d, horizon, part, a_w, j0, blocked, tau, ope
         j = np.argmax(pending[idx], axis=1)
         pending[idx, j] = False
         rows = part[idx]
-        a0 = a_w[rows] + (j0 + j) * dt
+        a0 = a_w[rows] + j * dt
         stop = np.minimum(a0 + dt, horizon[rows])
         found, where = _march_vec(model, q0[rows], q1[rows], q2[rows], d[rows], a0, stop)
         hit = rows[found]
@@ -351,22 +374,23 @@ def _march_vec(model, q0, q1, q2, d, a, stop):
         s, p, v = y[:, 0], y[:, 1], y[:, 2]
         dd_ = d[act]
         u = dd_ * v
-        # a zero reached by a certified step (not at a slip's start)
-        reached = (u <= 0.0) & ~fresh[act]
+        # a zero reached by a certified step (not at a slip's start), or underflow
+        reached = ((u <= 0.0) & ~fresh[act]) | (np.max(np.abs(y), axis=1) <= UNDERFLOW)
         fresh[act] = False
-        du = dd_ * (p - k_v * v)
-        r_p = np.sqrt(np.maximum((k_v / k_i) * s * s - 2.0 * s * v + k_p * v * v + p * p, 0.0))
-        dd2 = dd_ * (s - k_v * p + (k_v * k_v - k_p) * v)
-        big_m2 = np.minimum(m2 * r_p, np.abs(dd2) + m3 * r_p * (stop[act] - aa))
-        degenerate = big_m2 == 0.0
-        safe_m2 = np.where(degenerate, 1.0, big_m2)
-        root = np.sqrt(du * du + 2.0 * safe_m2 * u)
+        r_p = _p_norm_vec(s, p, v, k_v / k_i, k_p)
+        degenerate = r_p == 0.0  # y = 0: the slip's equilibrium
+        scale = np.where(degenerate, 1.0, r_p)
+        # homogeneous in y: work with y/|y|_P (no overflow)
+        u = u / scale
+        du = dd_ * (p - k_v * v) / scale
+        dd2 = dd_ * (s - k_v * p + (k_v * k_v - k_p) * v) / scale
+        safe_m2 = np.maximum(np.minimum(m2, np.abs(dd2) + m3 * (stop[act] - aa)), 1e-300)
+        root = np.sqrt(np.maximum(du * du + 2.0 * safe_m2 * u, 0.0))  # u < 0 only where reached
         with np.errstate(divide="ignore", invalid="ignore"):
             step = np.where(du > 0.0, (du + root) / safe_m2, 2.0 * u / (root - du))
         step = np.where(np.isfinite(step) & (step > 0.0), step, 0.0)
         grow = (du >= 0.0) & ~degenerate
-        with np.errstate(divide="ignore", invalid="ignore"):
-            step3 = np.where(grow & (dd2 > 0.0), 2.9 * dd2 / (m3 * np.where(degenerate, 1.0, r_p)), 0.0)
+        step3 = np.where(grow & (dd2 > 0.0), 2.9 * dd2 / m3, 0.0)
         step = np.maximum(step, step3)
         endgame = (du < 0.0) & (2.0 * safe_m2 * u <= du * du) & ~degenerate & ~reached
         stp = stop[act]
@@ -377,9 +401,7 @@ def _march_vec(model, q0, q1, q2, d, a, stop):
         a_next = aa + step
         plain = ~(done_zero | done_none | endgame)
         done_none |= plain & (a_next >= stp)
-        stuck = plain & (a_next < stp) & (a_next == aa)
-        done_zero |= stuck & (aa > 0.0)
-        done_none |= stuck & ~(aa > 0.0)
+        done_zero |= plain & (a_next < stp) & (a_next == aa)  # a tangential contact
         moving = plain & (a_next < stp) & (a_next > aa)
 
         rows_z = act[done_zero]
@@ -427,9 +449,12 @@ def _newton_vec(expm, q0, q1, q2, d, lo, hi):
         if idx.size == 0:
             break
         xi = x[idx]
-        y = _states(expm, q0[idx], q1[idx], q2[idx], xi)
+        w0, w1, w2 = expm.w(xi)
+        a, b, c = w2[:, None] * q0[idx], w1[:, None] * q1[idx], w0[:, None] * q2[idx]
+        y = a + b + c
         di = d[idx]
         u = di * y[:, 2]
+        noise = 8.0 * _EPS * (np.abs(a[:, 2]) + np.abs(b[:, 2]) + np.abs(c[:, 2]))
         du = di * (y[:, 1] - k_v * y[:, 2])
         pos = u > 0.0
         lo[idx] = np.where(pos, xi, lo[idx])
@@ -438,8 +463,9 @@ def _newton_vec(expm, q0, q1, q2, d, lo, hi):
         with np.errstate(divide="ignore", invalid="ignore"):
             x_new = np.where(du < 0.0, xi - u / du, 0.5 * (l + h))
         x_new = np.where((l <= x_new) & (x_new <= h), x_new, 0.5 * (l + h))
-        done = (u == 0.0) | (np.abs(x_new - xi) <= 2.0 * _EPS * np.abs(xi)) | (h - l <= 2.0 * _EPS * np.abs(h))
-        result[idx[done]] = np.where(u[done] == 0.0, xi[done], x_new[done])
+        at_zero = np.abs(u) <= noise
+        done = at_zero | (np.abs(x_new - xi) <= 2.0 * _EPS * np.abs(xi)) | (h - l <= 2.0 * _EPS * np.abs(h))
+        result[idx[done]] = np.where(at_zero[done], xi[done], x_new[done])
         x[idx] = x_new
         idx = idx[~done]
     result[idx] = x[idx]

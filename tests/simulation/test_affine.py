@@ -180,11 +180,11 @@ def test_the_P_norm_does_not_increase_along_a_slip():
 def test_scan_table_holds_w_and_its_derivatives():
     p = params_of("table_a")
     table = ScanTable.build(MatrixExponential.from_params(p))
-    assert table.values.shape == (5, 1025)
-    assert table.window == pytest.approx(1024 * table.dt)
+    assert table.values.shape == (5, 129) and table.cells == 128
+    assert table.window == pytest.approx(128 * table.dt)
     with mpmath.workdps(DPS):
         A = mpmath.matrix([[0, 0, -4], [1, 0, -3], [0, 1, -mp_q("6.4")]])
-        for j in (0, 1, 37, 500, 1024):
+        for j in (0, 1, 37, 100, 128):
             tau = mpmath.mpf(j) * mpmath.mpf(table.dt)
             col = mpmath.expm(A * tau) * mpmath.matrix([1, 0, 0])
             want = []

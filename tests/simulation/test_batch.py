@@ -1,0 +1,132 @@
+"""simulate_batch: the event method vectorised over many initial states."""
+
+from __future__ import annotations
+
+from fractions import Fraction as F
+
+import numpy as np
+import pytest
+
+from symbolic_friction import Parameters, SimulationError
+from symbolic_friction._simulation import Status, simulate
+from symbolic_friction._simulation.batch import BatchSolution, simulate_batch
+
+from ..tolerance import relative_error
+from .reference import Reference
+
+CASES = {
+    "a": Parameters.table_i("a"),
+    "b": Parameters.table_i("b"),
+    "stiff": Parameters(k_v="51.1", k_p="5.3525", k_i="12.8775"),
+    "triple": Parameters(k_v=3, k_p=3, k_i=1),
+    "creep": Parameters(k_v=17, k_p=336, k_i=1746, f_c=F(3828, 4096)),
+}
+
+
+def starts(n: int, seed: int) -> np.ndarray:
+    rng = np.random.default_rng(seed)
+    z = rng.uniform(-5, 5, size=(n, 3)) * rng.choice([1e-3, 1.0, 1e3], size=(n, 1))
+    z[: n // 5, 2] = 0.0  # at rest
+    # exact boundary and attractor starts for case (a)-like rows: s = 0, v = 0
+    z[n // 5 : n // 5 + 4] = [[-0.25, 0.0, 0.0], [0.25, 0.0, 0.0], [0.1, 0.0, 0.0], [0.5, -1.0, 0.0]]
+    return z
+
+
+@pytest.mark.parametrize("name", list(CASES))
+def test_batch_matches_the_scalar_method(name):
+    params = CASES[name]
+    z0 = starts(120, seed=len(name))
+    t = np.linspace(0, 20, 201)
+    batch = simulate_batch(params, z0, 20.0, t_eval=t)
+    for i, zi in enumerate(z0):
+        sol = simulate(params, zi, 20.0, t_eval=t)
+        assert batch.status[i] == sol.status, i
+        assert batch.n_events[i] == len(sol.events), i
+        got = batch.events(i)
+        assert [e[1:] for e in got] == [e[1:] for e in sol.events], i
+        assert np.allclose([e[0] for e in got], [e[0] for e in sol.events], rtol=1e-12, atol=1e-12), i
+        assert relative_error(batch.z[i], sol.z, scale=max(1.0, np.linalg.norm(zi))) <= 1e-12, i
+        assert np.array_equal(batch.mode[i], sol.mode), i
+
+
+def test_batch_matches_the_reference():
+    params = CASES["a"]
+    z0 = np.array([[0.0, 5.0, 0.0], [-3.0, 3.0, -3.0], [0.5, -1.0, 0.0]])
+    t = np.linspace(0, 30, 301)
+    batch = simulate_batch(params, z0, 30.0, t_eval=t)
+    for i, zi in enumerate(z0):
+        ref = Reference(params, tuple(zi), 30.0)
+        z_ref, _ = ref.sample(t)
+        assert relative_error(batch.z[i], z_ref, scale=max(1.0, np.linalg.norm(zi))) <= 1e-10
+        want = ref.event_list()
+        assert [e[1:] for e in batch.events(i)] == [e[1:] for e in want]
+        assert max(abs(a[0] - b[0]) for a, b in zip(batch.events(i), want)) <= 1e-10
+
+
+def test_shapes_types_and_statuses():
+    params = CASES["a"]
+    z0 = [[0.0, 5.0, 0.0], [-0.25, 0.0, 0.0], [0.0, 0.0, 3.0]]
+    sol = simulate_batch(params, z0, 30.0, t_eval=np.linspace(0, 30, 61))
+    assert isinstance(sol, BatchSolution)
+    assert sol.t.shape == (61,) and sol.z.shape == (3, 61, 3) and sol.mode.shape == (3, 61)
+    assert sol.mode.dtype == np.int8 and sol.n_events.dtype.kind == "i"
+    assert sol.status.tolist() == [Status.T_END, Status.EQUILIBRIUM, Status.T_END]
+    assert np.array_equal(sol.t_stop, [30.0, 30.0, 30.0])
+    assert sol.event_times.shape == (3, int(sol.n_events.max()))
+    assert np.isnan(sol.event_times[1]).all() and sol.n_events[1] == 0
+    assert np.all(sol.z[1] == [-0.25, 0.0, 0.0])
+    assert sol.x.shape == (3, 61, 3)
+    assert np.array_equal(sol.z[:, 0], np.array(z0))
+
+
+def test_default_grid():
+    sol = simulate_batch(CASES["b"], [[0.0, 5.0, 5.0]], 12.0, grid_points=25)
+    assert np.array_equal(sol.t, np.linspace(0, 12, 25))
+
+
+def test_max_events_stops_each_trajectory_at_its_own_event():
+    params = CASES["a"]
+    z0 = np.array([[0.0, 5.0, 0.0], [0.0, 0.0, 3.0], [-0.25, 0.0, 0.0]])
+    t = np.linspace(0, 30, 301)
+    sol = simulate_batch(params, z0, 30.0, t_eval=t, max_events=4)
+    for i in range(3):
+        one = simulate(params, z0[i], 30.0, t_eval=t, max_events=4)
+        assert sol.status[i] == one.status
+        assert [e[1:] for e in sol.events(i)] == [e[1:] for e in one.events]
+        assert np.allclose([e[0] for e in sol.events(i)], [e[0] for e in one.events], rtol=1e-14)
+        back = sol.solution(i)
+        assert np.array_equal(back.t, one.t)
+        assert relative_error(back.z, one.z) <= 1e-12
+        if one.status == Status.MAX_EVENTS:
+            assert sol.t_stop[i] == pytest.approx(one.events[-1][0], rel=1e-14)
+            assert np.isnan(sol.z[i, t > sol.t_stop[i]]).all()
+
+
+def test_the_batch_method_rejects_bad_input_with_specific_messages():
+    p = CASES["a"]
+    with pytest.raises(SimulationError, match=r"Z0 must have shape \(N, 3\) with N ≥ 1; got shape \(3,\)"):
+        simulate_batch(p, [0.0, 1.0, 2.0], 1.0)
+    with pytest.raises(SimulationError, match=r"got shape \(0, 3\)"):
+        simulate_batch(p, np.zeros((0, 3)), 1.0)
+    with pytest.raises(SimulationError, match=r"must be finite; 1 row\(s\) are not, first row 1: \[nan, 0.0, 0.0\]"):
+        simulate_batch(p, [[0, 0, 0], [np.nan, 0, 0]], 1.0)
+    with pytest.raises(SimulationError, match=r"Z0 must be an \(N, 3\) array of numbers"):
+        simulate_batch(p, [["a", "b", "c"]], 1.0)
+    with pytest.raises(SimulationError, match=r"t_end must be finite and > 0; got -1"):
+        simulate_batch(p, [[0, 0, 1]], -1)
+    with pytest.raises(SimulationError, match=r"max_events must be an integer ≥ 1; got 0"):
+        simulate_batch(p, [[0, 0, 1]], 1.0, max_events=0)
+    with pytest.raises(SimulationError, match=r"grid_points must be an integer ≥ 2; got 1"):
+        simulate_batch(p, [[0, 0, 1]], 1.0, grid_points=1)
+    with pytest.raises(SimulationError, match=r"t_eval must be nondecreasing within \[0, t_end\]"):
+        simulate_batch(p, [[0, 0, 1]], 1.0, t_eval=[0.0, 2.0])
+    with pytest.raises(SimulationError, match=r"params must be a Parameters instance; got dict"):
+        simulate_batch({"k_p": 1}, [[0, 0, 1]], 1.0)
+
+
+def test_the_simulation_package_exports_the_batch_lazily():
+    import symbolic_friction._simulation as sim
+
+    assert sim.simulate_batch is simulate_batch and sim.BatchSolution is BatchSolution
+    with pytest.raises(AttributeError, match=r"'symbolic_friction._simulation' has no attribute 'simulate_fast'"):
+        sim.simulate_fast  # noqa: B018
