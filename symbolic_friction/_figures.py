@@ -22,13 +22,13 @@ File names are deterministic (``fig2_region_R.png``, ``fig3a_solutions.png``, â€
 from __future__ import annotations
 
 import importlib
-import os
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 from ._errors import SymbolicFrictionError
+from ._io import atomic_write
 
 __all__ = [
     "FigureSpec",
@@ -115,9 +115,7 @@ def _pyplot() -> Any:
 
 def _save(fig: Any, path: Path) -> Path:
     """Save atomically with fixed metadata, so reruns give the same bytes."""
-    tmp = path.with_name(f".{path.stem}.tmp.png")
-    fig.savefig(tmp, dpi=130, metadata={"Software": None})
-    os.replace(tmp, path)
+    atomic_write(path, lambda fh: fig.savefig(fh, format="png", dpi=130, metadata={"Software": None}))
     _pyplot().close(fig)
     return path
 

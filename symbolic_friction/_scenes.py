@@ -54,6 +54,7 @@ from pathlib import Path
 from typing import Any
 
 from ._errors import SceneError, SymbolicFrictionError
+from ._io import atomic_write, atomic_write_text
 from ._parameters import Parameters
 from ._rational import format_rational, to_rational
 
@@ -527,12 +528,12 @@ class SceneResult:
                         str(int(a[j])) if key == "mode" else repr(float(a[j])) for key, a in zip(cols, arrays)
                     ]
                     lines.append(",".join(row))
-            files.append(_atomic_write_text(out / f"{name}.csv", "\n".join(lines) + "\n"))
+            files.append(atomic_write_text(out / f"{name}.csv", "\n".join(lines) + "\n"))
         if "events" in self.scene.outputs:
             lines = ["trajectory,t,mode_before,mode_after"]
             for i, sol in enumerate(self.solutions):
                 lines += [f"{i},{float(t)!r},{int(a)},{int(b)}" for t, a, b in sol.events]
-            files.append(_atomic_write_text(out / f"{name}_events.csv", "\n".join(lines) + "\n"))
+            files.append(atomic_write_text(out / f"{name}_events.csv", "\n".join(lines) + "\n"))
         return files
 
     def _write_npz(self, out: Path) -> list[Path]:
@@ -557,23 +558,13 @@ class SceneResult:
             if "events" in self.scene.outputs:
                 arrays[f"events_{i}"] = np.array(sol.events, dtype=float).reshape(-1, 3)
         path = out / f"{self.scene.name}.npz"
-        tmp = path.with_name(f".{path.name}.tmp")
-        with open(tmp, "wb") as fh:
-            np.savez(fh, **arrays)
-        tmp.replace(path)
+        atomic_write(path, lambda fh: np.savez(fh, **arrays))
         return [path]
 
     def _write_png(self, out: Path) -> Path:
         from ._figures import plot_scene
 
         return plot_scene(self, out / f"{self.scene.name}.png")
-
-
-def _atomic_write_text(path: Path, text: str) -> Path:
-    tmp = path.with_name(f".{path.name}.tmp")
-    tmp.write_text(text, encoding="utf-8")
-    tmp.replace(path)
-    return path
 
 
 # ---------------------------------------------------------------- built-in scenes

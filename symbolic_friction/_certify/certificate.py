@@ -34,13 +34,13 @@ from __future__ import annotations
 import json
 import os
 import re
-import tempfile
 from dataclasses import dataclass, field
 from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
 from .._errors import CertificateFormatError
+from .._io import atomic_write_text
 from .._rational import format_rational
 
 __all__ = [
@@ -414,34 +414,6 @@ def load(path: str | os.PathLike[str]) -> Certificate:
     """Read and parse a certificate file (see :func:`loads`)."""
     path = Path(path)
     return loads(path.read_bytes(), source=str(path))
-
-
-def atomic_write_text(path: str | os.PathLike[str], text: str) -> Path:
-    """Write ``text`` to ``path`` atomically (temporary file in the same directory + ``os.replace``).
-
-    Readers see either the old file or the complete new one, never a
-    partial write.  Line endings are written as ``\\n`` on every platform.
-    """
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    # mkstemp creates the file 0600; give the result the mode of the file it
-    # replaces (or the usual 0644) so committed files stay world-readable.
-    mode = path.stat().st_mode & 0o777 if path.exists() else 0o644
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    try:
-        os.chmod(tmp, mode)
-        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as handle:
-            handle.write(text)
-            handle.flush()
-            os.fsync(handle.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        try:
-            os.unlink(tmp)
-        except FileNotFoundError:
-            pass
-        raise
-    return path
 
 
 # Unambiguous names for the package's top-level API.

@@ -120,7 +120,7 @@ def select_modes(sigma: Any, phi: Any, v: Any, f_c: float) -> np.ndarray:
 
 def _gap_tol(k: Any, f_c: float, tol: Any) -> Any:
     """Uncertainty of ``k·f_c + offset`` when ``offset`` is known within ``tol``."""
-    return tol + 4.0 * _EPS * np.abs(k) * f_c
+    return tol + 4.0 * _EPS * abs(k) * f_c  # abs: fine for floats and arrays alike
 
 
 def mode_at_rest(sigma: float, base: int, offset: float, f_c: float, tol: float) -> tuple[int, float, int]:

@@ -209,23 +209,21 @@ def _march(
     return a, y
 
 
-def _blocked(table: "ScanTable", last: int, s, p, v, d, r_p, m4: float) -> np.ndarray:
+def _blocked(table: "ScanTable", last: int, y: np.ndarray, d, r_p, m4: float) -> np.ndarray:
     """Cells ``0 … last-1`` of a window that the scan cannot clear.
 
-    ``s, p, v`` is the offset at the window's start, ``r_p`` its P-norm;
-    ``s, p, v, d, r_p`` are floats (one trajectory) or columns (R, 1), and
-    the result has shape (last,) or (R, cells).
+    ``y`` is the offset ``(σ, p, v)`` at the window's start, shape (3,) for one
+    trajectory or (R, 3); ``d`` and ``r_p`` (its P-norm) are floats or
+    columns (R, 1).  The result has shape (last,) or (R, last).
     """
-    n = last if np.ndim(s) == 0 else table.cells
-    w = table.values[:, : n + 1]
+    w = table.values[:, : last + 1]
     dt = table.dt
-    u = d * (s * w[0] + p * w[1] + v * w[2])
-    u2 = np.abs(s * w[2] + p * w[3] + v * w[4])
+    u = d * (y @ w[0:3])  # v on the grid, from rows w, w', w''
+    u2 = np.abs(y @ w[2:5])  # v'' on the grid, from rows w'', w''', w⁗
     # |u''| on a cell ≤ max of its ends + Δ² max|u⁗| / 8, with |u⁗| ≤ m4 |y|_P
     slack = 0.125 * dt * dt * (np.maximum(u2[..., :-1], u2[..., 1:]) + 0.125 * dt * dt * m4 * r_p)
     # plus the rounding of the products that gave u and u''
-    g = table.noise[:, :n]
-    noise = np.abs(s) * g[0] + np.abs(p) * g[1] + np.abs(v) * g[2]
+    noise = np.abs(y) @ table.noise[:, :last]
     return ~(np.minimum(u[..., :-1], u[..., 1:]) > slack + noise)
 
 
@@ -266,7 +264,7 @@ def first_zero(
         s, p, v = y_w
         r_p = _p_norm(s, p, v, kv_ki, k_p)
         last = min(n_cells, math.ceil((horizon - a_w) / dt))
-        for j in np.flatnonzero(_blocked(table, last, s, p, v, d, r_p, m4)):
+        for j in np.flatnonzero(_blocked(table, last, np.array(y_w), d, r_p, m4)):
             a0 = a_w + float(j) * dt
             y_a0 = y_w if j == 0 else slip.state(a0)
             tau, y = _march(slip, model, a0, y_a0, min(a0 + dt, horizon))
@@ -319,9 +317,9 @@ def first_zeros(
         last = np.minimum(n_cells, np.ceil((horizon - a_w) / dt)).astype(int)
         for lo in range(0, rows.size, chunk):
             part = rows[lo : lo + chunk]
-            s, p, v = y_w[part, 0:1], y_w[part, 1:2], y_w[part, 2:3]
-            r_p = _p_norm_vec(s, p, v, kv_ki, k_p)
-            blocked = _blocked(table, n_cells, s, p, v, d[part, None], r_p, m4)
+            yp = y_w[part]
+            r_p = _p_norm_vec(yp[:, 0:1], yp[:, 1:2], yp[:, 2:3], kv_ki, k_p)
+            blocked = _blocked(table, n_cells, yp, d[part, None], r_p, m4)
             blocked &= cells[None, :] < last[part, None]
             _march_cells(model, q0, q1, q2, d, horizon, part, a_w, blocked, tau, open_)
         a_w = np.where(open_, a_w + table.window, a_w)
