@@ -111,6 +111,12 @@ _LAZY: dict[str, str] = {
     "make_figures": "._figures",
     "available_figures": "._figures",
     "simulate": "._simulation",
+    "simulate_batch": "._simulation.batch",
+    "BatchSolution": "._simulation.batch",
+    "Status": "._simulation._base",
+    "MatrixExponential": "._simulation.affine",
+    "select_mode": "._simulation.modes",
+    "table_row": "._simulation.modes",
     "SimulationMethod": "._simulation._base",
 }
 
