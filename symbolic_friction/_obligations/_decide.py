@@ -4,12 +4,13 @@ The obligations decide inequalities for *symbolic* gains.  This module keeps
 that decision sound and deliberately simple:
 
 * :func:`sign_of` decides the sign of a rational function all of whose free
-  symbols are declared positive, by a **sign-definite decomposition**: after
-  ``together`` the numerator and the denominator are expanded, and each must
-  have all its coefficients of one sign.  A polynomial with only positive
-  coefficients is positive wherever its variables are positive, so the answer
-  is correct whenever one is given; ``None`` means "not decided" and the
-  obligation then fails instead of guessing.
+  symbols are declared positive, by a **sign-definite decomposition**: a
+  polynomial is expanded, a rational function split by ``together`` into a
+  numerator and a denominator, and each must have all its coefficients of
+  one sign.  A polynomial with only positive coefficients is positive
+  wherever its variables are positive, so the answer is correct whenever
+  one is given; ``None`` means "not decided" and the obligation then fails
+  instead of guessing.
 * Regions of the state space are written with fresh positive symbols
   (``c + p``, ``c - p``, ``(a·hi + b·lo)/(a + b)``), each of which covers its
   region exactly, so a sign decided on the parametrisation holds on the whole
@@ -26,7 +27,7 @@ No floating-point number is used anywhere.
 from __future__ import annotations
 
 import functools
-from collections.abc import Iterable, Sequence
+from collections.abc import Sequence
 from typing import Any
 
 import sympy as sp
@@ -98,13 +99,22 @@ def is_zero(expr: Any) -> bool:
     return sp.simplify(num) == 0
 
 
+def _number_sign(x: sp.Expr) -> int | None:
+    if x.is_zero:
+        return 0
+    return 1 if x.is_positive else (-1 if x.is_negative else None)
+
+
 def _poly_sign(p: sp.Expr) -> int | None:
+    """Sign of an expanded polynomial whose rational coefficients all have one sign."""
+    if p == 0:
+        return 0
     if p.is_number:
-        if p.is_zero:
-            return 0
-        return 1 if p.is_positive else (-1 if p.is_negative else None)
-    poly = sp.Poly(p, *sorted(p.free_symbols, key=sp.default_sort_key))
-    coeffs = poly.coeffs()
+        return _number_sign(p)
+    try:
+        coeffs = sp.Poly(p, *sorted(p.free_symbols, key=sp.default_sort_key)).coeffs()
+    except sp.PolynomialError:  # radicals or other non-polynomial parts
+        return None
     if not all(c.is_Rational for c in coeffs):
         return None
     if all(c > 0 for c in coeffs):
@@ -114,78 +124,79 @@ def _poly_sign(p: sp.Expr) -> int | None:
     return None
 
 
-def sign_of(expr: Any) -> int | None:
-    """Sign of ``expr`` (1, 0 or -1) on the positive orthant, or ``None`` if not decided.
+def _has_denominator(expr: sp.Expr) -> bool:
+    return any(isinstance(a, sp.Pow) and a.exp.is_negative for a in sp.preorder_traversal(expr))
 
-    Every free symbol must be declared positive; otherwise ``None``.
+
+def sign_of(expr: Any) -> int | None:
+    """Sign (1, 0 or -1) of ``expr`` on the positive orthant, or ``None`` if not decided.
+
+    Every free symbol must be declared positive; otherwise ``None``.  A
+    polynomial is expanded and decided directly; a rational function by the
+    numerator and denominator of ``together``, each of which must have
+    coefficients of one sign.  No separate zero test is needed: a rational
+    function is zero iff the expanded numerator of ``together`` is.  Common
+    factors are not cancelled, so a sign they hide stays undecided (sound,
+    and cheaper: on the obligations such a cancellation never decided a
+    sign).
     """
     expr = sp.sympify(expr)
+    if expr.is_number:
+        return _number_sign(expr)
+    if any(s.is_positive is not True for s in expr.free_symbols):
+        return None
     if expr.has(sp.Piecewise, sp.Abs, sp.sign, sp.Max, sp.Min):
         return None
+    if not _has_denominator(expr):
+        return _poly_sign(sp.expand(expr))
     num, den = sp.fraction(sp.together(expr))
-    result = _fraction_sign(sp.expand(num), sp.expand(den))
-    if result is None:  # common factors may hide the sign, or carry non-positive symbols that cancel
-        num, den = sp.fraction(sp.cancel(num / den))
-        result = _fraction_sign(sp.expand(num), sp.expand(den))
-    return result
-
-
-def _fraction_sign(num: sp.Expr, den: sp.Expr) -> int | None:
-    if num == 0:
-        return 0
-    if any(s.is_positive is not True for s in num.free_symbols | den.free_symbols):
-        return None
-    try:
-        sn, sd = _poly_sign(num), _poly_sign(den)
-    except sp.PolynomialError:  # radicals or other non-polynomial parts
-        return None
+    sn, sd = _poly_sign(sp.expand(num)), _poly_sign(sp.expand(den))
     if sn is None or sd is None or sd == 0:
         return None
     return sn * sd
 
 
 _REL = {
-    sp.StrictGreaterThan: lambda s: {1: True, 0: False, -1: False}[s],
-    sp.GreaterThan: lambda s: {1: True, 0: True, -1: False}[s],
-    sp.StrictLessThan: lambda s: {1: False, 0: False, -1: True}[s],
-    sp.LessThan: lambda s: {1: False, 0: True, -1: True}[s],
-    sp.Equality: lambda s: s == 0,
-    sp.Unequality: lambda s: s != 0,
+    sp.StrictGreaterThan: {1: True, 0: False, -1: False},
+    sp.GreaterThan: {1: True, 0: True, -1: False},
+    sp.StrictLessThan: {1: False, 0: False, -1: True},
+    sp.LessThan: {1: False, 0: True, -1: True},
+    sp.Equality: {1: False, 0: True, -1: False},
+    sp.Unequality: {1: True, 0: False, -1: True},
 }
 
 
 def decide(cond: Any) -> bool | None:
-    """Truth value of a relation (or And/Or/Not of relations) on the positive orthant; ``None`` if undecided."""
+    """Truth value of a relation (or And/Or/Not of relations) via :func:`sign_of`; ``None`` if undecided."""
     if cond is True or cond is sp.true:
         return True
     if cond is False or cond is sp.false:
         return False
-    if isinstance(cond, sp.And):
+    if isinstance(cond, (sp.And, sp.Or)):
         vals = [decide(a) for a in cond.args]
-        return False if False in vals else (None if None in vals else True)
-    if isinstance(cond, sp.Or):
-        vals = [decide(a) for a in cond.args]
+        if isinstance(cond, sp.And):
+            return False if False in vals else (None if None in vals else True)
         return True if True in vals else (None if None in vals else False)
     if isinstance(cond, sp.Not):
         val = decide(cond.args[0])
         return None if val is None else not val
-    for kind, rule in _REL.items():
+    for kind, table in _REL.items():
         if isinstance(cond, kind):
-            s = sign_of(cond.lhs - cond.rhs)
-            return None if s is None else rule(s)
+            sg = sign_of(cond.lhs - cond.rhs)
+            return None if sg is None else table[sg]
     return None
 
 
 def resolve_piecewise(expr: Any) -> sp.Expr:
-    """Replace every ``Piecewise`` by the branch whose condition is decided true.
+    """Replace every ``Piecewise`` by its first branch whose condition :func:`decide` shows true.
 
     Raises
     ------
     Undecided
-        If a condition before the chosen branch cannot be decided.
+        If a condition met before the chosen branch cannot be decided.
     """
 
-    def pick(*pairs):
+    def pick(*pairs: Any) -> Any:
         for pair in pairs:
             e, c = pair.args
             val = decide(c)

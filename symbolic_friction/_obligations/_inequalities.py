@@ -7,11 +7,10 @@ the side of "not proved": a function answers ``True`` only when it has a
 certificate, and ``False`` means "no certificate found", which makes the
 calling obligation fail rather than guess.
 
-* :func:`sign_of`, :func:`decide` and :func:`resolve` decide signs, relations
-  and ``Piecewise`` branches for rational functions of positive symbols by
-  the sign-definite decomposition of :mod:`._decide` (numerator and
-  denominator with coefficients of one sign), with a fast path for
-  polynomials.
+* Signs, relations and ``Piecewise`` branches are decided by
+  :func:`._decide.sign_of`, :func:`._decide.decide` and
+  :func:`._decide.resolve_piecewise` (numerator and denominator with
+  coefficients of one sign).
 * :func:`is_nonneg` proves ``expr ≥ 0`` for every value of its free symbols
   allowed by their sympy assumptions (positive, nonnegative or merely real)
   by one of three *sign-definite decompositions* of the numerator: all
@@ -41,19 +40,17 @@ from dataclasses import dataclass
 from typing import Any
 
 import sympy as sp
-from sympy.functions.elementary.piecewise import ExprCondPair
 
-from ._decide import Undecided, is_zero, latex
+from ._decide import is_zero, sign_of
 
 __all__ = [
-    "sign_of",
-    "decide",
-    "resolve",
     "is_nonneg",
     "is_nonpos",
     "canonical",
     "Case",
     "line_cases",
+    "sign_cases",
+    "phi_cases",
     "case_grid",
     "block_eigen_bounds",
     "is_upper_bound_of",
@@ -61,116 +58,6 @@ __all__ = [
     "label_latex",
     "rows_latex",
 ]
-
-
-# --------------------------------------------------------------------------
-# signs and branch decisions on the positive orthant
-# --------------------------------------------------------------------------
-
-
-def _poly_sign(p: sp.Expr) -> int | None:
-    if p == 0:
-        return 0
-    if p.is_number:
-        return 1 if p.is_positive else (-1 if p.is_negative else None)
-    try:
-        coeffs = sp.Poly(p, *sorted(p.free_symbols, key=sp.default_sort_key)).coeffs()
-    except sp.PolynomialError:
-        return None
-    if not all(c.is_Rational for c in coeffs):
-        return None
-    if all(c > 0 for c in coeffs):
-        return 1
-    if all(c < 0 for c in coeffs):
-        return -1
-    return None
-
-
-def _has_denominator(expr: sp.Expr) -> bool:
-    return any(isinstance(a, sp.Pow) and a.exp.is_negative for a in sp.preorder_traversal(expr))
-
-
-def sign_of(expr: Any) -> int | None:
-    """Sign (1, 0, -1) of a rational function of positive symbols, or ``None``.
-
-    The same sign-definite decomposition as :func:`._decide.sign_of`
-    (numerator and denominator of ``together`` each with coefficients of one
-    sign), without its separate zero test, which dominated the running time
-    of the Lemma 3 obligations: a rational function is zero iff the expanded
-    numerator of ``together`` is.
-    """
-    expr = sp.sympify(expr)
-    if expr.is_number:
-        if expr.is_zero:
-            return 0
-        return 1 if expr.is_positive else (-1 if expr.is_negative else None)
-    if any(s.is_positive is not True for s in expr.free_symbols):
-        return None
-    if expr.has(sp.Piecewise, sp.Abs, sp.sign, sp.Max, sp.Min):
-        return None
-    if not _has_denominator(expr):
-        return _poly_sign(sp.expand(expr))
-    num, den = sp.fraction(sp.together(expr))
-    sn, sd = _poly_sign(sp.expand(num)), _poly_sign(sp.expand(den))
-    if sn is None or sd is None or sd == 0:
-        return None
-    return sn * sd
-
-
-_REL = {
-    sp.StrictGreaterThan: {1: True, 0: False, -1: False},
-    sp.GreaterThan: {1: True, 0: True, -1: False},
-    sp.StrictLessThan: {1: False, 0: False, -1: True},
-    sp.LessThan: {1: False, 0: True, -1: True},
-    sp.Equality: {1: False, 0: True, -1: False},
-    sp.Unequality: {1: True, 0: False, -1: True},
-}
-
-
-def decide(cond: Any) -> bool | None:
-    """Truth value of a relation (or And/Or/Not of relations) via :func:`sign_of`; ``None`` if undecided."""
-    if cond is True or cond is sp.true:
-        return True
-    if cond is False or cond is sp.false:
-        return False
-    if isinstance(cond, (sp.And, sp.Or)):
-        vals = [decide(a) for a in cond.args]
-        if isinstance(cond, sp.And):
-            return False if False in vals else (None if None in vals else True)
-        return True if True in vals else (None if None in vals else False)
-    if isinstance(cond, sp.Not):
-        val = decide(cond.args[0])
-        return None if val is None else not val
-    for kind, table in _REL.items():
-        if isinstance(cond, kind):
-            sg = sign_of(cond.lhs - cond.rhs)
-            return None if sg is None else table[sg]
-    return None
-
-
-def resolve(expr: Any) -> sp.Expr:
-    """Replace every ``Piecewise`` by its first branch whose condition :func:`decide` shows true.
-
-    Raises
-    ------
-    Undecided
-        If a condition met before the chosen branch cannot be decided.
-    """
-
-    def pick(*pairs: Any) -> Any:
-        for pair in pairs:
-            e, c = pair.args if isinstance(pair, ExprCondPair) else pair
-            val = decide(c)
-            if val is True:
-                return e
-            if val is None:
-                raise Undecided(f"cannot decide the branch condition {c}")
-        raise Undecided("no branch of a Piecewise applies")
-
-    expr = sp.sympify(expr)
-    while expr.has(sp.Piecewise):
-        expr = expr.replace(sp.Piecewise, pick)
-    return expr
 
 
 # --------------------------------------------------------------------------
@@ -441,6 +328,16 @@ def line_cases(
     return out
 
 
+def sign_cases(var: sp.Symbol, name: str, beyond: str) -> list[Case]:
+    """Split ``var`` at 0: ``var < 0``, ``var = 0``, ``var > 0`` (``beyond`` names ``|var|``)."""
+    return line_cases(var, [0], name=name, beyond=beyond, labels=["0"])
+
+
+def phi_cases(phi: sp.Symbol, f_c: sp.Symbol) -> list[Case]:
+    """Split ``φ`` at ``±f_c`` (the breakpoints of ``dz``), the open piece ``|φ| < f_c`` polynomially."""
+    return line_cases(phi, [-f_c, f_c], name="φ", beyond="d_phi", weights=("u_phi", "w_phi"), labels=["-f_c", "f_c"])
+
+
 def case_grid(*splits: Sequence[Case]) -> list[Case]:
     """The product of several splits of distinct variables."""
     out = []
@@ -515,33 +412,32 @@ def _same(a: Any, b: Any) -> bool:
     return is_zero(sp.sympify(a) - sp.sympify(b))
 
 
-def is_upper_bound_of(c: Any, values: Sequence[Any]) -> bool:
-    """Whether ``c ≥ v`` for every ``v`` in ``values``.
+def _is_bound_of(c: Any, values: Sequence[Any], *, extremum: type, upper: bool) -> bool:
+    """Whether ``c`` bounds every value (``c ≥ v`` if ``upper``, else ``c ≤ v``).
 
-    ``c`` may be a ``Max`` that lists each value among its arguments
-    (then ``c ≥ v`` by definition), or ``c - v ≥ 0`` must be proved by
-    :func:`is_nonneg`.
+    ``c`` may be an ``extremum`` (``Max`` for an upper bound, ``Min`` for a
+    lower one) that lists the value among its arguments, which bounds it by
+    definition; otherwise ``c`` must equal the value or the gap must be proved
+    by :func:`is_nonneg`.
     """
     c = sp.sympify(c)
     for v in values:
-        if isinstance(c, sp.Max) and any(_same(arg, v) for arg in c.args):
+        if isinstance(c, extremum) and any(_same(arg, v) for arg in c.args):
             continue
-        if _same(c, v) or is_nonneg(c - v):
+        if _same(c, v) or is_nonneg(c - v if upper else v - c):
             continue
         return False
     return True
+
+
+def is_upper_bound_of(c: Any, values: Sequence[Any]) -> bool:
+    """Whether ``c ≥ v`` for every ``v`` in ``values`` (``Max`` or :func:`is_nonneg`)."""
+    return _is_bound_of(c, values, extremum=sp.Max, upper=True)
 
 
 def is_lower_bound_of(c: Any, values: Sequence[Any]) -> bool:
     """Whether ``c ≤ v`` for every ``v`` in ``values`` (``Min`` or :func:`is_nonneg`)."""
-    c = sp.sympify(c)
-    for v in values:
-        if isinstance(c, sp.Min) and any(_same(arg, v) for arg in c.args):
-            continue
-        if _same(c, v) or is_nonneg(v - c):
-            continue
-        return False
-    return True
+    return _is_bound_of(c, values, extremum=sp.Min, upper=False)
 
 
 _LABEL_TEX = {"σ": "\\sigma ", "φ": "\\phi ", "ρ": "\\rho ", "≤": "\\le ", "≥": "\\ge ", ",": ",\\ "}

@@ -30,10 +30,9 @@ from dataclasses import dataclass
 import sympy as sp
 
 from .. import _symbolic
-from .._lyapunov import V_k, quadratic_form
 from ._base import Erratum, Obligation, Outcome
-from ._decide import G, Undecided, decide, is_zero, latex, minimum_on, phi_classes, pos, sign_classes, sign_of
-from .lemma2 import F0_MATRIX
+from ._decide import G, Undecided, decide, is_zero, latex, phi_classes, pos, sign_classes, sign_of
+from .lemma2 import affine_fields, decrease_rate, friction_form, friction_minimum, lyapunov_pieces, under_assumption1
 from .model import sgn_sets
 
 __all__ = ["Row", "StickBranch", "Claim1Cases", "OBLIGATIONS", "ROWS"]
@@ -146,18 +145,16 @@ class Claim1Cases(Obligation):
 
     def derive(self) -> Claim1Subject:
         g = G()
-        x = sp.Matrix([g.sigma, g.phi, g.v])
-        A, b = sp.ImmutableMatrix(_symbolic.A(g)), sp.ImmutableMatrix(_symbolic.b(g))
         sb, pb, vb, t = _bar_symbols()
-        y = sp.Symbol("y", real=True)
+        form, y = friction_form(g)
         return Claim1Subject(
             rows=table_rows(g.f_c),
-            A=A,
-            b=b,
-            f={1: sp.ImmutableMatrix(A * x - b), 0: sp.ImmutableMatrix(sp.Matrix(F0_MATRIX) * x), -1: sp.ImmutableMatrix(A * x + b)},
-            V={k: sp.expand(V_k(g, [g.sigma, g.phi, g.v], k)) for k in (1, 0, -1)},
-            form=quadratic_form(g, g.sigma, y, g.v),
-            c=2 * (g.k_v * g.k_p - g.k_i),
+            A=sp.ImmutableMatrix(_symbolic.A(g)),
+            b=sp.ImmutableMatrix(_symbolic.b(g)),
+            f=affine_fields(g),
+            V=lyapunov_pieces(g),
+            form=form,
+            c=decrease_rate(g),
             sgn=sgn_sets(),
             state=(g.sigma, g.phi, g.v),
             y=y,
@@ -170,13 +167,9 @@ class Claim1Cases(Obligation):
 
     def _V(self, S: Claim1Subject, point, v_sign: int) -> sp.Expr:
         """``V`` of eq. (lyapLikeV) at ``point`` whose ``v`` has sign ``v_sign``: exact min over f ∈ f_c SGN(v)."""
-        w = sp.Symbol("w", real=True)
         sigma, phi, v = point
         at = S.form.subs({S.state[0]: sigma, S.state[2]: v}, simultaneous=True)
-        # Only the part that depends on f is minimised (smaller expressions, same minimum).
-        rest = at.subs(S.y, 0)
-        moving = sp.expand(at.subs(S.y, phi - S.f_c * w) - rest)
-        return rest + minimum_on(moving, w, S.sgn[v_sign])
+        return at.subs(S.y, 0) + friction_minimum(at, S.y, phi, S.f_c, S.sgn[v_sign])
 
     def _Vk(self, S: Claim1Subject, k: int, point) -> sp.Expr:
         return S.V[k].subs(dict(zip(S.state, point)), simultaneous=True)
@@ -204,7 +197,7 @@ class Claim1Cases(Obligation):
             hits = [r.label for r in S.rows if _matches(r.v, cv) and _matches(r.phi, cp) and _matches(r.sigma, cs)]
             if len(hits) != 1:
                 return Outcome.fail(f"the initial conditions v̄ {cv}, {cp}, σ̄ {cs} fall in {len(hits)} rows {hits}, not exactly one")
-        c_pos = sign_of(sp.factor(S.c.subs(_symbolic.assumption1_substitution(G()))))
+        c_pos = sign_of(under_assumption1(S.c))
         if c_pos != 1:
             return Outcome.fail(f"c = {S.c} is not shown positive under Assumption 1")
         for row in S.rows:

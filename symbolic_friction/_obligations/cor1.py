@@ -27,8 +27,8 @@ import sympy as sp
 
 from .. import _symbolic
 from ._base import Erratum, Obligation, Outcome
-from ._decide import G, Undecided, is_zero, latex
-from ._inequalities import Case, decide, is_nonneg, label_latex, line_cases, resolve, rows_latex
+from ._decide import G, Undecided, decide, is_zero, latex, resolve_piecewise
+from ._inequalities import Case, is_nonneg, label_latex, line_cases, rows_latex, sign_cases
 
 __all__ = ["OBLIGATIONS", "Inflation", "Distances", "InflationSubject", "DistancesSubject"]
 
@@ -57,7 +57,7 @@ def _expand_abs_relations(expr: Any) -> Any:
 
 
 def _resolve(expr: Any) -> sp.Expr:
-    return resolve(_expand_abs_relations(expr))
+    return resolve_piecewise(_expand_abs_relations(expr))
 
 
 def _counterexample(expr: sp.Expr) -> dict | None:
@@ -140,7 +140,7 @@ class Inflation(Obligation):
         r_pos = sp.Symbol("r", positive=True)
         nonzero = sp.Ne(u, 0)
         big = sp.Abs(v) > r
-        v_at_zero = line_cases(v, [0], name="v", beyond="t_v", labels=["0"])
+        v_at_zero = sign_cases(v, "v", "t_v")
         v_at_r = line_cases(v, [-r_pos, r_pos], name="v", beyond="t_v", weights=("p_v", "q_v"), labels=["-|ρ|", "|ρ|"])
         cases = [Case(f"|ρ| = 0, {c.label}", ((r, sp.Integer(0)),) + c.values, c.slacks) for c in v_at_zero]
         for c in v_at_r:

@@ -23,7 +23,7 @@ import sympy as sp
 
 from .. import _symbolic
 from ._base import Obligation, Outcome
-from ._decide import G, Undecided, is_zero, latex, pos, sign_of, vertices
+from ._decide import G, Undecided, is_zero, latex, sign_classes, sign_of, vertices
 from .model import sgn_sets
 
 __all__ = ["Lemma1Uniqueness", "OBLIGATIONS"]
@@ -63,11 +63,9 @@ class Lemma1Uniqueness(Obligation):
             return Outcome.fail(f"the friction term is {sp.factor(friction)}, not δ_v(f_2 - f_1) = {sp.factor(paper_form)}", tuple(details))
         if sp.Poly(friction, w1, w2).degree(w1) > 1 or sp.Poly(friction, w1, w2).degree(w2) > 1:
             return Outcome.fail(f"the friction term {friction} is not multi-affine in the selections")
-        p, q = pos("p"), pos("q")
-        a = {1: p, 0: sp.Integer(0), -1: -p}  # z_{1,v}
-        bb = {1: q, 0: sp.Integer(0), -1: -q}  # z_{2,v} = z_{1,v} - δ_v
-        for s1, s2 in itertools.product((1, 0, -1), repeat=2):
-            case = {z1[2]: a[s1], z2[2]: bb[s2]}
+        # z_{1,v} = a and z_{2,v} = z_{1,v} - δ_v = bb, each of sign 1, 0 or -1
+        for (_, s1, a), (_, s2, bb) in itertools.product(sign_classes("p"), sign_classes("q")):
+            case = {z1[2]: a, z2[2]: bb}
             h = friction.subs(case)
             # h is multi-affine in (w_1, w_2), so its maximum over the product of
             # SGN sets is attained at a pair of vertices: checking those is exhaustive.
@@ -86,7 +84,7 @@ class Lemma1Uniqueness(Obligation):
             if any(s == 1 for s in signs):
                 bad = values[signs.index(1)]
                 return Outcome.fail(
-                    f"case sign(z_1v) = {s1}, sign(z_1v - δ_v) = {s2} (z_1v = {a[s1]}, z_2v = {bb[s2]}): "
+                    f"case sign(z_1v) = {s1}, sign(z_1v - δ_v) = {s2} (z_1v = {a}, z_2v = {bb}): "
                     f"M(t) ≥ {sp.factor(bad)} > 0",
                     tuple(details),
                 )

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import itertools
 from dataclasses import dataclass
+from typing import Any
 
 import sympy as sp
 
@@ -23,17 +24,70 @@ from .. import _symbolic
 from .._lyapunov import V_k, quadratic_form
 from ._base import Erratum, Obligation, Outcome
 from ._decide import G, Undecided, is_zero, latex, minimum_on, phi_classes, pos, resolve_piecewise, sign_of, sign_classes
-from .model import sgn_sets
+from .model import distance_squared, sgn_sets
 
-__all__ = ["Lemma2P", "Lemma2LowerBound", "Lemma2dVdt", "RemarkArmstrong", "OBLIGATIONS", "F0_MATRIX"]
+__all__ = [
+    "Lemma2P",
+    "Lemma2LowerBound",
+    "Lemma2dVdt",
+    "RemarkArmstrong",
+    "OBLIGATIONS",
+    "F0_MATRIX",
+    "affine_fields",
+    "lyapunov_pieces",
+    "decrease_rate",
+    "friction_form",
+    "friction_minimum",
+    "under_assumption1",
+]
 
 F0_MATRIX = ((0, 0, 0), (1, 0, 0), (0, 0, 0))
 """The matrix of the stick dynamics ``f_0`` in eq. (subcasesAffine:f0), as printed."""
 
 
-def _assume(expr: sp.Expr) -> sp.Expr:
+def under_assumption1(expr: sp.Expr) -> sp.Expr:
     """Encode ``k_v k_p - k_i = δ > 0`` (Assumption 1) in ``expr``."""
     return sp.factor(sp.sympify(expr).subs(_symbolic.assumption1_substitution(G())))
+
+
+def affine_fields(g: _symbolic.Gains) -> dict[int, sp.ImmutableMatrix]:
+    """The affine fields of eq. (subcasesAffine): ``f_{±1} = A x ∓ b`` and ``f_0 = F0_MATRIX x``."""
+    x = sp.Matrix([g.sigma, g.phi, g.v])
+    A, b = sp.Matrix(_symbolic.A(g)), sp.Matrix(_symbolic.b(g))
+    return {1: sp.ImmutableMatrix(A * x - b), 0: sp.ImmutableMatrix(sp.Matrix(F0_MATRIX) * x), -1: sp.ImmutableMatrix(A * x + b)}
+
+
+def lyapunov_pieces(g: _symbolic.Gains) -> dict[int, sp.Expr]:
+    """The package's ``V_k`` of eq. (subcasesAffine:Vs), expanded, for ``k = 1, 0, -1``."""
+    return {k: sp.expand(V_k(g, [g.sigma, g.phi, g.v], k)) for k in (1, 0, -1)}
+
+
+def decrease_rate(g: _symbolic.Gains) -> sp.Expr:
+    """``c = 2(k_v k_p - k_i)`` of eq. (dVdt)."""
+    return 2 * (g.k_v * g.k_p - g.k_i)
+
+
+def friction_form(g: _symbolic.Gains) -> tuple[sp.Expr, sp.Symbol]:
+    """The package's quadratic form of ``V`` in ``(σ, y, v)``, ``y = φ - f`` (eq. lyapLike), and ``y``."""
+    y = sp.Symbol("y", real=True)
+    return quadratic_form(g, g.sigma, y, g.v), y
+
+
+def friction_minimum(form: sp.Expr, y: sp.Symbol, phi: Any, f_c: Any, sgn_set: sp.Set) -> sp.Expr:
+    """Exact minimum over ``f ∈ f_c·sgn_set`` of the ``f``-dependent part of ``form`` at ``y = φ - f``.
+
+    ``V`` of eq. (lyapLikeV) is ``form`` at ``y = 0`` plus this minimum; only
+    the part that depends on ``f`` is minimised (smaller expressions, same
+    minimum).
+
+    Raises
+    ------
+    Undecided
+        From :func:`._decide.minimum_on`.
+    """
+    w = sp.Symbol("w", real=True)
+    moving = sp.expand(form.subs(y, phi - f_c * w) - form.subs(y, 0))
+    return minimum_on(moving, w, sgn_set)
 
 
 # --------------------------------------------------------------------------- lemma2.P
@@ -115,14 +169,14 @@ class Lemma2LowerBound(Obligation):
     def derive(self) -> LowerBoundSubject:
         g = G()
         P = sp.ImmutableMatrix(_symbolic.P(g))
-        y = sp.Symbol("y", real=True)
+        form, y = friction_form(g)
         g_min = _smallest_eigenvalue_2x2(sp.Matrix(P).extract([0, 2], [0, 2]))
         return LowerBoundSubject(
             P=P,
-            form=quadratic_form(g, g.sigma, y, g.v),
+            form=form,
             g_min=g_min,
             c1=sp.Min(g_min, 1),
-            dist2=g.sigma**2 + g.v**2 + _symbolic.dz(g.phi, g.f_c) ** 2,
+            dist2=distance_squared(g),
             sgn=sgn_sets(),
             sigma=g.sigma,
             phi=g.phi,
@@ -155,9 +209,9 @@ class Lemma2LowerBound(Obligation):
             return Outcome.fail(f"𝔤 = {S.g_min} is not the smaller eigenvalue (tr - 2𝔤 ≠ √disc ≥ 0)")
         details.append(("\\mathfrak g = \\lambda_{\\min}(P_{\\sigma v})", latex(S.g_min)))
         # Both roots are positive: their product det and their sum tr are, under Assumption 1.
-        if sign_of(_assume(det)) != 1 or sign_of(_assume(tr)) != 1:
-            return Outcome.fail(f"under Assumption 1, det = {_assume(det)} or trace = {_assume(tr)} of P_σv is not shown positive")
-        details.append(("\\det P_{\\sigma v},\\ \\operatorname{tr} P_{\\sigma v}", latex([_assume(det), _assume(tr)])))
+        if sign_of(under_assumption1(det)) != 1 or sign_of(under_assumption1(tr)) != 1:
+            return Outcome.fail(f"under Assumption 1, det = {under_assumption1(det)} or trace = {under_assumption1(tr)} of P_σv is not shown positive")
+        details.append(("\\det P_{\\sigma v},\\ \\operatorname{tr} P_{\\sigma v}", latex([under_assumption1(det), under_assumption1(tr)])))
         if S.c1 != sp.Min(S.g_min, 1):
             return Outcome.fail(f"c₁ = {S.c1} is not min{{𝔤, 1}} = λ_min(P)")
         details.append(("c_1 = \\min\\{\\mathfrak g, 1\\} = \\lambda_{\\min}(P)", latex(S.c1)))
@@ -167,11 +221,9 @@ class Lemma2LowerBound(Obligation):
             return Outcome.fail(f"|x|²_𝒜 - σ² - v² = {dz2} depends on σ or v")
         # The form is the homogeneous quadratic of P, so it vanishes at σ = v = 0, φ - f = 0.
         # Friction term: min over f ∈ f_c SGN(v) of (φ - f)² ≥ dz(φ)², and = 0 on 𝒜.
-        w = sp.Symbol("w", real=True)
-        friction = (S.form - S.form.subs(S.y, 0)).subs(S.y, S.phi - S.f_c * w)
         for (vlabel, sv, vval), (plabel, ptex, pval, _reg) in itertools.product(sign_classes("q_v"), phi_classes(S.f_c, "_phi")):
             try:
-                m = minimum_on(sp.expand(friction.subs(S.phi, pval)), w, S.sgn[sv])
+                m = friction_minimum(S.form, S.y, pval, S.f_c, S.sgn[sv])
                 d = resolve_piecewise(dz2.subs(S.phi, pval))
             except Undecided as exc:
                 return Outcome.fail(f"case v {vlabel}, {plabel}: {exc}", tuple(details))
@@ -218,15 +270,13 @@ class Lemma2dVdt(Obligation):
 
     def derive(self) -> DVdtSubject:
         g = G()
-        x = sp.Matrix([g.sigma, g.phi, g.v])
-        A, b = sp.ImmutableMatrix(_symbolic.A(g)), sp.ImmutableMatrix(_symbolic.b(g))
         return DVdtSubject(
-            V={k: sp.expand(V_k(g, [g.sigma, g.phi, g.v], k)) for k in (1, 0, -1)},
-            f={1: sp.ImmutableMatrix(A * x - b), 0: sp.ImmutableMatrix(sp.Matrix(F0_MATRIX) * x), -1: sp.ImmutableMatrix(A * x + b)},
-            c=2 * (g.k_v * g.k_p - g.k_i),
+            V=lyapunov_pieces(g),
+            f=affine_fields(g),
+            c=decrease_rate(g),
             V0_corrected=g.k_v / g.k_i * g.sigma**2,
             state=(g.sigma, g.phi, g.v),
-            A=A,
+            A=sp.ImmutableMatrix(_symbolic.A(g)),
             P=sp.ImmutableMatrix(_symbolic.P(g)),
         )
 
@@ -234,8 +284,8 @@ class Lemma2dVdt(Obligation):
         S = subject
         sigma, phi, v = S.state
         details = [("A^T P + P A", latex((S.A.T * S.P + S.P * S.A).applyfunc(sp.factor)))]
-        if sign_of(_assume(S.c)) != 1:
-            return Outcome.fail(f"c = {S.c} is not shown positive under Assumption 1 (c = {_assume(S.c)} with δ = k_v k_p - k_i)")
+        if sign_of(under_assumption1(S.c)) != 1:
+            return Outcome.fail(f"c = {S.c} is not shown positive under Assumption 1 (c = {under_assumption1(S.c)} with δ = k_v k_p - k_i)")
         for k in (1, -1, 0):
             grad = sp.Matrix([sp.diff(S.V[k], s) for s in S.state])
             rate = sp.expand((grad.T * S.f[k])[0])
@@ -277,12 +327,12 @@ class RemarkArmstrong(Obligation):
 
     def derive(self) -> ArmstrongSubject:
         g = G()
-        y = sp.Symbol("y", real=True)
+        form, y = friction_form(g)
         return ArmstrongSubject(
-            form=quadratic_form(g, g.sigma, y, g.v),
+            form=form,
             sgn=sgn_sets(),
             stick_value=g.k_v / g.k_i * g.sigma**2,
-            c=2 * (g.k_v * g.k_p - g.k_i),
+            c=decrease_rate(g),
             sigma=g.sigma,
             y=y,
             v=g.v,
@@ -291,13 +341,13 @@ class RemarkArmstrong(Obligation):
 
     def verify(self, subject: ArmstrongSubject) -> Outcome:
         S = subject
-        w = sp.Symbol("w", real=True)
         details = []
+        stick = S.form.subs(S.v, 0)
         for label, tex, phi, region in phi_classes(S.f_c, "_phi"):
             if label not in ("φ = f_c", "|φ| < f_c", "φ = -f_c"):
                 continue
             try:
-                V = minimum_on(sp.expand(S.form.subs({S.v: 0, S.y: phi - S.f_c * w})), w, S.sgn[0])
+                V = stick.subs(S.y, 0) + friction_minimum(stick, S.y, phi, S.f_c, S.sgn[0])
             except Undecided as exc:
                 return Outcome.fail(f"stick with {label}: {exc}")
             if not is_zero(V - S.stick_value):
@@ -310,7 +360,7 @@ class RemarkArmstrong(Obligation):
         if kappa.has(S.y) or sign_of(kappa) != 1:
             return Outcome.fail(f"the stick value's coefficient {kappa} is not shown positive")
         integral = pos("I_v")  # ∫_{t_i}^{t_{i+1}} v² dt > 0 over a slip phase of positive length
-        bound = sp.factor(_assume(S.c) * integral / kappa)
+        bound = sp.factor(under_assumption1(S.c) * integral / kappa)
         if sign_of(bound) != 1:
             return Outcome.fail(f"c·∫v²/κ = {bound} is not shown positive, so the decrease of V is not strict")
         details.append(

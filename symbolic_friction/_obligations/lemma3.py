@@ -34,22 +34,21 @@ import sympy as sp
 from .. import _symbolic
 from .._kconditions import Condition, k_conditions
 from ._base import Erratum, Obligation, Outcome
-from ._decide import G, Undecided, is_zero, latex
+from ._decide import G, Undecided, decide, is_zero, latex, resolve_piecewise, sign_of
 from ._inequalities import (
     Case,
     block_eigen_bounds,
     canonical,
     case_grid,
-    decide,
     is_lower_bound_of,
     is_nonneg,
     is_upper_bound_of,
     label_latex,
-    line_cases,
-    resolve,
+    phi_cases,
     rows_latex,
-    sign_of,
+    sign_cases,
 )
+from .model import distance_squared
 
 __all__ = [
     "OBLIGATIONS",
@@ -62,6 +61,8 @@ __all__ = [
     "k_symbols",
     "vhat_expression",
     "derived_k_conditions",
+    "region_R",
+    "in_R",
 ]
 
 
@@ -82,21 +83,6 @@ def vhat_expression(g: _symbolic.Gains, k: tuple[Any, Any, Any, Any]) -> sp.Expr
     half = sp.Rational(1, 2)
     dz = _symbolic.dz(g.phi, g.f_c)
     return half * k1 * g.sigma**2 + half * k2 * dz**2 + k3 * sp.Abs(g.sigma) * sp.Abs(g.v) + half * k4 * g.v**2
-
-
-def _phi_cases() -> list[Case]:
-    g = G()
-    return line_cases(
-        g.phi, [-g.f_c, g.f_c], name="φ", beyond="d_phi", weights=("u_phi", "w_phi"), labels=["-f_c", "f_c"]
-    )
-
-
-def _sign_cases(var: sp.Symbol, name: str, slack: str) -> list[Case]:
-    return line_cases(var, [0], name=name, beyond=slack, labels=["0"])
-
-
-def _resolve(expr: Any) -> sp.Expr:
-    return resolve(sp.sympify(expr))
 
 
 def _fmt_failures(failures: list[str]) -> str:
@@ -155,8 +141,20 @@ class RSubject:
     cases: tuple[Case, ...]
 
 
-def _region_R(g: _symbolic.Gains) -> sp.Expr:
+def region_R(g: _symbolic.Gains) -> sp.Expr:
+    """``R = {region_R ≥ 0}``: the paper's ``v(φ - sign(v) f_c)``."""
     return g.v * (g.phi - sp.sign(g.v) * g.f_c)
+
+
+def in_R(region: sp.Expr) -> bool | None:
+    """Whether a point (or a parametrised piece) lies in ``R``, given ``region_R`` there; ``None`` if undecided.
+
+    Raises
+    ------
+    Undecided
+        If a branch of ``sign(v)`` cannot be decided.
+    """
+    return decide(sp.GreaterThan(resolve_piecewise(region), 0))
 
 
 class LemmaR(Obligation):
@@ -185,18 +183,18 @@ class LemmaR(Obligation):
             phi=g.phi,
             v=g.v,
             f_c=fc,
-            region=_region_R(g),
+            region=region_R(g),
             sgn_lo=sp.Piecewise((fc * sp.sign(g.v), nonzero), (-fc, True)),
             sgn_hi=sp.Piecewise((fc * sp.sign(g.v), nonzero), (fc, True)),
             # the closed form used by _lyapunov.V: the projection of φ on f_c·SGN(v)
             minimizer=sp.Piecewise((fc * sp.sign(g.v), nonzero), (_symbolic.sat(g.phi, fc), True)),
             P=P,
             dz=dz,
-            dist2=g.sigma**2 + g.v**2 + dz**2,
+            dist2=distance_squared(g),
             c1=eig["lam_min"],
             c2=eig["lam_max"],
             assumption=tuple(_symbolic.assumption1_substitution(g).items()),
-            cases=tuple(case_grid(_sign_cases(g.v, "v", "a_v"), _phi_cases())),
+            cases=tuple(case_grid(sign_cases(g.v, "v", "a_v"), phi_cases(g.phi, g.f_c))),
         )
 
     def verify(self, subject: RSubject) -> Outcome:
@@ -204,20 +202,19 @@ class LemmaR(Obligation):
         failures: list[str] = []
         rows: list[str] = []
         fa, fb = sp.symbols("alpha_f beta_f", positive=True)  # weights of an interior point of [lo, hi]
-        x_vec = sp.Matrix([s.sigma, s.phi, s.v])
-        in_R = 0
+        pieces_in_R = 0
         for case in s.cases:
             try:
-                member = decide(sp.GreaterThan(_resolve(case(s.region)), 0))
+                member = in_R(case(s.region))
                 if member is None:
                     failures.append(f"cannot decide whether the piece {case.label} lies in R")
                     continue
                 if not member:
                     continue
-                in_R += 1
-                lo, hi, fstar = (_resolve(case(e)) for e in (s.sgn_lo, s.sgn_hi, s.minimizer))
+                pieces_in_R += 1
+                lo, hi, fstar = (resolve_piecewise(case(e)) for e in (s.sgn_lo, s.sgn_hi, s.minimizer))
                 phi = case.value(s.phi)
-                dz = _resolve(case(s.dz))
+                dz = resolve_piecewise(case(s.dz))
             except Undecided as exc:
                 failures.append(f"{case.label}: {exc}")
                 continue
@@ -238,11 +235,11 @@ class LemmaR(Obligation):
             if not is_zero((y.T * s.P * y)[0] - (w.T * s.P * w)[0]):
                 failures.append(f"{case.label}: V is not [σ, dz, v] P [σ, dz, v]ᵀ")
                 continue
-            if not is_zero(_resolve(case(s.dist2)) - (w.T * w)[0]):
+            if not is_zero(resolve_piecewise(case(s.dist2)) - (w.T * w)[0]):
                 failures.append(f"{case.label}: |x|²_𝒜 ≠ σ² + dz(φ)² + v²")
                 continue
             rows.append(f"{label_latex(case.label)}: f^* = {latex(fstar)},\\ \\mathrm{{dz}} = {latex(dz)}")
-        if in_R == 0:
+        if pieces_in_R == 0:
             failures.append("no piece of the case split lies in R")
         checks, eig = block_eigen_bounds(s.P, what="P")
         failures += [f"eigenvalue bound: {label} fails" for label, ok in checks if not ok]
@@ -266,7 +263,7 @@ class LemmaR(Obligation):
         )
         if failures:
             return Outcome.fail(_fmt_failures(failures), details)
-        return Outcome(True, f"{in_R} pieces of R checked; c₁ > 0 under Assumption 1", details)
+        return Outcome(True, f"{pieces_in_R} pieces of R checked; c₁ > 0 under Assumption 1", details)
 
 
 # --------------------------------------------------------------------------
@@ -347,12 +344,12 @@ class HatVBounds(Obligation):
             Vhat=vhat_expression(g, k),
             K=K,
             w=(sp.Abs(g.sigma), sp.Abs(dz), sp.Abs(g.v)),
-            dist2=g.sigma**2 + g.v**2 + dz**2,
+            dist2=distance_squared(g),
             definiteness=definiteness.margin,
             c1_hat=sp.Min(k[0], k[1], k[3]) / 2,
             c1_hat_eig=eig["lam_min"] / 2,
             c2_hat=eig["lam_max"] / 2,
-            cases=tuple(_phi_cases()),
+            cases=tuple(phi_cases(g.phi, g.f_c)),
         )
 
     def verify(self, subject: HatVBoundsSubject) -> Outcome:
@@ -362,10 +359,10 @@ class HatVBounds(Obligation):
         w = sp.Matrix(s.w)
         for case in s.cases:
             try:
-                quad = _resolve(case((half * w.T * s.K * w)[0]))
-                vhat = _resolve(case(s.Vhat))
-                dist = _resolve(case(s.dist2))
-                norm = _resolve(case((w.T * w)[0]))
+                quad = resolve_piecewise(case((half * w.T * s.K * w)[0]))
+                vhat = resolve_piecewise(case(s.Vhat))
+                dist = resolve_piecewise(case(s.dist2))
+                norm = resolve_piecewise(case((w.T * w)[0]))
             except Undecided as exc:
                 failures.append(f"{case.label}: {exc}")
                 continue
@@ -564,20 +561,20 @@ def derived_k_conditions(subject: HatVDerivativeSubject) -> tuple[list[_Derived]
     pieces: list[tuple[Case, list[tuple[sp.Expr, sp.Expr]]]] = []
     for case in s.cases:
         try:
-            sign_region = decide(sp.StrictLessThan(_resolve(case(s.region)), 0))
+            member = in_R(case(s.region))
         except Undecided as exc:
             failures.append(f"{case.label}: {exc}")
             continue
-        if sign_region is None:
+        if member is None:
             failures.append(f"cannot decide whether the piece {case.label} lies in R̂")
             continue
-        if not sign_region:
+        if member:
             continue
         sigma_val = case.value(s.sigma)
         zetas = [sp.Integer(-1), sp.Integer(1)] if sigma_val == 0 else [sp.sign(sigma_val)]
         try:
-            f_vals = [_resolve(case(fi)) for fi in s.F]
-            g_vals = [_resolve(case(gi)) for gi in grad]
+            f_vals = [resolve_piecewise(case(fi)) for fi in s.F]
+            g_vals = [resolve_piecewise(case(gi)) for gi in grad]
         except Undecided as exc:
             failures.append(f"{case.label}: {exc}")
             continue
@@ -669,7 +666,7 @@ class HatVDerivative(Obligation):
             zeta=sp.Symbol("zeta", real=True),
             Vhat=vhat_expression(g, k),
             F=tuple(F),
-            region=_region_R(g),
+            region=region_R(g),
             K=_symbolic.K_hat(*k),
             stated=k_conditions(g.k_p, g.k_i, g.k_v, *k),
             paper_bound=sp.Add(*[p[0] for p in pairs]),
@@ -677,7 +674,7 @@ class HatVDerivative(Obligation):
             f_v_bound=-g.k_v * sp.Abs(g.v) - sp.Abs(dz),
             zeta_claim=g.k_i * k[2] * sp.Abs(g.v) ** 2,
             cases=tuple(
-                case_grid(_sign_cases(g.v, "v", "a_v"), _sign_cases(g.sigma, "σ", "a_sigma"), _phi_cases())
+                case_grid(sign_cases(g.v, "v", "a_v"), sign_cases(g.sigma, "σ", "a_sigma"), phi_cases(g.phi, g.f_c))
             ),
         )
 
@@ -792,9 +789,9 @@ def _c1_failures(s: HatVDerivativeSubject) -> list[str]:
     for point in (-s.f_c, s.f_c):
         for label, expr in (("V̂", s.Vhat), ("∂V̂/∂φ", dphi)):
             try:
-                at = _resolve(expr.xreplace({s.phi: point}))
-                left = _resolve(expr.xreplace({s.phi: point - eps})).xreplace({u: 0})
-                right = _resolve(expr.xreplace({s.phi: point + eps})).xreplace({u: 0})
+                at = resolve_piecewise(expr.xreplace({s.phi: point}))
+                left = resolve_piecewise(expr.xreplace({s.phi: point - eps})).xreplace({u: 0})
+                right = resolve_piecewise(expr.xreplace({s.phi: point + eps})).xreplace({u: 0})
             except Undecided as exc:
                 out.append(f"continuity of {label} at φ = {point}: {exc}")
                 continue
@@ -808,7 +805,6 @@ def _paper_claims(
 ) -> tuple[list[tuple[str, str]], list[str], int, int]:
     """Check the paper's f_v bound, the max over ∂|σ|, the bracketed bound and the pairing argument."""
     failures: list[str] = []
-    k_v = s.gains[2]
     eq_cases = strict_cases = 0
     fv_ok = bound_ok = pairs_ok = True
     pair_keys = set()
@@ -821,11 +817,11 @@ def _paper_claims(
         v_val = case.value(s.v)
         sign_v = sp.sign(v_val)
         try:
-            f_v = _resolve(case(s.F[2]))
-            fv_gap = _resolve(case(s.f_v_bound)) - sign_v * f_v
-            paper = _resolve(case(s.paper_bound))
-            claim = _resolve(case(s.zeta_claim))
-            pairs = [(_resolve(case(b)), _resolve(case(c * m))) for b, c, m in s.paper_pairs]
+            f_v = resolve_piecewise(case(s.F[2]))
+            fv_gap = resolve_piecewise(case(s.f_v_bound)) - sign_v * f_v
+            paper = resolve_piecewise(case(s.paper_bound))
+            claim = resolve_piecewise(case(s.zeta_claim))
+            pairs = [(resolve_piecewise(case(b)), resolve_piecewise(case(c * m))) for b, c, m in s.paper_pairs]
         except Undecided as exc:
             failures.append(f"{case.label}: {exc}")
             continue

@@ -45,6 +45,7 @@ __all__ = [
     "sgn_sets",
     "attractor_x",
     "attractor_z",
+    "distance_squared",
 ]
 
 
@@ -66,6 +67,11 @@ def attractor_z(g: _symbolic.Gains) -> tuple[Any, Any, Any]:
     """𝒜 of eq. (Aph) as ``(e_i, s, v)`` components (bound from :func:`attractor_bound_z`)."""
     bound = attractor_bound_z(g)
     return (sp.Interval(-bound, bound), sp.Integer(0), sp.Integer(0))
+
+
+def distance_squared(g: _symbolic.Gains) -> sp.Expr:
+    """``|x|²_𝒜 = σ² + v² + dz(φ)²`` of eq. (distFromA), with the package's ``dz`` (checked by ``distance``)."""
+    return g.sigma**2 + g.v**2 + _symbolic.dz(g.phi, g.f_c) ** 2
 
 
 def _mat(m: Any) -> sp.ImmutableMatrix:
@@ -458,8 +464,7 @@ class Distance(Obligation):
 
     def derive(self) -> DistanceSubject:
         g = G()
-        formula = g.sigma**2 + g.v**2 + _symbolic.dz(g.phi, g.f_c) ** 2
-        return DistanceSubject(attractor=attractor_x(g), formula=formula, state=(g.sigma, g.phi, g.v), f_c=g.f_c)
+        return DistanceSubject(attractor=attractor_x(g), formula=distance_squared(g), state=(g.sigma, g.phi, g.v), f_c=g.f_c)
 
     def verify(self, subject: DistanceSubject) -> Outcome:
         S = subject

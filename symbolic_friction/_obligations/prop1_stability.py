@@ -31,10 +31,11 @@ from typing import Any
 
 import sympy as sp
 
-from .. import _symbolic
 from ._base import Obligation, Outcome
-from ._decide import G, Undecided, is_zero, latex
-from ._inequalities import Case, case_grid, decide, is_nonneg, line_cases, resolve
+from ._decide import G, Undecided, decide, is_zero, latex, resolve_piecewise
+from ._inequalities import Case, case_grid, is_nonneg, phi_cases, sign_cases
+from .lemma3 import in_R, region_R
+from .model import distance_squared
 
 __all__ = ["OBLIGATIONS", "StabilityBound", "StabilitySubject", "Ineq", "Premise", "Step", "Goal"]
 
@@ -239,15 +240,11 @@ def _subject() -> StabilitySubject:
         Goal("(ii), t₁ > 0, t ≥ t₁", "(ii) bound after t₁", dt),
         Goal("(ii), t₁ = 0, t ≥ 0", "(ii₀) bound", dt),
     )
-    region = g.v * (g.phi - sp.sign(g.v) * g.f_c)
     closed_form = (
         ((g.v, "≥"), (g.phi - g.f_c, "≥")),
         ((g.v, "≤"), (g.phi + g.f_c, "≤")),
         ((g.v, "="),),
     )
-    dz = _symbolic.dz(g.phi, g.f_c)
-    phi_cases = line_cases(g.phi, [-g.f_c, g.f_c], name="φ", beyond="d_phi", weights=("u_phi", "w_phi"), labels=["-f_c", "f_c"])
-    v_cases = line_cases(g.v, [0], name="v", beyond="a_v", labels=["0"])
     return StabilitySubject(
         c1=c1,
         c2=c2,
@@ -259,12 +256,12 @@ def _subject() -> StabilitySubject:
         goals=goals,
         kappa=sp.sqrt(c2 * ch2 / (c1 * ch1)),
         kappa_step="c1ĉ1 ≤ c2ĉ2",
-        region=region,
+        region=region_R(g),
         closed_form=closed_form,
         witnesses=(("x*", (1, 0, 0), True), ("x̂*", (0, 0, 1), False)),
-        dist2=g.sigma**2 + g.v**2 + dz**2,
+        dist2=distance_squared(g),
         state=(g.sigma, g.phi, g.v),
-        cases=tuple(case_grid(v_cases, phi_cases)),
+        cases=tuple(case_grid(sign_cases(g.v, "v", "a_v"), phi_cases(g.phi, g.f_c))),
     )
 
 
@@ -365,9 +362,9 @@ def _closedness_failures(s: StabilitySubject) -> list[str]:
         return out
     for case in s.cases:
         try:
-            in_r = decide(sp.GreaterThan(resolve(case(s.region)), 0))
+            in_r = in_R(case(s.region))
             in_union = any(
-                all(decide(_RELATIONS[rel](resolve(case(e)), 0)) for e, rel in part) for part in s.closed_form
+                all(decide(_RELATIONS[rel](resolve_piecewise(case(e)), 0)) for e, rel in part) for part in s.closed_form
             )
         except Undecided as exc:
             out.append(f"closedness of R, {case.label}: {exc}")
@@ -384,8 +381,8 @@ def _witness_failures(s: StabilitySubject) -> list[str]:
     for name, point, want_in_r in s.witnesses:
         sub = dict(zip(s.state, (sp.sympify(c) for c in point)))
         try:
-            member = decide(sp.GreaterThan(resolve(s.region.xreplace(sub)), 0))
-            dist = resolve(s.dist2.xreplace(sub))
+            member = in_R(s.region.xreplace(sub))
+            dist = resolve_piecewise(s.dist2.xreplace(sub))
         except Undecided as exc:
             out.append(f"witness {name}: {exc}")
             continue

@@ -27,11 +27,15 @@ def test_sign_of_decides_sign_definite_rational_functions():
     assert sign_of(-(a**2) - 3 * b / c) == -1
     assert sign_of((a - b) ** 2 - (a**2 - 2 * a * b + b**2)) == 0
     assert sign_of(4 * b**2 / (a + b) ** 2) == 1
+    assert sign_of(a * b + 2) == 1
+    assert sign_of(-a / (b + 1)) == -1
+    assert sign_of(a - a) == 0
 
 
 def test_sign_of_refuses_what_it_cannot_prove():
     assert sign_of(a - b) is None  # indefinite
     assert sign_of(x**2 + 1) is None  # x is not declared positive
+    assert sign_of(x**2) is None
     assert sign_of(sp.sqrt(a) - 1) is None  # radicals are not decided
     assert sign_of(sp.Abs(a - b)) is None
 
@@ -56,24 +60,33 @@ def test_decide_relations():
     assert decide(sp.Or(sp.Lt(a, 0), sp.Gt(b, 0))) is True
     assert decide(sp.Not(sp.Gt(a, 0))) is False
     assert decide(sp.Gt(a, b)) is None
+    assert decide(sp.And(a > 0, b + a > b)) is True
+    assert decide(sp.Or(a < 0, sp.Eq(a, a + 1))) is False
+    assert decide(sp.Not(a < b)) is None
 
 
 def test_resolve_piecewise_picks_the_decided_branch():
     f = sp.Piecewise((x + 1, x < -1), (x - 1, x > 1), (0, True))
     assert resolve_piecewise(f.subs(x, 1 + a)) == a
     assert resolve_piecewise(f.subs(x, (a - b) / (a + b))) == 0
+    pw = sp.Piecewise((1, a < -b), (2, a > b), (3, True))
+    assert resolve_piecewise(pw.xreplace({a: b + c})) == 2
 
 
 def test_resolve_piecewise_raises_when_undecided():
     f = sp.Piecewise((1, x > 1), (0, True))
     with pytest.raises(Undecided, match="cannot decide the branch condition"):
         resolve_piecewise(f.subs(x, a))
+    with pytest.raises(Undecided, match="cannot decide the branch condition"):
+        resolve_piecewise(sp.Piecewise((1, a < -b), (2, a > b), (3, True)))
 
 
 def test_resolve_piecewise_raises_without_applicable_branch():
     f = sp.Piecewise((1, x > 1), (2, x < -1))
     with pytest.raises(Undecided, match="no branch of a Piecewise applies"):
         resolve_piecewise(f.subs(x, (a - b) / (a + b)))
+    with pytest.raises(Undecided, match="no branch of a Piecewise applies"):
+        resolve_piecewise(sp.Piecewise((1, a < 0), (2, sp.Eq(a, 0)), evaluate=False))
 
 
 def test_minimum_on_interval_uses_interior_stationary_points():

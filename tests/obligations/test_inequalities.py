@@ -5,46 +5,22 @@ from __future__ import annotations
 import pytest
 import sympy as sp
 
-from symbolic_friction._obligations._decide import Undecided
+from symbolic_friction._obligations._decide import decide
 from symbolic_friction._obligations._inequalities import (
     block_eigen_bounds,
     canonical,
     case_grid,
-    decide,
     is_lower_bound_of,
     is_nonneg,
     is_nonpos,
     is_upper_bound_of,
     label_latex,
     line_cases,
-    resolve,
-    sign_of,
 )
 
 a, b, c = sp.symbols("a b c", positive=True)
 n = sp.Symbol("n", nonnegative=True)
 x, y = sp.symbols("x y", real=True)
-
-
-def test_sign_of():
-    assert sign_of(a * b + 2) == 1
-    assert sign_of(-a / (b + 1)) == -1
-    assert sign_of(a - a) == 0
-    assert sign_of(a - b) is None
-    assert sign_of(x**2) is None  # x is not positive
-    assert sign_of(sp.Abs(a - b)) is None
-
-
-def test_decide_and_resolve():
-    assert decide(sp.And(a > 0, b + a > b)) is True
-    assert decide(sp.Or(a < 0, sp.Eq(a, a + 1))) is False
-    assert decide(sp.Not(a < b)) is None
-    pw = sp.Piecewise((1, a < -b), (2, a > b), (3, True))
-    assert resolve(pw.xreplace({a: b + c})) == 2
-    with pytest.raises(Undecided, match="cannot decide the branch condition"):
-        resolve(pw)
-    with pytest.raises(Undecided, match="no branch of a Piecewise applies"):
-        resolve(sp.Piecewise((1, a < 0), (2, sp.Eq(a, 0)), evaluate=False))
 
 
 @pytest.mark.parametrize(

@@ -2,8 +2,8 @@
 
 Run from the repository root with the package installed::
 
-    python benchmarks/bench_certify.py            # full run (about half a minute)
-    python benchmarks/bench_certify.py --quick    # fewer repetitions
+    python tests/benchmarks/bench_certify.py            # full run (about half a minute)
+    python tests/benchmarks/bench_certify.py --quick    # fewer repetitions
 
 It prints
 

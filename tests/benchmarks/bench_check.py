@@ -2,8 +2,8 @@
 
 Run from the repository root with the package installed::
 
-    python benchmarks/bench_check.py             # 3 repetitions
-    python benchmarks/bench_check.py --repeat 1  # quicker
+    python tests/benchmarks/bench_check.py             # 3 repetitions
+    python tests/benchmarks/bench_check.py --repeat 1  # quicker
 
 It prints
 

@@ -5,8 +5,8 @@ empirical ISS gain at three values of ρ).
 
 Run from the repository root::
 
-    python benchmarks/bench_crosscheck.py            # library call + CLI subprocess
-    python benchmarks/bench_crosscheck.py --no-cli
+    python tests/benchmarks/bench_crosscheck.py            # library call + CLI subprocess
+    python tests/benchmarks/bench_crosscheck.py --no-cli
 
 This is a script that prints figures, not a timed test.
 """
@@ -20,7 +20,7 @@ import sys
 import time
 from pathlib import Path
 
-REPO = Path(__file__).resolve().parents[1]
+REPO = Path(__file__).resolve().parents[2]
 
 
 def main() -> None:

@@ -6,7 +6,7 @@ wall time per trajectory and its error against the exact ``event`` method at
 several values of its accuracy knob.  Also the perturbed-friction laws run by
 ``moreau``.
 
-Run:  python benchmarks/bench_methods.py
+Run:  python tests/benchmarks/bench_methods.py
 """
 
 from __future__ import annotations

@@ -13,7 +13,7 @@ Prints, for initial states drawn uniformly from [-5, 5]³ (fixed seed):
 Errors are ``max |z - z_ref| / max(1, |z0|)`` over the 301 sample times.
 Nothing is asserted; run it on a quiet machine::
 
-    python benchmarks/bench_simulate.py [--batch 10000] [--scalar 300] [--ivp 50] [--reference 3]
+    python tests/benchmarks/bench_simulate.py [--batch 10000] [--scalar 300] [--ivp 50] [--reference 3]
 """
 
 from __future__ import annotations
@@ -26,7 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
 from symbolic_friction import Parameters, SimulationError  # noqa: E402
