@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import functools
 import itertools
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -63,6 +64,7 @@ __all__ = [
     "derived_k_conditions",
     "region_R",
     "in_R",
+    "pieces_of",
 ]
 
 
@@ -157,6 +159,26 @@ def in_R(region: sp.Expr) -> bool | None:
     return decide(sp.GreaterThan(resolve_piecewise(region), 0))
 
 
+def pieces_of(cases: Sequence[Case], region: sp.Expr, *, inside: bool, failures: list[str]) -> Iterator[Case]:
+    """The pieces that lie in ``R`` (``inside``) or in ``R̂ = ℝ³ \\ R``, in order.
+
+    A piece whose membership cannot be decided is skipped and recorded in
+    ``failures``, so the calling obligation fails instead of guessing.
+    """
+    name = "R" if inside else "R̂"
+    for case in cases:
+        try:
+            member = in_R(case(region))
+        except Undecided as exc:
+            failures.append(f"{case.label}: {exc}")
+            continue
+        if member is None:
+            failures.append(f"cannot decide whether the piece {case.label} lies in {name}")
+            continue
+        if member == inside:
+            yield case
+
+
 class LemmaR(Obligation):
     """``lemma3.R``: on ``R``, ``min_f (φ - f)² = dz(φ)²`` and eq. (VandR) with ``c₂ = λ_max(P)``."""
 
@@ -203,15 +225,9 @@ class LemmaR(Obligation):
         rows: list[str] = []
         fa, fb = sp.symbols("alpha_f beta_f", positive=True)  # weights of an interior point of [lo, hi]
         pieces_in_R = 0
-        for case in s.cases:
+        for case in pieces_of(s.cases, s.region, inside=True, failures=failures):
+            pieces_in_R += 1
             try:
-                member = in_R(case(s.region))
-                if member is None:
-                    failures.append(f"cannot decide whether the piece {case.label} lies in R")
-                    continue
-                if not member:
-                    continue
-                pieces_in_R += 1
                 lo, hi, fstar = (resolve_piecewise(case(e)) for e in (s.sgn_lo, s.sgn_hi, s.minimizer))
                 phi = case.value(s.phi)
                 dz = resolve_piecewise(case(s.dz))
@@ -559,17 +575,7 @@ def derived_k_conditions(subject: HatVDerivativeSubject) -> tuple[list[_Derived]
     found: dict[sp.Expr, _Derived] = {}
     witnesses: dict[sp.Expr, list[tuple[Case, sp.Expr, sp.Expr]]] = {}
     pieces: list[tuple[Case, list[tuple[sp.Expr, sp.Expr]]]] = []
-    for case in s.cases:
-        try:
-            member = in_R(case(s.region))
-        except Undecided as exc:
-            failures.append(f"{case.label}: {exc}")
-            continue
-        if member is None:
-            failures.append(f"cannot decide whether the piece {case.label} lies in R̂")
-            continue
-        if member:
-            continue
+    for case in pieces_of(s.cases, s.region, inside=False, failures=failures):
         sigma_val = case.value(s.sigma)
         zetas = [sp.Integer(-1), sp.Integer(1)] if sigma_val == 0 else [sp.sign(sigma_val)]
         try:

@@ -2,24 +2,19 @@
 
 import dataclasses
 
-import pytest
 import sympy as sp
 
 from symbolic_friction._obligations._decide import G
 from symbolic_friction._obligations.claim1 import ROWS, Claim1Cases, StickBranch
 
+from ._helpers import assert_fails, assert_holds, obligation_fixture, replace_item, replace_key
+
 g = G()
-
-
-@pytest.fixture(scope="module")
-def claim1():
-    ob = Claim1Cases()
-    return ob, ob.derive()
+claim1 = obligation_fixture(Claim1Cases)
 
 
 def _replace_row(subject, label, **changes):
-    rows = tuple(dataclasses.replace(r, **changes) if r.label == label else r for r in subject.rows)
-    return dataclasses.replace(subject, rows=rows)
+    return replace_item(subject, "rows", "label", label, **changes)
 
 
 def _row(subject, label):
@@ -28,8 +23,7 @@ def _row(subject, label):
 
 def test_claim1_holds_on_all_rows(claim1):
     ob, subject = claim1
-    out = ob.verify(subject)
-    assert out.holds, out.reason
+    out = assert_holds(ob, subject)
     assert tuple(r.label for r in subject.rows) == ROWS
     shown = {label.split("}")[0].split("(")[1].rstrip(")") for label, _ in out.details}
     assert shown == set(ROWS)  # every row, (vi)-(xi) included, produced its own evidence
@@ -48,74 +42,55 @@ def test_wrong_stick_duration_row_v_fails(claim1):
     sb = subject.bar[0]
     br = _row(subject, "v").stick[0]
     altered = _replace_row(subject, "v", stick=(dataclasses.replace(br, T=-3 * g.f_c / sb),))
-    out = ob.verify(altered)
-    assert out.holds is False
-    assert out.reason.startswith("row (v)") and "not in SGN(0)" in out.reason
+    out = assert_fails(ob, altered, "not in SGN(0)")
+    assert out.reason.startswith("row (v)")
 
 
 def test_wrong_stick_duration_row_vii_fails(claim1):
     ob, subject = claim1
     sb = subject.bar[0]
     br = _row(subject, "vii").stick[0]
-    out = ob.verify(_replace_row(subject, "vii", stick=(dataclasses.replace(br, T=4 * g.f_c / sb),)))
-    assert out.holds is False
-    assert out.reason.startswith("row (vii)") and "w = 3" in out.reason
+    out = assert_fails(ob, _replace_row(subject, "vii", stick=(dataclasses.replace(br, T=4 * g.f_c / sb),)), "w = 3")
+    assert out.reason.startswith("row (vii)")
 
 
 def test_negative_duration_fails(claim1):
     ob, subject = claim1
     sb = subject.bar[0]
     br = _row(subject, "vii").stick[0]
-    out = ob.verify(_replace_row(subject, "vii", stick=(dataclasses.replace(br, T=-2 * g.f_c / sb),)))
-    assert out.holds is False
-    assert "not shown positive" in out.reason
+    assert_fails(ob, _replace_row(subject, "vii", stick=(dataclasses.replace(br, T=-2 * g.f_c / sb),)), "not shown positive")
 
 
 def test_paper_V0_with_xi_v_fails(claim1):
     ob, subject = claim1
-    V = dict(subject.V)
-    V[0] = g.k_v / g.k_i * g.v**2
-    out = ob.verify(dataclasses.replace(subject, V=V))
-    assert out.holds is False
-    assert out.reason.startswith("row (v)") and "V_0(ξ) = 0" in out.reason
+    out = assert_fails(ob, replace_key(subject, "V", 0, g.k_v / g.k_i * g.v**2), "V_0(ξ) = 0")
+    assert out.reason.startswith("row (v)")
 
 
 def test_row_iii_with_k_minus_one_fails(claim1):
     ob, subject = claim1
-    out = ob.verify(_replace_row(subject, "iii", k=-1))
-    assert out.holds is False
-    assert "row (iii): the paper's d^1ξ_v/dt^1(0) = 0 but f_-1 gives 2*f_c" in out.reason
-    out = ob.verify(_replace_row(subject, "iii", k=-1, claims=()))
-    assert out.holds is False
-    assert "row (iii)" in out.reason and "has sign 1" in out.reason
+    assert_fails(ob, _replace_row(subject, "iii", k=-1), "row (iii): the paper's d^1ξ_v/dt^1(0) = 0 but f_-1 gives 2*f_c")
+    assert_fails(ob, _replace_row(subject, "iii", k=-1, claims=()), "row (iii)", "has sign 1")
 
 
 def test_row_iii_with_stick_and_no_solution_fails(claim1):
     ob, subject = claim1
-    out = ob.verify(_replace_row(subject, "iii", k=0))
-    assert out.holds is False
-    assert "0 explicit solutions given" in out.reason
+    assert_fails(ob, _replace_row(subject, "iii", k=0), "0 explicit solutions given")
 
 
 def test_row_ix_mirror_with_k_one_fails(claim1):
     ob, subject = claim1
-    out = ob.verify(_replace_row(subject, "ix", k=1, claims=()))
-    assert out.holds is False
-    assert "row (ix)" in out.reason and "not k = 1" in out.reason
+    assert_fails(ob, _replace_row(subject, "ix", k=1, claims=()), "row (ix)", "not k = 1")
 
 
 def test_row_x_with_k_one_fails(claim1):
     ob, subject = claim1
-    out = ob.verify(_replace_row(subject, "x", k=1))
-    assert out.holds is False
-    assert "row (x)" in out.reason
+    assert_fails(ob, _replace_row(subject, "x", k=1), "row (x)")
 
 
 def test_row_xi_with_k_zero_fails(claim1):
     ob, subject = claim1
-    out = ob.verify(_replace_row(subject, "xi", k=0))
-    assert out.holds is False
-    assert "row (xi)" in out.reason
+    assert_fails(ob, _replace_row(subject, "xi", k=0), "row (xi)")
 
 
 def test_row_vi_wrong_branch_duration_fails(claim1):
@@ -123,18 +98,14 @@ def test_row_vi_wrong_branch_duration_fails(claim1):
     sb, pb, _ = subject.bar
     row = _row(subject, "vi")
     branches = (row.stick[0], row.stick[1], dataclasses.replace(row.stick[2], T=(g.f_c - pb) / sb))
-    out = ob.verify(_replace_row(subject, "vi", stick=branches))
-    assert out.holds is False
-    assert "row (vi)" in out.reason and "σ̄ < 0" in out.reason
+    assert_fails(ob, _replace_row(subject, "vi", stick=branches), "row (vi)", "σ̄ < 0")
 
 
 def test_row_vi_unbounded_stick_with_moving_sigma_fails(claim1):
     ob, subject = claim1
     row = _row(subject, "vi")
     branches = (dataclasses.replace(row.stick[0], T=sp.oo), row.stick[1], row.stick[2])
-    out = ob.verify(_replace_row(subject, "vi", stick=branches))
-    assert out.holds is False
-    assert "not constant on an unbounded stick" in out.reason
+    assert_fails(ob, _replace_row(subject, "vi", stick=branches), "not constant on an unbounded stick")
 
 
 def test_wrong_stick_solution_fails(claim1):
@@ -142,9 +113,7 @@ def test_wrong_stick_solution_fails(claim1):
     sb, pb, _ = subject.bar
     br = _row(subject, "v").stick[0]
     wrong = sp.ImmutableMatrix([sb, pb - sb * subject.t, 0])
-    out = ob.verify(_replace_row(subject, "v", stick=(dataclasses.replace(br, xi=wrong),)))
-    assert out.holds is False
-    assert "does not solve ξ' = f_0(ξ)" in out.reason
+    assert_fails(ob, _replace_row(subject, "v", stick=(dataclasses.replace(br, xi=wrong),)), "does not solve ξ' = f_0(ξ)")
 
 
 def test_wrong_stick_initial_condition_fails(claim1):
@@ -152,58 +121,43 @@ def test_wrong_stick_initial_condition_fails(claim1):
     sb, pb, _ = subject.bar
     br = _row(subject, "iv").stick[0]
     wrong = sp.ImmutableMatrix([sb, pb + 1, 0])
-    out = ob.verify(_replace_row(subject, "iv", stick=(StickBranch(None, wrong, br.T),)))
-    assert out.holds is False
-    assert "is not the initial condition" in out.reason
+    assert_fails(ob, _replace_row(subject, "iv", stick=(StickBranch(None, wrong, br.T),)), "is not the initial condition")
 
 
 def test_paper_claim_altered_fails(claim1):
     ob, subject = claim1
     sb = subject.bar[0]
-    out = ob.verify(_replace_row(subject, "iii", claims=((1, sp.Integer(0)), (2, -sb))))
-    assert out.holds is False
-    assert "the paper's d^2ξ_v/dt^2(0)" in out.reason
+    assert_fails(ob, _replace_row(subject, "iii", claims=((1, sp.Integer(0)), (2, -sb))), "the paper's d^2ξ_v/dt^2(0)")
 
 
 def test_dropped_row_leaves_a_gap(claim1):
     ob, subject = claim1
-    out = ob.verify(dataclasses.replace(subject, rows=tuple(r for r in subject.rows if r.label != "vi")))
-    assert out.holds is False
-    assert "fall in 0 rows" in out.reason and "|φ| < f_c" in out.reason
+    assert_fails(
+        ob, dataclasses.replace(subject, rows=tuple(r for r in subject.rows if r.label != "vi")), "fall in 0 rows", "|φ| < f_c"
+    )
 
 
 def test_overlapping_rows_fail(claim1):
     ob, subject = claim1
-    out = ob.verify(_replace_row(subject, "ii", phi=None))
-    assert out.holds is False
-    assert "fall in 2 rows" in out.reason
+    assert_fails(ob, _replace_row(subject, "ii", phi=None), "fall in 2 rows")
 
 
 def test_flipped_friction_fails(claim1):
     ob, subject = claim1
-    out = ob.verify(dataclasses.replace(subject, b=-subject.b))
-    assert out.holds is False
-    assert "is not the selection A x - b·(1)" in out.reason
+    assert_fails(ob, dataclasses.replace(subject, b=-subject.b), "is not the selection A x - b·(1)")
 
 
 def test_non_positive_rate_fails(claim1):
     ob, subject = claim1
-    out = ob.verify(dataclasses.replace(subject, c=-subject.c))
-    assert out.holds is False
-    assert "not shown positive under Assumption 1" in out.reason
+    assert_fails(ob, dataclasses.replace(subject, c=-subject.c), "not shown positive under Assumption 1")
 
 
 def test_wrong_V1_fails(claim1):
     ob, subject = claim1
-    V = dict(subject.V)
-    V[1] = V[1] + g.v**2
-    out = ob.verify(dataclasses.replace(subject, V=V))
-    assert out.holds is False
+    out = assert_fails(ob, replace_key(subject, "V", 1, subject.V[1] + g.v**2))
     assert out.reason.startswith("row (i)")
 
 
 def test_bad_k_fails(claim1):
     ob, subject = claim1
-    out = ob.verify(_replace_row(subject, "i", k=2))
-    assert out.holds is False
-    assert "k = 2 is not in {-1, 0, 1}" in out.reason
+    assert_fails(ob, _replace_row(subject, "i", k=2), "k = 2 is not in {-1, 0, 1}")

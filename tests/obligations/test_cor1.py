@@ -7,37 +7,23 @@ import itertools
 from fractions import Fraction as F
 
 import numpy as np
-import pytest
 import sympy as sp
 
 from symbolic_friction import Parameters, _attractor
 from symbolic_friction._obligations.cor1 import Distances, Inflation, _counterexample, _expand_abs_relations
 
 from ..tolerance import assert_close
+from ._helpers import assert_fails, assert_holds, subject_fixture
 
-
-@pytest.fixture(scope="module")
-def inflation():
-    return Inflation().derive()
-
-
-@pytest.fixture(scope="module")
-def distances():
-    return Distances().derive()
-
-
-def _fails(ob, subject, pattern):
-    out = ob.verify(subject)
-    assert out.holds is False
-    assert pattern in out.reason, out.reason
+inflation = subject_fixture(Inflation)
+distances = subject_fixture(Distances)
 
 
 # ------------------------------------------------------------ cor1.inflation
 
 
 def test_inflation_holds(inflation):
-    out = Inflation().verify(inflation)
-    assert out.holds, out.reason
+    out = assert_holds(Inflation(), inflation)
     rows = out.details[0][1]
     assert "|\\rho | = 0,\\  v = 0: [-1, 1]" in rows  # ρ = 0 gives SGN
     assert "v = |\\rho |: [- r - 1, r + 1]" in rows  # the boundary |v| = |ρ| is the wide interval
@@ -46,28 +32,27 @@ def test_inflation_holds(inflation):
 def test_inflation_wrong_friction_level(inflation):
     s = inflation
     wrong = sp.Piecewise((sp.sign(s.v) + s.r, sp.Abs(s.v) > s.r), (sp.Rational(11, 10) + s.r, True))
-    _fails(Inflation(), dataclasses.replace(s, inflated_hi=wrong), "SGN_ρ(v) = [-r - 1, r + 11/10]")
+    assert_fails(Inflation(), dataclasses.replace(s, inflated_hi=wrong), "SGN_ρ(v) = [-r - 1, r + 11/10]")
 
 
 def test_inflation_wrong_interval_boundary(inflation):
     s = inflation
     lo = sp.Piecewise((sp.sign(s.v) - s.r, sp.Abs(s.v) >= s.r), (-1 - s.r, True))
     hi = sp.Piecewise((sp.sign(s.v) + s.r, sp.Abs(s.v) >= s.r), (1 + s.r, True))
-    out = Inflation().verify(dataclasses.replace(s, inflated_lo=lo, inflated_hi=hi))
-    assert out.holds is False
-    assert "|ρ| > 0, v = -|ρ|" in out.reason and "|ρ| > 0, v = |ρ|" in out.reason
-    assert "|ρ| = 0, v = 0" in out.reason  # ρ = 0: SGN_0(0) would be {0}
+    altered = dataclasses.replace(s, inflated_lo=lo, inflated_hi=hi)
+    # ρ = 0: SGN_0(0) would be {0}
+    assert_fails(Inflation(), altered, "|ρ| > 0, v = -|ρ|", "|ρ| > 0, v = |ρ|", "|ρ| = 0, v = 0")
 
 
 def test_inflation_wrong_width(inflation):
     s = inflation
     lo = sp.Piecewise((sp.sign(s.v) - 2 * s.r, sp.Abs(s.v) > s.r), (-1 - s.r, True))
-    _fails(Inflation(), dataclasses.replace(s, inflated_lo=lo), "v > |ρ|: SGN_ρ(v) = [1 - 2*r, r + 1]")
+    assert_fails(Inflation(), dataclasses.replace(s, inflated_lo=lo), "v > |ρ|: SGN_ρ(v) = [1 - 2*r, r + 1]")
 
 
 def test_inflation_wrong_SGN(inflation):
     s = inflation
-    _fails(Inflation(), dataclasses.replace(s, sgn_lo=sp.sign(s.u)), "|ρ| = 0, v = 0: SGN_ρ(v) = [-1, 1] but")
+    assert_fails(Inflation(), dataclasses.replace(s, sgn_lo=sp.sign(s.u)), "|ρ| = 0, v = 0: SGN_ρ(v) = [-1, 1] but")
 
 
 def test_inflation_checked_against_brute_force():
@@ -105,8 +90,7 @@ def test_expand_abs_relations():
 
 
 def test_distances_hold(distances):
-    out = Distances().verify(distances)
-    assert out.holds, out.reason
+    out = assert_holds(Distances(), distances)
     assert out.details[1][1] == "4 D \\beta"
 
 
@@ -116,8 +100,7 @@ def test_distances_moved_attractor_bound(distances):
     dz = sp.Piecewise((s.e_i + beta2, s.e_i < -beta2), (s.e_i - beta2, s.e_i > beta2), (0, True))
     dist2 = s.s**2 + s.v**2 + dz**2
     cases = Distances().derive().cases  # split at the original ±f_c/k_i
-    out = Distances().verify(dataclasses.replace(s, dist2=dist2, bound2=2 * dist2 + 2 * (s.f_c / s.k_i) ** 2, cases=cases))
-    assert out.holds is False
+    out = assert_fails(Distances(), dataclasses.replace(s, dist2=dist2, bound2=2 * dist2 + 2 * (s.f_c / s.k_i) ** 2, cases=cases))
     assert "cannot decide" in out.reason or "not shown" in out.reason
 
 
@@ -130,18 +113,18 @@ def test_distances_moved_bound_with_matching_split(distances):
     dist2 = s.s**2 + s.v**2 + dz**2
     cases = tuple(line_cases(s.e_i, [-beta2, beta2], name="e_i", beyond="t_e", weights=("p_e", "q_e")))
     moved = dataclasses.replace(s, dist2=dist2, bound2=2 * dist2 + 2 * (s.f_c / s.k_i) ** 2, cases=cases)
-    _fails(Distances(), moved, "|z|² ≤ 2|z|_𝒜² + 2(f_c/k_i)² not shown")
-    _fails(Distances(), moved, "it is negative at")
+    assert_fails(Distances(), moved, "|z|² ≤ 2|z|_𝒜² + 2(f_c/k_i)² not shown")
+    assert_fails(Distances(), moved, "it is negative at")
 
 
 def test_distances_wrong_norm(distances):
     s = distances
-    _fails(Distances(), dataclasses.replace(s, norm2=s.s**2 + s.v**2), "|z|_𝒜² ≤ |z|² not shown")
+    assert_fails(Distances(), dataclasses.replace(s, norm2=s.s**2 + s.v**2), "|z|_𝒜² ≤ |z|² not shown")
 
 
 def test_distances_wrong_offset(distances):
     s = distances
-    _fails(Distances(), dataclasses.replace(s, offset=s.f_c / (2 * s.k_i)), "2(|z|_𝒜 + f_c/(2*k_i))²")
+    assert_fails(Distances(), dataclasses.replace(s, offset=s.f_c / (2 * s.k_i)), "2(|z|_𝒜 + f_c/(2*k_i))²")
 
 
 def test_distances_on_rational_points_against_the_package():
@@ -178,6 +161,6 @@ def test_inflation_bounded_input(inflation):
         inflated_lo=sp.Piecewise((2 * sp.sign(s.v) - s.r, big), (-2 - s.r, True)),
         inflated_hi=sp.Piecewise((2 * sp.sign(s.v) + s.r, big), (2 + s.r, True)),
     )
-    _fails(Inflation(), doubled, "is not inside [−1 − |ρ|, 1 + |ρ|]")
+    assert_fails(Inflation(), doubled, "is not inside [−1 − |ρ|, 1 + |ρ|]")
     (erratum,) = Inflation.errata
     assert "|m(t)| ≤ 1 + |ρ_v|" in erratum.correct

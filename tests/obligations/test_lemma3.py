@@ -17,21 +17,11 @@ from symbolic_friction._obligations._inequalities import case_grid, line_cases
 from symbolic_friction._obligations.lemma3 import HatVBounds, HatVDerivative, LemmaR, _leading_witness
 
 from ..tolerance import assert_close
+from ._helpers import assert_fails, assert_holds, subject_fixture
 
-
-@pytest.fixture(scope="module")
-def r_subject():
-    return LemmaR().derive()
-
-
-@pytest.fixture(scope="module")
-def bounds_subject():
-    return HatVBounds().derive()
-
-
-@pytest.fixture(scope="module")
-def deriv_subject():
-    return HatVDerivative().derive()
+r_subject = subject_fixture(LemmaR)
+bounds_subject = subject_fixture(HatVBounds)
+deriv_subject = subject_fixture(HatVDerivative)
 
 
 @pytest.fixture(scope="module")
@@ -39,19 +29,11 @@ def deriv_outcome(deriv_subject):
     return HatVDerivative().verify(deriv_subject)
 
 
-def _fails(ob, subject, pattern):
-    out = ob.verify(subject)
-    assert out.holds is False
-    assert pattern in out.reason, out.reason
-    return out
-
-
 # ---------------------------------------------------------------- lemma3.R
 
 
 def test_R_holds(r_subject):
-    out = LemmaR().verify(r_subject)
-    assert out.holds, out.reason
+    out = assert_holds(LemmaR(), r_subject)
     assert out.reason.startswith("9 pieces of R")
     labels = dict(out.details)
     assert "\\frac{\\delta}{k_{i}}" in labels["\\det(\\text{outer block of }P)\\text{ under Assumption 1}"]
@@ -60,56 +42,56 @@ def test_R_holds(r_subject):
 def test_R_perturbed_P_breaks_the_upper_bound(r_subject):
     P = r_subject.P.copy()
     P[0, 0] = 2 * P[0, 0]
-    _fails(LemmaR(), dataclasses.replace(r_subject, P=P), "is not ≥ every eigenvalue of P")
+    assert_fails(LemmaR(), dataclasses.replace(r_subject, P=P), "is not ≥ every eigenvalue of P")
 
 
 def test_R_coupled_P_breaks_the_block_structure(r_subject):
     P = r_subject.P.copy()
     P[0, 1] = P[1, 0] = sp.Rational(1, 10)
-    _fails(LemmaR(), dataclasses.replace(r_subject, P=P), "the middle row and column of P are decoupled fails")
+    assert_fails(LemmaR(), dataclasses.replace(r_subject, P=P), "the middle row and column of P are decoupled fails")
 
 
 def test_R_wrong_minimiser_at_stick(r_subject):
     g = r_subject
     wrong = sp.Piecewise((g.f_c * sp.sign(g.v), sp.Ne(g.v, 0)), (g.f_c, True))
-    _fails(LemmaR(), dataclasses.replace(r_subject, minimizer=wrong), "does not minimise")
+    assert_fails(LemmaR(), dataclasses.replace(r_subject, minimizer=wrong), "does not minimise")
 
 
 def test_R_minimiser_outside_SGN(r_subject):
     g = r_subject
     wrong = sp.Piecewise((-g.f_c * sp.sign(g.v), sp.Ne(g.v, 0)), (g.phi, True))
-    _fails(LemmaR(), dataclasses.replace(r_subject, minimizer=wrong), "is not in f_c·SGN(v)")
+    assert_fails(LemmaR(), dataclasses.replace(r_subject, minimizer=wrong), "is not in f_c·SGN(v)")
 
 
 def test_R_moved_attractor_bound(r_subject):
     g = r_subject
     dz2 = sp.Piecewise((g.phi + 2 * g.f_c, g.phi < -2 * g.f_c), (g.phi - 2 * g.f_c, g.phi > 2 * g.f_c), (0, True))
     # with the old case split the moved breakpoints cannot even be placed
-    _fails(LemmaR(), dataclasses.replace(r_subject, dz=dz2), "cannot decide the branch condition")
+    assert_fails(LemmaR(), dataclasses.replace(r_subject, dz=dz2), "cannot decide the branch condition")
     # with a split at the moved breakpoints, the minimum is no longer dz²
     cases = case_grid(
         line_cases(g.v, [0], name="v", beyond="a_v"),
         line_cases(g.phi, [-2 * g.f_c, 2 * g.f_c], name="φ", beyond="d_phi", weights=("u_phi", "w_phi")),
     )
     moved = dataclasses.replace(r_subject, dz=dz2, dist2=g.sigma**2 + g.v**2 + dz2**2, cases=tuple(cases))
-    _fails(LemmaR(), moved, "differs from dz(φ)")
+    assert_fails(LemmaR(), moved, "differs from dz(φ)")
 
 
 def test_R_wrong_region(r_subject):
     g = r_subject
-    _fails(LemmaR(), dataclasses.replace(r_subject, region=g.v * (g.phi + sp.sign(g.v) * g.f_c)), "differs from dz(φ)")
+    assert_fails(LemmaR(), dataclasses.replace(r_subject, region=g.v * (g.phi + sp.sign(g.v) * g.f_c)), "differs from dz(φ)")
 
 
 def test_R_constants_too_tight(r_subject):
-    _fails(LemmaR(), dataclasses.replace(r_subject, c2=r_subject.c2 * sp.Rational(99, 100)), "c₂ =")
-    _fails(LemmaR(), dataclasses.replace(r_subject, c1=sp.Integer(1)), "c₁ = 1 is not ≤")
+    assert_fails(LemmaR(), dataclasses.replace(r_subject, c2=r_subject.c2 * sp.Rational(99, 100)), "c₂ =")
+    assert_fails(LemmaR(), dataclasses.replace(r_subject, c1=sp.Integer(1)), "c₁ = 1 is not ≤")
 
 
 def test_R_needs_assumption1(r_subject):
     # a P whose outer determinant is not positive under k_v k_p > k_i
     P = r_subject.P.copy()
     P[0, 2] = P[2, 0] = -2
-    _fails(LemmaR(), dataclasses.replace(r_subject, P=P), "cannot show λ_min(P) > 0 under Assumption 1")
+    assert_fails(LemmaR(), dataclasses.replace(r_subject, P=P), "cannot show λ_min(P) > 0 under Assumption 1")
 
 
 def _outward(value: sp.Expr, *, up: bool) -> F:
@@ -159,8 +141,7 @@ def test_R_constants_match_numeric_eigenvalues(r_subject):
 
 
 def test_bounds_hold(bounds_subject):
-    out = HatVBounds().verify(bounds_subject)
-    assert out.holds, out.reason
+    out = assert_holds(HatVBounds(), bounds_subject)
     assert "needs no k₁k₄ > k₃²" in out.reason
     assert "e_1: 0" in dict(out.details)["\\tfrac12 w^TKw - \\hat c_1|w|^2 \\text{ at the minimising unit vector}"]
 
@@ -168,28 +149,28 @@ def test_bounds_hold(bounds_subject):
 def test_bounds_negative_k3_in_K(bounds_subject):
     K = bounds_subject.K.copy()
     K[0, 2] = K[2, 0] = -K[0, 2]
-    _fails(HatVBounds(), dataclasses.replace(bounds_subject, K=K), "V̂ − ½wᵀKw")
+    assert_fails(HatVBounds(), dataclasses.replace(bounds_subject, K=K), "V̂ − ½wᵀKw")
 
 
 def test_bounds_wrong_Vhat(bounds_subject):
     s = bounds_subject
-    _fails(HatVBounds(), dataclasses.replace(s, Vhat=s.Vhat + s.k[1] * s.phi**2 / 7), "V̂ − ½wᵀKw")
+    assert_fails(HatVBounds(), dataclasses.replace(s, Vhat=s.Vhat + s.k[1] * s.phi**2 / 7), "V̂ − ½wᵀKw")
 
 
 def test_bounds_wrong_definiteness_condition(bounds_subject):
     k1, k2, k3, k4 = bounds_subject.k
-    _fails(HatVBounds(), dataclasses.replace(bounds_subject, definiteness=k1 * k4 - 2 * k3**2), "is not a positive multiple")
+    assert_fails(HatVBounds(), dataclasses.replace(bounds_subject, definiteness=k1 * k4 - 2 * k3**2), "is not a positive multiple")
 
 
 def test_bounds_c2_hat_lowered_one_percent(bounds_subject):
     s = bounds_subject
-    _fails(HatVBounds(), dataclasses.replace(s, c2_hat=s.c2_hat * sp.Rational(99, 100)), "2ĉ₂")
+    assert_fails(HatVBounds(), dataclasses.replace(s, c2_hat=s.c2_hat * sp.Rational(99, 100)), "2ĉ₂")
 
 
 def test_bounds_c1_hat_too_large(bounds_subject):
     k1, k2, k3, k4 = bounds_subject.k
-    _fails(HatVBounds(), dataclasses.replace(bounds_subject, c1_hat=sp.Max(k1, k2, k4) / 2), "½wᵀKw ≥ ĉ₁|w|² not shown")
-    _fails(HatVBounds(), dataclasses.replace(bounds_subject, c1_hat_eig=k2 / 2), "eigenvalue route")
+    assert_fails(HatVBounds(), dataclasses.replace(bounds_subject, c1_hat=sp.Max(k1, k2, k4) / 2), "½wᵀKw ≥ ĉ₁|w|² not shown")
+    assert_fails(HatVBounds(), dataclasses.replace(bounds_subject, c1_hat_eig=k2 / 2), "eigenvalue route")
 
 
 def test_bounds_sharp_constant_beats_eigenvalue_and_matches_package(bounds_subject):
@@ -235,35 +216,34 @@ def test_derived_conditions_are_the_papers(deriv_subject):
 
 def test_derivative_dropped_condition(deriv_subject):
     stated = tuple(c for c in deriv_subject.stated if c.name != "k4 > k_p·k2")
-    _fails(HatVDerivative(), dataclasses.replace(deriv_subject, stated=stated), "-k_2*k_p + k_4 ≥ 0")
+    assert_fails(HatVDerivative(), dataclasses.replace(deriv_subject, stated=stated), "-k_2*k_p + k_4 ≥ 0")
 
 
 def test_derivative_dropped_definiteness(deriv_subject):
     stated = tuple(c for c in deriv_subject.stated if c.kind != "definiteness")
-    _fails(HatVDerivative(), dataclasses.replace(deriv_subject, stated=stated), "K ≻ 0 (Sylvester)")
+    assert_fails(HatVDerivative(), dataclasses.replace(deriv_subject, stated=stated), "K ≻ 0 (Sylvester)")
 
 
 def test_derivative_weakened_condition(deriv_subject):
     stated = tuple(dataclasses.replace(c, rhs=c.rhs / 2) if c.name == "k3 > k2" else c for c in deriv_subject.stated)
-    _fails(HatVDerivative(), dataclasses.replace(deriv_subject, stated=stated), "stated condition k3 > k2")
+    assert_fails(HatVDerivative(), dataclasses.replace(deriv_subject, stated=stated), "stated condition k3 > k2")
 
 
 def test_derivative_non_strict_definiteness(deriv_subject):
     stated = tuple(dataclasses.replace(c, strict=False) if c.kind == "definiteness" else c for c in deriv_subject.stated)
-    _fails(HatVDerivative(), dataclasses.replace(deriv_subject, stated=stated), "stated k1·k4 > k3² must be strict")
+    assert_fails(HatVDerivative(), dataclasses.replace(deriv_subject, stated=stated), "stated k1·k4 > k3² must be strict")
 
 
 def test_derivative_flipped_friction_sign(deriv_subject):
     s = deriv_subject
     F_ = (s.F[0], s.F[1], s.F[2] + 2 * s.f_c * sp.sign(s.v))  # +b SGN(v) instead of −b SGN(v)
-    _fails(HatVDerivative(), dataclasses.replace(s, F=F_), "is positive for every choice of k")
+    assert_fails(HatVDerivative(), dataclasses.replace(s, F=F_), "is positive for every choice of k")
 
 
 def test_derivative_flipped_sign_in_A(deriv_subject):
     s = deriv_subject
     F_ = (-s.F[0], s.F[1], s.F[2])  # σ' = +k_i v
-    out = HatVDerivative().verify(dataclasses.replace(s, F=F_))
-    assert out.holds is False
+    out = assert_fails(HatVDerivative(), dataclasses.replace(s, F=F_))
     assert "not stated" in out.reason or "bracketed bound" in out.reason
 
 
@@ -272,21 +252,19 @@ def test_derivative_not_C1(deriv_subject):
     k2 = s.k[1]
     dz = sp.Piecewise((s.phi + s.f_c, s.phi < -s.f_c), (s.phi - s.f_c, s.phi > s.f_c), (0, True))
     Vhat = s.Vhat - k2 * dz**2 / 2 + k2 * dz / 2  # dz itself has a kink at ±f_c
-    out = HatVDerivative().verify(dataclasses.replace(s, Vhat=Vhat))
-    assert out.holds is False
-    assert "∂V̂/∂φ jumps at φ" in out.reason
+    assert_fails(HatVDerivative(), dataclasses.replace(s, Vhat=Vhat), "∂V̂/∂φ jumps at φ")
 
 
 def test_derivative_checks_the_papers_f_v_bound(deriv_subject):
     s = deriv_subject
     dz = sp.Piecewise((s.phi + s.f_c, s.phi < -s.f_c), (s.phi - s.f_c, s.phi > s.f_c), (0, True))
     wrong = -s.gains[2] * sp.Abs(s.v) - 2 * sp.Abs(dz) - s.f_c  # claims too much
-    _fails(HatVDerivative(), dataclasses.replace(s, f_v_bound=wrong), "sign(v)·f_v ≤ −k_v|v| − |dz(φ)| fails")
+    assert_fails(HatVDerivative(), dataclasses.replace(s, f_v_bound=wrong), "sign(v)·f_v ≤ −k_v|v| − |dz(φ)| fails")
 
 
 def test_derivative_checks_the_zeta_claim(deriv_subject):
     s = deriv_subject
-    _fails(HatVDerivative(), dataclasses.replace(s, zeta_claim=-s.zeta_claim), "max over ∂|σ| exceeds")
+    assert_fails(HatVDerivative(), dataclasses.replace(s, zeta_claim=-s.zeta_claim), "max over ∂|σ| exceeds")
 
 
 def test_derivative_checks_the_pairing(deriv_subject):
@@ -294,12 +272,12 @@ def test_derivative_checks_the_pairing(deriv_subject):
     pairs = list(s.paper_pairs)
     bracket, coeff, mono = pairs[1]
     pairs[1] = (bracket, coeff - s.k[2], mono)  # claims k₂ − 2k₃ instead of k₂ − k₃
-    _fails(HatVDerivative(), dataclasses.replace(s, paper_pairs=tuple(pairs)), "is not ≤")
+    assert_fails(HatVDerivative(), dataclasses.replace(s, paper_pairs=tuple(pairs)), "is not ≤")
 
 
 def test_derivative_paper_bound_too_small(deriv_subject):
     s = deriv_subject
-    _fails(HatVDerivative(), dataclasses.replace(s, paper_bound=s.paper_bound - s.k[3] * s.gains[2] * s.v**2), "bracketed bound is below")
+    assert_fails(HatVDerivative(), dataclasses.replace(s, paper_bound=s.paper_bound - s.k[3] * s.gains[2] * s.v**2), "bracketed bound is below")
 
 
 def test_derivative_records_the_erratum(deriv_outcome):

@@ -4,36 +4,29 @@ from __future__ import annotations
 
 import dataclasses
 
-import pytest
 import sympy as sp
 
 from symbolic_friction._obligations.prop1_stability import Ineq, StabilityBound
 
+from ._helpers import assert_fails, assert_holds, replace_item, subject_fixture
 
-@pytest.fixture(scope="module")
-def subject():
-    return StabilityBound().derive()
+subject = subject_fixture(StabilityBound)
 
 
-def _fails(subject, pattern):
-    out = StabilityBound().verify(subject)
-    assert out.holds is False
-    assert pattern in out.reason, out.reason
+def _fails(altered, pattern):
+    assert_fails(StabilityBound(), altered, pattern)
 
 
 def _replace_step(subject, name, **changes):
-    steps = tuple(dataclasses.replace(st, **changes) if st.name == name else st for st in subject.steps)
-    return dataclasses.replace(subject, steps=steps)
+    return replace_item(subject, "steps", "name", name, **changes)
 
 
 def _replace_premise(subject, name, claim):
-    premises = tuple(dataclasses.replace(p, claim=claim) if p.name == name else p for p in subject.premises)
-    return dataclasses.replace(subject, premises=premises)
+    return replace_item(subject, "premises", "name", name, claim=claim)
 
 
 def test_holds(subject):
-    out = StabilityBound().verify(subject)
-    assert out.holds, out.reason
+    out = assert_holds(StabilityBound(), subject)
     assert "cover 4 cases" in out.reason
     assert "t₁ = 0 needs ĉ₁ ≤ ĉ₂" in out.reason
 

@@ -13,26 +13,22 @@ import sympy as sp
 from symbolic_friction import Parameters
 from symbolic_friction._obligations.table1 import PRINTED_ROOTS, TableI, parse_printed_root
 
+from ._helpers import assert_fails, assert_holds, replace_item, subject_fixture
 
-@pytest.fixture(scope="module")
-def subject():
-    return TableI().derive()
+
+subject = subject_fixture(TableI)
 
 
 def _with_printed(subject, label, printed):
-    cases = tuple(dataclasses.replace(c, printed=printed) if c.label == label else c for c in subject.cases)
-    return dataclasses.replace(subject, cases=cases)
+    return replace_item(subject, "cases", "label", label, printed=printed)
 
 
-def _fails(subject, pattern):
-    out = TableI().verify(subject)
-    assert out.holds is False
-    assert pattern in out.reason, out.reason
+def _fails(altered, pattern):
+    assert_fails(TableI(), altered, pattern)
 
 
 def test_holds(subject):
-    out = TableI().verify(subject)
-    assert out.holds, out.reason
+    out = assert_holds(TableI(), subject)
     details = dict(out.details)
     assert "(the printed values are exact)" in details["\\text{case (b): rational roots}"]
     assert "\\left(2 s + 1\\right) \\left(5 s + 1\\right) \\left(5 s + 4\\right)" in "".join(details.values())
