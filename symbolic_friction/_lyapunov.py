@@ -87,7 +87,7 @@ def V(params: Parameters, x: Any) -> Any:
     --------
     >>> from fractions import Fraction as F
     >>> p = Parameters(k_p=3, k_i=4, k_v="6.4")
-    >>> V(p, [F(0), F(0), F(0)]), V(p, [0.0, 0.0, 1e-12]) > 0.99
+    >>> V(p, [F(0), F(0), F(0)]), bool(V(p, [0.0, 0.0, 1e-12]) > 0.99)
     (Fraction(0, 1), True)
     """
     sigma, phi, v, exact = _split(x)
