@@ -23,7 +23,8 @@ from typing import Any
 
 import numpy as np
 
-from ._attractor import dz
+from ._attractor import dz, sat, state_components
+from ._kinds import kind_of
 from ._parameters import Parameters
 
 __all__ = [
@@ -35,6 +36,8 @@ __all__ = [
     "V_hat",
     "vhat_matrix_entries",
     "in_R",
+    "R_margin",
+    "friction_selection",
 ]
 
 
@@ -55,22 +58,27 @@ def vhat_matrix_entries(k1: Any, k2: Any, k3: Any, k4: Any) -> tuple[tuple[Any, 
 
 
 def quadratic_form(params: Parameters, sigma: Any, y: Any, v: Any) -> Any:
-    """``(σ, y, v) P (σ, y, v)ᵀ = (k_v/k_i)σ² - 2σv + k_p v² + y²``.
+    """``(σ, y, v) P (σ, y, v)ᵀ = (k_v/k_i)σ² - 2σv + k_p v² + y²`` with ``P`` of eq. (lyapLikeP).
 
-    Works for exact scalars and for float arrays (vectorised)."""
-    if isinstance(sigma, np.ndarray) or isinstance(y, np.ndarray) or isinstance(v, np.ndarray):
-        k_p, k_i, k_v, _ = params.as_floats()
-    else:
-        k_p, k_i, k_v = params.k_p, params.k_i, params.k_v
-    return (k_v / k_i) * sigma**2 - 2 * sigma * v + k_p * v**2 + y**2
+    Works for exact scalars, float arrays (vectorised) and sympy expressions."""
+    kind = kind_of(sigma, y, v, params.k_p, params.k_i, params.k_v)
+    P = lyapunov_matrix_entries(*(kind.scalar(q) for q in (params.k_p, params.k_i, params.k_v)))
+    w = (sigma, y, v)
+    return sum(P[i][j] * w[i] * w[j] for i in range(3) for j in range(3) if P[i][j] != 0)
 
 
-def _split(x: Any) -> tuple[Any, Any, Any, bool]:
-    arr = np.asarray(x)
-    if arr.dtype == object and arr.ndim == 1:
-        return arr[0], arr[1], arr[2], True
-    arr = arr.astype(float)
-    return arr[..., 0], arr[..., 1], arr[..., 2], False
+def friction_selection(params: Parameters, phi: Any, v: Any) -> Any:
+    """The minimiser ``f`` of eq. (lyapLikeV) over ``f ∈ f_c SGN(v)``.
+
+    ``f = f_c sign(v)`` for ``v ≠ 0`` and ``f = f_c sat(φ/f_c)`` (the
+    projection of ``φ`` on ``[-f_c, f_c]``) for ``v = 0``: only the middle
+    entry of the quadratic form depends on ``f``, and ``P₂₂ = 1`` is decoupled
+    from the rest (obligation ``model.V_runtime`` checks this against the
+    minimum itself).
+    """
+    kind = kind_of(phi, v, params.f_c)
+    f_c = kind.scalar(params.f_c)
+    return kind.where(v > 0, f_c, kind.where(v < 0, -f_c, sat(phi, f_c)))
 
 
 def V(params: Parameters, x: Any) -> Any:
@@ -81,7 +89,7 @@ def V(params: Parameters, x: Any) -> Any:
     params : Parameters
     x : array_like, shape (..., 3)
         States ``(sigma, phi, v)``; a length-3 sequence of Fractions is
-        evaluated exactly.
+        evaluated exactly, of sympy expressions symbolically.
 
     Examples
     --------
@@ -90,14 +98,9 @@ def V(params: Parameters, x: Any) -> Any:
     >>> V(p, [F(0), F(0), F(0)]), bool(V(p, [0.0, 0.0, 1e-12]) > 0.99)
     (Fraction(0, 1), True)
     """
-    sigma, phi, v, exact = _split(x)
-    if exact:
-        f_c = params.f_c
-        f = f_c if v > 0 else -f_c if v < 0 else min(max(phi, -f_c), f_c)
-        return quadratic_form(params, sigma, phi - f, v)
-    f_c = float(params.f_c)
-    f = np.where(v > 0, f_c, np.where(v < 0, -f_c, np.clip(phi, -f_c, f_c)))
-    return quadratic_form(params, sigma, phi - f, v)
+    sigma, phi, v = state_components(x)
+    f = friction_selection(params, phi, v)
+    return kind_of(sigma, phi, v).finish(quadratic_form(params, sigma, phi - f, v))
 
 
 def V_k(params: Parameters, x: Any, k: int) -> Any:
@@ -106,8 +109,8 @@ def V_k(params: Parameters, x: Any, k: int) -> Any:
     ``V_1 = |(σ, φ - f_c, v)|²_P``, ``V_0 = |(σ, 0, 0)|²_P``,
     ``V_{-1} = |(σ, φ + f_c, v)|²_P``.
     """
-    sigma, phi, v, exact = _split(x)
-    f_c = params.f_c if exact else float(params.f_c)
+    sigma, phi, v = state_components(x)
+    f_c = kind_of(sigma, phi, v, params.f_c).scalar(params.f_c)
     if k == 1:
         return quadratic_form(params, sigma, phi - f_c, v)
     if k == -1:
@@ -118,18 +121,28 @@ def V_k(params: Parameters, x: Any, k: int) -> Any:
 
 
 def V_hat(params: Parameters, x: Any, k: tuple[Any, Any, Any, Any]) -> Any:
-    """Auxiliary function ``V̂`` of eq. (Vhat) with constants ``k = (k1, k2, k3, k4)``."""
-    sigma, phi, v, exact = _split(x)
-    k1, k2, k3, k4 = k if exact else tuple(float(q) for q in k)
-    d = dz(phi, params.f_c if exact else float(params.f_c))
-    half = 1 / 2 if not exact else type(params.f_c)(1, 2)
-    return half * k1 * sigma**2 + half * k2 * d**2 + k3 * abs(sigma) * abs(v) + half * k4 * v**2
+    """Auxiliary function ``V̂`` of eq. (Vhat) with constants ``k = (k1, k2, k3, k4)``:
+
+    ``V̂(x) = ½k₁σ² + ½k₂ dz(φ)² + k₃|σ||v| + ½k₄v²``.
+    """
+    sigma, phi, v = state_components(x)
+    kind = kind_of(sigma, phi, v, params.f_c, *k)
+    k1, k2, k3, k4 = (kind.scalar(q) for q in k)
+    d = dz(phi, kind.scalar(params.f_c))
+    value = k1 * sigma**2 / 2 + k2 * d**2 / 2 + k3 * kind.abs(sigma) * kind.abs(v) + k4 * v**2 / 2
+    return kind.finish(value)
+
+
+def R_margin(params: Parameters, x: Any) -> Any:
+    """``v(φ - sign(v) f_c)``: ``R`` of Lemma 3 is where this is ``≥ 0``."""
+    sigma, phi, v = state_components(x)
+    kind = kind_of(sigma, phi, v, params.f_c)
+    return v * (phi - kind.sign(v) * kind.scalar(params.f_c))
 
 
 def in_R(params: Parameters, x: Any) -> Any:
-    """Membership in ``R = {v (φ - sign(v) f_c) ≥ 0}`` (Lemma 3); ``R̂`` is the complement."""
-    sigma, phi, v, exact = _split(x)
-    if exact:
-        sgn = (v > 0) - (v < 0)
-        return v * (phi - sgn * params.f_c) >= 0
-    return v * (phi - np.sign(v) * float(params.f_c)) >= 0
+    """Membership in ``R = {v (φ - sign(v) f_c) ≥ 0}`` (Lemma 3); ``R̂`` is the complement.
+
+    A bool for exact input, a boolean array for floats, a relational for sympy.
+    """
+    return R_margin(params, x) >= 0

@@ -1,8 +1,10 @@
 """The paper's model in sympy, for symbolic (all-gain) parameters.
 
 Everything here is built from the same ``*_entries`` functions that the
-numerical code uses (:mod:`._coordinates`, :mod:`._lyapunov`), so a proof
-obligation checks the package's model and not a second copy of it.
+numerical code uses (:mod:`._coordinates`, :mod:`._lyapunov`), and ``dz``
+and ``sat`` are the package's own (:mod:`._attractor`, evaluated in the sympy
+kind of :mod:`._kinds`), so a proof obligation checks the package's model
+and not a second copy of it.
 
 The gains are positive symbols; Assumption 1's third inequality
 ``k_v k_p > k_i`` is *not* encoded in the symbols, so every use of it in a
@@ -23,6 +25,7 @@ from ._coordinates import (
     system_matrix_entries,
     z_system_matrix_entries,
 )
+from ._attractor import dz, sat
 from ._lyapunov import lyapunov_matrix_entries, vhat_matrix_entries
 
 __all__ = ["Gains", "gains", "A", "A_z", "b", "P", "T", "T_inv", "K_hat", "dz", "sat", "assumption1_substitution"]
@@ -94,16 +97,6 @@ def T_inv(g: Gains | None = None) -> sp.Matrix:
 def K_hat(k1, k2, k3, k4) -> sp.Matrix:
     """``K`` with ``V̂ = ½ wᵀKw``, ``w = (|σ|, |dz(φ)|, |v|)``."""
     return _mat(vhat_matrix_entries(k1, k2, k3, k4))
-
-
-def sat(y, c) -> sp.Piecewise:
-    """``c·sat(y/c)``: the projection of ``y`` on ``[-c, c]``."""
-    return sp.Piecewise((-c, y < -c), (c, y > c), (y, True))
-
-
-def dz(y, c) -> sp.Piecewise:
-    """``dz_c(y) = y - c sat(y/c)`` as a Piecewise."""
-    return sp.Piecewise((y + c, y < -c), (y - c, y > c), (0, True))
 
 
 def assumption1_substitution(g: Gains | None = None) -> dict:

@@ -16,6 +16,7 @@ __all__ = ["all_obligations", "run_obligations", "all_errata", "OBLIGATION_MODUL
 # Modules in paper order; each defines OBLIGATIONS: tuple[type[Obligation], ...]
 OBLIGATION_MODULES: tuple[str, ...] = (
     "model",
+    "runtime",
     "lemma1",
     "lemma2",
     "claim1",

@@ -26,6 +26,7 @@ from typing import Any
 import sympy as sp
 
 from .. import _symbolic
+from .._attractor import attractor_bound_z, squared_distance_z
 from ._base import Erratum, Obligation, Outcome
 from ._decide import G, Undecided, decide, is_zero, latex, resolve_piecewise
 from ._inequalities import Case, is_nonneg, label_latex, line_cases, rows_latex, sign_cases
@@ -261,9 +262,9 @@ class Distances(Obligation):
 
     def derive(self) -> DistancesSubject:
         g = G()
-        beta = g.f_c / g.k_i
-        dz = _symbolic.dz(g.e_i, beta)
-        dist2 = g.s**2 + g.v**2 + dz**2
+        beta = attractor_bound_z(g)
+        # the package's |z|²_𝒜, the distance the ISS estimate and the cross-check measure
+        dist2 = squared_distance_z(g, [g.e_i, g.s, g.v])
         return DistancesSubject(
             e_i=g.e_i,
             s=g.s,

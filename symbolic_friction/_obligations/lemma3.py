@@ -34,6 +34,7 @@ import sympy as sp
 
 from .. import _symbolic
 from .._kconditions import Condition, k_conditions
+from .._lyapunov import R_margin, V_hat, friction_selection
 from ._base import Erratum, Obligation, Outcome
 from ._decide import G, Undecided, decide, is_zero, latex, resolve_piecewise, sign_of
 from ._inequalities import (
@@ -80,11 +81,8 @@ def k_symbols() -> tuple[sp.Symbol, sp.Symbol, sp.Symbol, sp.Symbol]:
 
 
 def vhat_expression(g: _symbolic.Gains, k: tuple[Any, Any, Any, Any]) -> sp.Expr:
-    """``V̂`` exactly as eq. (Vhat) writes it, with the package's ``dz``."""
-    k1, k2, k3, k4 = k
-    half = sp.Rational(1, 2)
-    dz = _symbolic.dz(g.phi, g.f_c)
-    return half * k1 * g.sigma**2 + half * k2 * dz**2 + k3 * sp.Abs(g.sigma) * sp.Abs(g.v) + half * k4 * g.v**2
+    """The package's ``V̂`` of eq. (Vhat) (:func:`symbolic_friction._lyapunov.V_hat`), for symbolic gains."""
+    return V_hat(g, [g.sigma, g.phi, g.v], k)
 
 
 def _fmt_failures(failures: list[str]) -> str:
@@ -144,8 +142,8 @@ class RSubject:
 
 
 def region_R(g: _symbolic.Gains) -> sp.Expr:
-    """``R = {region_R ≥ 0}``: the paper's ``v(φ - sign(v) f_c)``."""
-    return g.v * (g.phi - sp.sign(g.v) * g.f_c)
+    """``R = {region_R ≥ 0}``: the package's margin ``v(φ - sign(v) f_c)`` (:func:`symbolic_friction._lyapunov.R_margin`)."""
+    return R_margin(g, [g.sigma, g.phi, g.v])
 
 
 def in_R(region: sp.Expr) -> bool | None:
@@ -208,8 +206,8 @@ class LemmaR(Obligation):
             region=region_R(g),
             sgn_lo=sp.Piecewise((fc * sp.sign(g.v), nonzero), (-fc, True)),
             sgn_hi=sp.Piecewise((fc * sp.sign(g.v), nonzero), (fc, True)),
-            # the closed form used by _lyapunov.V: the projection of φ on f_c·SGN(v)
-            minimizer=sp.Piecewise((fc * sp.sign(g.v), nonzero), (_symbolic.sat(g.phi, fc), True)),
+            # the closed form _lyapunov.V uses: the projection of φ on f_c·SGN(v)
+            minimizer=sp.piecewise_fold(friction_selection(g, g.phi, g.v)),
             P=P,
             dz=dz,
             dist2=distance_squared(g),

@@ -19,7 +19,7 @@ from typing import Any
 import sympy as sp
 
 from .. import _symbolic
-from .._attractor import attractor_bound_x, attractor_bound_z
+from .._attractor import attractor_bound_x, attractor_bound_z, squared_distance_x
 from ._base import Erratum, Obligation, Outcome
 from ._decide import (
     G,
@@ -70,8 +70,8 @@ def attractor_z(g: _symbolic.Gains) -> tuple[Any, Any, Any]:
 
 
 def distance_squared(g: _symbolic.Gains) -> sp.Expr:
-    """``|x|²_𝒜 = σ² + v² + dz(φ)²`` of eq. (distFromA), with the package's ``dz`` (checked by ``distance``)."""
-    return g.sigma**2 + g.v**2 + _symbolic.dz(g.phi, g.f_c) ** 2
+    """The package's ``|x|²_𝒜`` (:func:`symbolic_friction._attractor.squared_distance_x`) for symbolic gains (checked by ``distance``)."""
+    return squared_distance_x(g, [g.sigma, g.phi, g.v])
 
 
 def _mat(m: Any) -> sp.ImmutableMatrix:

@@ -67,7 +67,9 @@ from typing import Any
 
 import numpy as np
 
+from .._coordinates import system_matrix_entries
 from .._errors import SimulationError
+from .._lyapunov import lyapunov_matrix_entries
 from .._parameters import Parameters
 
 __all__ = [
@@ -122,10 +124,18 @@ def _split_roots(k_p: float, k_i: float, k_v: float) -> tuple[float, float, floa
 
 
 def _cofactor_matrices(k_p: float, k_i: float, k_v: float) -> tuple[np.ndarray, np.ndarray]:
-    """``B1 = A + k_v I`` and ``B2 = A² + k_v A + k_p I`` (exact entries, see module doc)."""
-    b1 = np.array([[k_v, 0.0, -k_i], [1.0, k_v, -k_p], [0.0, 1.0, 0.0]])
-    b2 = np.array([[k_p, -k_i, 0.0], [k_v, 0.0, -k_i], [1.0, 0.0, 0.0]])
-    return b1, b2
+    """``B1 = A + k_v I`` and ``B2 = A² + k_v A + k_p I`` (see module doc), from the package's ``A``.
+
+    Computed in exact arithmetic on the float gains and rounded once, so
+    entries that cancel (e.g. ``B2[2, 2] = k_v² - k_p - k_v² + k_p``) are exactly 0.
+    """
+    k_p, k_i, k_v = (Fraction(x) for x in (k_p, k_i, k_v))
+    a = system_matrix_entries(k_p, k_i, k_v)
+    eye = [[Fraction(int(i == j)) for j in range(3)] for i in range(3)]
+    a2 = [[sum(a[i][m] * a[m][j] for m in range(3)) for j in range(3)] for i in range(3)]
+    b1 = [[a[i][j] + k_v * eye[i][j] for j in range(3)] for i in range(3)]
+    b2 = [[a2[i][j] + k_v * a[i][j] + k_p * eye[i][j] for j in range(3)] for i in range(3)]
+    return np.array(b1, dtype=float), np.array(b2, dtype=float)
 
 
 @dataclass(frozen=True, eq=False)
@@ -290,12 +300,22 @@ class MatrixExponential:
         return w2[..., None] * y0 + w1[..., None] * q1 + w0[..., None] * q2
 
 
+def _inverse3(m: tuple[tuple[Fraction, ...], ...]) -> tuple[tuple[Fraction, ...], ...]:
+    """Exact inverse of a nonsingular 3×3 matrix of Fractions (adjugate over determinant)."""
+
+    def cof(i: int, j: int) -> Fraction:
+        r = [a for a in range(3) if a != i]
+        c = [b for b in range(3) if b != j]
+        return (-1) ** (i + j) * (m[r[0]][c[0]] * m[r[1]][c[1]] - m[r[0]][c[1]] * m[r[1]][c[0]])
+
+    det = sum(m[0][j] * cof(0, j) for j in range(3))
+    return tuple(tuple(cof(j, i) / det for j in range(3)) for i in range(3))
+
+
 def _quad_bound(g: tuple[Fraction, ...], params: Parameters) -> float:
-    """``sqrt(gᵀ P⁻¹ g)`` rounded up: the largest ``|gᵀ y|`` over ``yᵀ P y ≤ 1``."""
-    k_p, k_i, k_v = params.k_p, params.k_i, params.k_v
-    # P = [[k_v/k_i, 0, -1], [0, 1, 0], [-1, 0, k_p]]; invert the (σ, v) block exactly.
-    det = k_v * k_p / k_i - 1
-    inv = ((k_p / det, 0, 1 / det), (0, Fraction(1), 0), (1 / det, 0, (k_v / k_i) / det))
+    """``sqrt(gᵀ P⁻¹ g)`` rounded up: the largest ``|gᵀ y|`` over ``yᵀ P y ≤ 1`` (``P`` of eq. lyapLikeP)."""
+    P = tuple(tuple(Fraction(e) for e in row) for row in lyapunov_matrix_entries(params.k_p, params.k_i, params.k_v))
+    inv = _inverse3(P)
     val = sum(g[i] * inv[i][j] * g[j] for i in range(3) for j in range(3))
     return math.sqrt(float(val)) * (1.0 + 1e-12)
 
@@ -336,14 +356,14 @@ class SlipBounds:
 
     @classmethod
     def from_params(cls, params: Parameters) -> "SlipBounds":
-        k_p, k_i, k_v = params.k_p, params.k_i, params.k_v
-        a = ((0, 0, -k_i), (1, 0, -k_p), (0, 1, -k_v))
+        a = system_matrix_entries(params.k_p, params.k_i, params.k_v)
         g = (Fraction(0), Fraction(0), Fraction(1))
         m = []
         for _ in range(6):
             m.append(_quad_bound(g, params))
             g = tuple(sum(g[i] * a[i][j] for i in range(3)) for j in range(3))  # gᵀ ← gᵀ A
-        return cls(m=tuple(m), e1_norm=math.sqrt(float(k_v / k_i)) * (1.0 + 1e-12))
+        p11 = lyapunov_matrix_entries(params.k_p, params.k_i, params.k_v)[0][0]  # |e₁|²_P
+        return cls(m=tuple(m), e1_norm=math.sqrt(float(p11)) * (1.0 + 1e-12))
 
 
 @dataclass(frozen=True, eq=False)

@@ -35,8 +35,12 @@ import math
 from dataclasses import dataclass
 from functools import lru_cache
 
+from fractions import Fraction
+
 import numpy as np
 
+from .._coordinates import system_matrix_entries
+from .._lyapunov import lyapunov_matrix_entries
 from .._parameters import Parameters
 from .affine import MatrixExponential, ScanTable, SlipBounds  # noqa: F401 (ScanTable in annotations)
 
@@ -72,8 +76,29 @@ def slip_model(params: Parameters) -> SlipModel:
     return SlipModel(expm=expm, bounds=bounds, table=ScanTable.build(expm), f_c=float(params.f_c))
 
 
-def _p_norm(s: float, p: float, v: float, kv_ki: float, k_p: float) -> float:
-    """``|y|_P`` for ``y = (s, p, v)``, scaled so that squares neither overflow nor underflow."""
+def p_weights(expm: MatrixExponential) -> tuple[float, float]:
+    """``(P₁₁, P₃₃) = (k_v/k_i, k_p)`` of eq. (lyapLikeP), from the package's ``P``, for :func:`p_norm`."""
+    P = lyapunov_matrix_entries(expm.k_p, expm.k_i, expm.k_v)
+    return P[0][0], P[2][2]
+
+
+def v_rows(expm: MatrixExponential) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
+    """Rows ``e₃ᵀA`` and ``e₃ᵀA²`` (so ``v' = e₃ᵀA y``, ``v'' = e₃ᵀA² y`` along a slip), from the package's ``A``.
+
+    Computed exactly on the float gains and rounded once.
+    """
+    a = system_matrix_entries(*(Fraction(x) for x in (expm.k_p, expm.k_i, expm.k_v)))
+    row1 = a[2]
+    row2 = tuple(sum(row1[m] * a[m][j] for m in range(3)) for j in range(3))
+    return tuple(float(x) for x in row1), tuple(float(x) for x in row2)
+
+
+def p_norm(s: float, p: float, v: float, kv_ki: float, k_p: float) -> float:
+    """``|y|_P`` for ``y = (s, p, v)``, scaled so that squares neither overflow nor underflow.
+
+    Written out for speed (it runs at every step of a certified march); the
+    obligation ``model.P_norm_runtime`` binds it to the package's ``P``.
+    """
     m = max(abs(s), abs(p), abs(v))
     if m == 0.0 or not math.isfinite(m):
         return m
@@ -81,8 +106,8 @@ def _p_norm(s: float, p: float, v: float, kv_ki: float, k_p: float) -> float:
     return m * math.sqrt(max(kv_ki * s * s - 2.0 * s * v + k_p * v * v + p * p, 0.0))
 
 
-def _p_norm_vec(s: np.ndarray, p: np.ndarray, v: np.ndarray, kv_ki: float, k_p: float) -> np.ndarray:
-    """Vectorised :func:`_p_norm`."""
+def p_norm_vec(s: np.ndarray, p: np.ndarray, v: np.ndarray, kv_ki: float, k_p: float) -> np.ndarray:
+    """Vectorised :func:`p_norm`."""
     m = np.maximum(np.maximum(np.abs(s), np.abs(p)), np.abs(v))
     safe = np.where(m > 0.0, m, 1.0)
     s, p, v = s / safe, p / safe, v / safe
@@ -100,12 +125,10 @@ class _Slip:
     def __init__(self, expm: MatrixExponential, y0: tuple[float, float, float], direction: int) -> None:
         self.w_scalar = expm.w_scalar
         self.d = direction
-        s, p, v = y0
-        k_p, k_i, k_v = expm.k_p, expm.k_i, expm.k_v
         # e^{Aτ} y0 = w'' y0 + w' B1 y0 + w B2 y0 (see affine.MatrixExponential)
-        self.q0 = (s, p, v)
-        self.q1 = (k_v * s - k_i * v, s + k_v * p - k_p * v, p)
-        self.q2 = (k_p * s - k_i * p, k_v * s - k_i * v, s)
+        self.q0 = tuple(y0)
+        self.q1 = tuple(float(x) for x in expm.B1 @ np.asarray(y0, dtype=float))
+        self.q2 = tuple(float(x) for x in expm.B2 @ np.asarray(y0, dtype=float))
 
     def state(self, tau: float) -> tuple[float, float, float]:
         w0, w1, w2 = self.w_scalar(tau)
@@ -120,14 +143,16 @@ class _Slip:
         return self.d * self.state(tau)[2]
 
 
-def _newton(slip: "_Slip", k_v: float, lo: float, hi: float) -> float:
+def _newton(slip: "_Slip", a1: tuple[float, float], lo: float, hi: float) -> float:
     """Zero of ``u`` in ``[lo, hi]`` where ``u`` decreases strictly from ``u(lo) ≥ 0`` to ``u(hi) ≤ 0``.
 
     Newton's method on the closed form, kept inside the bracket (bisection
     when a step leaves it), until the step is below two ulps or ``|u|`` is
-    below the rounding error of its own evaluation.
+    below the rounding error of its own evaluation.  ``a1 = (A₃₂, A₃₃)``, so
+    that ``v' = A₃₂φ + A₃₃v`` along the slip (:func:`v_rows`).
     """
     d = slip.d
+    a11, a12 = a1
     (_, p0, v0), (_, p1, v1), (_, p2, v2) = slip.q0, slip.q1, slip.q2
     x = 0.5 * (lo + hi)
     for _ in range(100):
@@ -140,7 +165,7 @@ def _newton(slip: "_Slip", k_v: float, lo: float, hi: float) -> float:
             lo = x
         else:
             hi = x
-        du = d * (w2 * p0 + w1 * p1 + w0 * p2 - k_v * v)
+        du = d * (a11 * (w2 * p0 + w1 * p1 + w0 * p2) + a12 * v)
         x_new = x - u / du if du < 0.0 else 0.5 * (lo + hi)
         if not lo <= x_new <= hi:
             x_new = 0.5 * (lo + hi)
@@ -155,8 +180,8 @@ def _march(
 ) -> tuple[float | None, tuple[float, float, float]]:
     """Certified Taylor march from ``a`` (state ``y``) to ``stop``; first zero of ``u`` or None."""
     expm = model.expm
-    k_p, k_i, k_v = expm.k_p, expm.k_i, expm.k_v
-    kv_ki = k_v / k_i
+    kv_ki, k_p = p_weights(expm)
+    (_, a11, a12), (a20, a21, a22) = v_rows(expm)
     m2, m3 = model.bounds.m[2], model.bounds.m[3]
     d = slip.d
     fresh = a == 0.0
@@ -168,13 +193,13 @@ def _march(
         if max(abs(s), abs(p), abs(v)) <= UNDERFLOW:
             return a, y  # at the slip's equilibrium to double precision
         fresh = False
-        r_p = _p_norm(s, p, v, kv_ki, k_p)
+        r_p = p_norm(s, p, v, kv_ki, k_p)
         if r_p == 0.0:
             return (a, y) if a > 0.0 else (None, y)  # y = 0: the slip's equilibrium
         # everything below is homogeneous in y: work with y/|y|_P (no overflow)
         u = u / r_p
-        du = d * (p - k_v * v) / r_p
-        dd = d * (s - k_v * p + (k_v * k_v - k_p) * v) / r_p
+        du = d * (a11 * p + a12 * v) / r_p
+        dd = d * (a20 * s + a21 * p + a22 * v) / r_p
         # |u''| on [a, stop]: globally ≤ m2|y|_P, and ≤ |u''(a)| + m3|y|_P (stop - a)
         big_m2 = max(min(m2, abs(dd) + m3 * (stop - a)), 1e-300)
         root = math.sqrt(du * du + 2.0 * big_m2 * u)
@@ -193,7 +218,7 @@ def _march(
                 if slip.u(stop) > 0.0:
                     return None, y
                 hi = stop
-            tau = _newton(slip, k_v, lo, hi)
+            tau = _newton(slip, (a11, a12), lo, hi)
             return tau, slip.state(tau)
         if du >= 0.0:
             if dd > 0.0:
@@ -254,7 +279,7 @@ def first_zero(
     slip = _Slip(model.expm, y0, direction)
     table = model.table
     dt, n_cells = table.dt, table.cells
-    kv_ki, k_p = model.expm.k_v / model.expm.k_i, model.expm.k_p
+    kv_ki, k_p = p_weights(model.expm)
     m4 = model.bounds.m[4]
     d = direction
     # windows of `cells` cells, each anchored at the exact state at its start, so that
@@ -262,7 +287,7 @@ def first_zero(
     a_w, y_w = 0.0, y0
     while a_w < horizon:
         s, p, v = y_w
-        r_p = _p_norm(s, p, v, kv_ki, k_p)
+        r_p = p_norm(s, p, v, kv_ki, k_p)
         last = min(n_cells, math.ceil((horizon - a_w) / dt))
         for j in np.flatnonzero(_blocked(table, last, np.array(y_w), d, r_p, m4)):
             a0 = a_w + float(j) * dt
@@ -302,7 +327,7 @@ def first_zeros(
     q2 = y0 @ expm.B2.T
     table = model.table
     dt, n_cells = table.dt, table.cells
-    kv_ki, k_p = expm.k_v / expm.k_i, expm.k_p
+    kv_ki, k_p = p_weights(expm)
     m4 = model.bounds.m[4]
     cells = np.arange(n_cells)
 
@@ -318,7 +343,7 @@ def first_zeros(
         for lo in range(0, rows.size, chunk):
             part = rows[lo : lo + chunk]
             yp = y_w[part]
-            r_p = _p_norm_vec(yp[:, 0:1], yp[:, 1:2], yp[:, 2:3], kv_ki, k_p)
+            r_p = p_norm_vec(yp[:, 0:1], yp[:, 1:2], yp[:, 2:3], kv_ki, k_p)
             blocked = _blocked(table, n_cells, yp, d[part, None], r_p, m4)
             blocked &= cells[None, :] < last[part, None]
             _march_cells(model, q0, q1, q2, d, horizon, part, a_w, blocked, tau, open_)
@@ -355,7 +380,8 @@ def _march_cells(model, q0, q1, q2, d, horizon, part, a_w, blocked, tau, open_) 
 def _march_vec(model, q0, q1, q2, d, a, stop):
     """Vectorised :func:`_march` (each row from ``a`` to ``stop``)."""
     expm = model.expm
-    k_p, k_i, k_v = expm.k_p, expm.k_i, expm.k_v
+    kv_ki, k_p = p_weights(expm)
+    (_, a11, a12), (a20, a21, a22) = v_rows(expm)
     m2, m3 = model.bounds.m[2], model.bounds.m[3]
     n = a.size
     a = a.copy()
@@ -375,13 +401,13 @@ def _march_vec(model, q0, q1, q2, d, a, stop):
         # a zero reached by a certified step (not at a slip's start), or underflow
         reached = ((u <= 0.0) & ~fresh[act]) | (np.max(np.abs(y), axis=1) <= UNDERFLOW)
         fresh[act] = False
-        r_p = _p_norm_vec(s, p, v, k_v / k_i, k_p)
+        r_p = p_norm_vec(s, p, v, kv_ki, k_p)
         degenerate = r_p == 0.0  # y = 0: the slip's equilibrium
         scale = np.where(degenerate, 1.0, r_p)
         # homogeneous in y: work with y/|y|_P (no overflow)
         u = u / scale
-        du = dd_ * (p - k_v * v) / scale
-        dd2 = dd_ * (s - k_v * p + (k_v * k_v - k_p) * v) / scale
+        du = dd_ * (a11 * p + a12 * v) / scale
+        dd2 = dd_ * (a20 * s + a21 * p + a22 * v) / scale
         safe_m2 = np.maximum(np.minimum(m2, np.abs(dd2) + m3 * (stop[act] - aa)), 1e-300)
         root = np.sqrt(np.maximum(du * du + 2.0 * safe_m2 * u, 0.0))  # u < 0 only where reached
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -438,7 +464,7 @@ def _march_vec(model, q0, q1, q2, d, a, stop):
 
 def _newton_vec(expm, q0, q1, q2, d, lo, hi):
     """Vectorised :func:`_newton` on brackets ``[lo, hi]`` (one row each)."""
-    k_v = expm.k_v
+    (_, a11, a12), _ = v_rows(expm)
     lo, hi = lo.copy(), hi.copy()
     x = 0.5 * (lo + hi)
     result = np.full(lo.size, np.nan)
@@ -453,7 +479,7 @@ def _newton_vec(expm, q0, q1, q2, d, lo, hi):
         di = d[idx]
         u = di * y[:, 2]
         noise = 8.0 * _EPS * (np.abs(a[:, 2]) + np.abs(b[:, 2]) + np.abs(c[:, 2]))
-        du = di * (y[:, 1] - k_v * y[:, 2])
+        du = di * (a11 * y[:, 1] + a12 * y[:, 2])
         pos = u > 0.0
         lo[idx] = np.where(pos, xi, lo[idx])
         hi[idx] = np.where(pos, hi[idx], xi)

@@ -1,0 +1,516 @@
+"""Binding obligations: the code that runs is the model that is proved.
+
+Every other obligation evaluates the package's model functions in the sympy
+kind (:mod:`symbolic_friction._kinds`).  Certificates, the simulators and the
+cross-check evaluate the *same* functions on exact rationals and on float
+arrays, and the simulators read the mode table of Claim 1 through their own
+fast code.  The obligations here bind those instantiations to the paper:
+
+* ``model.V_runtime`` — ``V`` of eq. (lyapLike): the package's closed form
+  equals the paper's ``min_{f ∈ f_c SGN(v)} |(σ, φ - f, v)|²_P`` on all 45
+  sign/φ classes, symbolically; and the exact and float evaluations equal
+  the symbolic one at a point of every class (and every boundary).
+* ``model.hatV_runtime`` — ``V̂`` of eq. (Vhat) equals ``½wᵀKw`` with
+  ``w = (|σ|, |dz(φ)|, |v|)``, ``K`` the package's matrix, ``dz`` the
+  paper's dead zone; exact and float agree with it.
+* ``model.R_runtime`` — membership in ``R = {v(φ - sign(v) f_c) ≥ 0}``
+  (Lemma 3), boundary included, in all three kinds.
+* ``model.distance_runtime`` and ``model.distance_z_runtime`` — ``|x|²_𝒜``
+  (eq. distFromA) and ``|z|²_𝒜`` (Corollary 1) against the paper's piecewise
+  ``dz``, in all three kinds.
+* ``model.matrices_runtime`` — the float matrices ``A``, ``b``, ``P``, ``T``,
+  ``T⁻¹`` the simulators use equal the symbolic ones.
+* ``model.modes_runtime`` — the simulators' mode selection (exact
+  ``table_row``/``select_mode`` and vectorised ``select_modes``) equals the
+  appendix table that ``claim1.cases`` proves, at a point of every one of
+  its 45 classes.
+* ``model.P_norm_runtime`` — the ``|y|_P`` written out for speed in the
+  certified root search of the event-driven simulator equals the package's
+  quadratic form.
+
+"Exhaustive" here means: one exact point in every open class and on every
+boundary of the case split, at gains whose float arithmetic is exact (all
+values dyadic), compared with ``==``, never with a tolerance.
+"""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Callable
+from dataclasses import dataclass
+from fractions import Fraction
+from typing import Any
+
+import numpy as np
+import sympy as sp
+
+from .. import _symbolic
+from .._attractor import dz, squared_distance_x, squared_distance_z
+from .._coordinates import input_vector, system_matrix, x_to_z, z_to_x
+from .._lyapunov import V, V_hat, in_R, lyapunov_matrix, quadratic_form
+from .._parameters import Parameters
+from .._simulation.modes import select_mode, select_modes, table_row
+from ._base import Obligation, Outcome
+from ._decide import G, Undecided, decide, is_zero, latex, minimum_on, resolve_piecewise, sign_of
+from ._inequalities import Case, case_grid, line_cases, phi_cases, sign_cases
+from .claim1 import table_rows
+from .model import sgn_sets
+
+__all__ = [
+    "INSTANCE",
+    "K_INSTANCE",
+    "instance_points",
+    "BindingSubject",
+    "VRuntime",
+    "HatVRuntime",
+    "RRuntime",
+    "DistanceRuntime",
+    "DistanceZRuntime",
+    "MatricesRuntime",
+    "ModesRuntime",
+    "PNormRuntime",
+    "OBLIGATIONS",
+]
+
+INSTANCE = Parameters(k_p=3, k_i=2, k_v=1, f_c=2)
+"""Gains of the exact instances: Assumption 1 holds (1·3 > 2), every
+parameter and ``k_v/k_i`` is dyadic and all four differ, so a swapped gain
+changes a value and float arithmetic on the points below is exact."""
+
+K_INSTANCE = (Fraction(1), Fraction(2), Fraction(3), Fraction(5))
+"""Constants ``k₁ … k₄`` of the ``V̂`` instances (distinct, dyadic)."""
+
+_SIGMAS = (Fraction(-1), Fraction(0), Fraction(1))
+_VS = (Fraction(-1, 2), Fraction(0), Fraction(1, 2))
+
+
+def instance_points(f_c: Fraction = INSTANCE.f_c) -> tuple[tuple[Fraction, Fraction, Fraction], ...]:
+    """``(σ, φ, v)`` with a point in every class of ``σ ≷ 0``, ``v ≷ 0`` and ``φ`` against ``±f_c``.
+
+    ``φ`` takes ``-3f_c/2, -f_c, -f_c/2, 0, f_c/2, f_c, 3f_c/2``: both
+    boundaries, both outer pieces and the inner piece on both sides of 0.
+    """
+    phis = tuple(f_c * Fraction(n, 2) for n in (-3, -2, -1, 0, 1, 2, 3))
+    return tuple(itertools.product(_SIGMAS, phis, _VS))
+
+
+def _state_cases(g: _symbolic.Gains) -> list[Case]:
+    return case_grid(sign_cases(g.sigma, "σ", "a_sigma"), sign_cases(g.v, "v", "a_v"), phi_cases(g.phi, g.f_c))
+
+
+def _gain_values(g: _symbolic.Gains, p: Parameters) -> dict[sp.Symbol, sp.Expr]:
+    return {g.k_p: sp.Rational(p.k_p), g.k_i: sp.Rational(p.k_i), g.k_v: sp.Rational(p.k_v), g.f_c: sp.Rational(p.f_c)}
+
+
+def _as_exact(x: Any) -> Fraction | bool:
+    x = sp.sympify(x)
+    if x in (sp.true, sp.false):
+        return bool(x)
+    if not x.is_Rational:
+        raise Undecided(f"{x} is not an exact rational")
+    return Fraction(int(x.p), int(x.q))
+
+
+def _sign(case: Case, var: sp.Symbol) -> int:
+    value = sign_of(case(var))
+    if value is None:
+        raise Undecided(f"cannot decide the sign of {case(var)}")
+    return value
+
+
+@dataclass(frozen=True)
+class BindingSubject:
+    """A runtime model function in its three kinds, and the paper's definition.
+
+    Attributes
+    ----------
+    name : str
+        The paper object, e.g. ``"V"``.
+    symbolic : sympy expression or relational
+        The package function evaluated in the sympy kind on ``state``.
+    paper : callable
+        ``paper(case) -> expr``: the paper's definition on one case of the split.
+    cases : tuple of Case
+        The case split (every sign class and every piece of ``dz``).
+    exact, floats : callable
+        ``exact(params, point)`` evaluates the package function on one exact
+        point (a list of Fractions); ``floats(params, array)`` on an ``(n, 3)``
+        float array, vectorised.
+    params : Parameters
+        The instance gains.
+    constants : dict
+        Symbol → exact value at the instance (gains, and ``k₁ … k₄`` for ``V̂``).
+    points : tuple
+        Exact states, one in every class and on every boundary.
+    state : tuple of Symbol
+        The state symbols ``symbolic`` is written in.
+    relation : bool
+        The object is a set: compare truth values, not values.
+    """
+
+    name: str
+    symbolic: Any
+    paper: Callable[[Case], Any]
+    cases: tuple[Case, ...]
+    exact: Callable[[Parameters, Any], Any]
+    floats: Callable[[Parameters, np.ndarray], Any]
+    params: Parameters
+    constants: dict
+    points: tuple[tuple[Fraction, Fraction, Fraction], ...]
+    state: tuple[sp.Symbol, sp.Symbol, sp.Symbol]
+    relation: bool = False
+
+
+def _verify_binding(s: BindingSubject) -> Outcome:
+    """Symbolic equality with the paper on every case, then the three kinds at every point."""
+    for case in s.cases:
+        try:
+            got = resolve_piecewise(case(s.symbolic))
+            want = resolve_piecewise(s.paper(case))
+            if s.relation:
+                a, b = decide(got), decide(want)
+                if a is None or b is None or a != b:
+                    return Outcome.fail(f"{case.label}: the package's {s.name} gives {got} ({a}), the paper {want} ({b})")
+            elif not is_zero(sp.expand(got - want)):
+                return Outcome.fail(f"{case.label}: the package's {s.name} = {got} differs from the paper's {want}")
+        except Undecided as exc:
+            return Outcome.fail(f"{case.label}: {exc}")
+    floats = s.floats(s.params, np.array([[float(c) for c in p] for p in s.points]))
+    floats = np.broadcast_to(np.asarray(floats), (len(s.points),))
+    for i, point in enumerate(s.points):
+        where = "(" + ", ".join(str(c) for c in point) + ")"
+        at = dict(s.constants)
+        at.update(dict(zip(s.state, (sp.Rational(c) for c in point))))
+        try:
+            want = _as_exact(resolve_piecewise(sp.sympify(s.symbolic).xreplace(at)))
+        except Undecided as exc:
+            return Outcome.fail(f"at {where}: {exc}")
+        got = s.exact(s.params, list(point))
+        kind_ok = isinstance(got, bool) if s.relation else isinstance(got, (Fraction, int)) and not isinstance(got, bool)
+        if not kind_ok or got != want:
+            return Outcome.fail(f"at {where}: the exact {s.name} is {got!r}, the symbolic one {want}")
+        f = floats[i]
+        if (bool(f) != want) if s.relation else (float(f) != float(want)):
+            return Outcome.fail(f"at {where}: the float {s.name} is {f!r}, the exact one {want}")
+    details = (
+        (f"{s.name}\\ \\text{{(package, sympy kind)}}", latex(s.symbolic)),
+        ("\\text{classes, exact points}", f"{len(s.cases)},\\ {len(s.points)}"),
+    )
+    return Outcome(
+        True,
+        f"equal to the paper on {len(s.cases)} classes; exact, float and sympy agree at {len(s.points)} points",
+        details,
+    )
+
+
+class _Binding(Obligation):
+    """A binding obligation: subclasses build a :class:`BindingSubject`."""
+
+    method = (
+        "sympy identity per class of the case split; the package function evaluated exactly and on "
+        "float arrays at a dyadic point of every class and boundary, compared with == (no tolerance)"
+    )
+
+    def verify(self, subject: BindingSubject) -> Outcome:
+        return _verify_binding(subject)
+
+
+def _paper_dz(case: Case, y: sp.Expr, c: sp.Expr) -> sp.Expr:
+    """``dz_c(y) = y - c·sat(y/c)`` (Notation, §I), by the class of ``y`` in the case."""
+    value, bound = case(y), case(c)
+    above, below = decide(sp.StrictGreaterThan(value, bound)), decide(sp.StrictLessThan(value, -bound))
+    if above is None or below is None:
+        raise Undecided(f"cannot place {value} against ±{bound}")
+    return value - bound if above else value + bound if below else sp.Integer(0)
+
+
+def _x_state(g: _symbolic.Gains) -> dict:
+    return dict(cases=tuple(_state_cases(g)), points=instance_points(), state=(g.sigma, g.phi, g.v))
+
+
+class VRuntime(_Binding):
+    id = "model.V_runtime"
+    paper = "eq. (lyapLike), eq. (lyapLikeP)"
+    statement = (
+        "the package's closed-form V (certificates, simulators, cross-check) is "
+        "min_{f ∈ f_c SGN(v)} |(σ, φ − f, v)|²_P, in exact, float and symbolic form"
+    )
+
+    def derive(self) -> BindingSubject:
+        g = G()
+        P = _symbolic.P(g)
+        w = sp.Symbol("w", real=True)
+        sgn = sgn_sets()
+
+        def paper(case: Case) -> sp.Expr:
+            vec = sp.Matrix([case(g.sigma), case(g.phi) - g.f_c * w, case(g.v)])
+            form = sp.expand(case((vec.T * P * vec)[0]))
+            return minimum_on(form, w, sgn[_sign(case, g.v)])
+
+        return BindingSubject(
+            name="V", symbolic=V(g, [g.sigma, g.phi, g.v]), paper=paper, exact=V, floats=V,
+            params=INSTANCE, constants=_gain_values(g, INSTANCE), **_x_state(g),
+        )
+
+
+class HatVRuntime(_Binding):
+    id = "model.hatV_runtime"
+    paper = "eq. (Vhat); Lemma 3, proof of eq. (hatVandHatR)"
+    statement = (
+        "the package's V̂ is ½k₁σ² + ½k₂dz(φ)² + k₃|σ||v| + ½k₄v² = ½wᵀKw with w = (|σ|, |dz(φ)|, |v|), "
+        "in exact, float and symbolic form"
+    )
+
+    def derive(self) -> BindingSubject:
+        g = G()
+        k = tuple(sp.symbols("k_1 k_2 k_3 k_4", positive=True))
+        K = _symbolic.K_hat(*k)
+
+        def paper(case: Case) -> sp.Expr:
+            w = sp.Matrix([sp.Abs(case(g.sigma)), sp.Abs(_paper_dz(case, g.phi, g.f_c)), sp.Abs(case(g.v))])
+            return sp.expand((w.T * K * w)[0] / 2)
+
+        def runtime(p: Parameters, x: Any) -> Any:
+            return V_hat(p, x, K_INSTANCE)
+
+        constants = _gain_values(g, INSTANCE)
+        constants.update(zip(k, (sp.Rational(q) for q in K_INSTANCE)))
+        return BindingSubject(
+            name="V̂", symbolic=V_hat(g, [g.sigma, g.phi, g.v], k), paper=paper, exact=runtime, floats=runtime,
+            params=INSTANCE, constants=constants, **_x_state(g),
+        )
+
+
+class RRuntime(_Binding):
+    id = "model.R_runtime"
+    paper = "Lemma 3 (the sets R and R̂)"
+    statement = "the package's test x ∈ R is v(φ − sign(v) f_c) ≥ 0, boundary included, in exact, float and symbolic form"
+
+    def derive(self) -> BindingSubject:
+        g = G()
+
+        def paper(case: Case) -> Any:
+            return sp.GreaterThan(sp.expand(case(g.v) * (case(g.phi) - _sign(case, g.v) * case(g.f_c))), 0)
+
+        return BindingSubject(
+            name="x ∈ R", symbolic=in_R(g, [g.sigma, g.phi, g.v]), paper=paper, exact=in_R, floats=in_R,
+            params=INSTANCE, constants=_gain_values(g, INSTANCE), relation=True, **_x_state(g),
+        )
+
+
+class DistanceRuntime(_Binding):
+    id = "model.distance_runtime"
+    paper = "eq. (distFromA); Notation (dz, sat)"
+    statement = "the package's |x|²_𝒜 is σ² + v² + dz(φ)² with dz(y) = y − f_c·sat(y/f_c), in exact, float and symbolic form"
+
+    def derive(self) -> BindingSubject:
+        g = G()
+
+        def paper(case: Case) -> sp.Expr:
+            return case(g.sigma) ** 2 + case(g.v) ** 2 + _paper_dz(case, g.phi, g.f_c) ** 2
+
+        return BindingSubject(
+            name="|x|²_𝒜", symbolic=squared_distance_x(g, [g.sigma, g.phi, g.v]), paper=paper,
+            exact=squared_distance_x, floats=squared_distance_x,
+            params=INSTANCE, constants=_gain_values(g, INSTANCE), **_x_state(g),
+        )
+
+
+class DistanceZRuntime(_Binding):
+    id = "model.distance_z_runtime"
+    paper = "Corollary 1, proof (the two distances)"
+    statement = "the package's |z|²_𝒜 is s² + v² + dz_{f_c/k_i}(e_i)², in exact, float and symbolic form"
+
+    def derive(self) -> BindingSubject:
+        g = G()
+        beta = g.f_c / g.k_i
+        cases = case_grid(
+            sign_cases(g.s, "s", "a_s"),
+            sign_cases(g.v, "v", "a_v"),
+            line_cases(g.e_i, [-beta, beta], name="e_i", beyond="d_e", weights=("u_e", "w_e"), labels=["-f_c/k_i", "f_c/k_i"]),
+        )
+
+        def paper(case: Case) -> sp.Expr:
+            return case(g.s) ** 2 + case(g.v) ** 2 + _paper_dz(case, g.e_i, beta) ** 2
+
+        points = tuple((e, s, v) for s, e, v in instance_points(INSTANCE.f_c / INSTANCE.k_i))
+        return BindingSubject(
+            name="|z|²_𝒜", symbolic=squared_distance_z(g, [g.e_i, g.s, g.v]), paper=paper,
+            cases=tuple(cases), exact=squared_distance_z, floats=squared_distance_z,
+            params=INSTANCE, constants=_gain_values(g, INSTANCE), points=points, state=(g.e_i, g.s, g.v),
+        )
+
+
+@dataclass(frozen=True)
+class MatricesSubject:
+    """The symbolic matrices and the float (and exact) ones the simulators use."""
+
+    symbolic: dict[str, sp.ImmutableMatrix]
+    runtime: dict[str, Callable[[Parameters], Any]]
+    params: Parameters
+    constants: dict
+
+
+class MatricesRuntime(Obligation):
+    id = "model.matrices_runtime"
+    paper = "eq. (CoC), eq. (xDot), eq. (lyapLikeP)"
+    statement = "the float A, b, P and the coordinate maps z ↦ x = Tz, x ↦ z = T⁻¹x that the simulators use equal the symbolic ones (exact and float paths)"
+    method = "evaluate at dyadic gains (float arithmetic exact) and compare entry by entry with =="
+
+    def derive(self) -> MatricesSubject:
+        g = G()
+        basis_f = np.eye(3)
+        basis_q = np.array([[Fraction(int(i == j)) for j in range(3)] for i in range(3)], dtype=object)
+        return MatricesSubject(
+            symbolic={
+                "A": sp.ImmutableMatrix(_symbolic.A(g)),
+                "b": sp.ImmutableMatrix(_symbolic.b(g)).T,
+                "P": sp.ImmutableMatrix(_symbolic.P(g)),
+                # rows of z_to_x(eᵢ) are the columns of T: compare with Tᵀ
+                "T (float)": sp.ImmutableMatrix(_symbolic.T(g)).T,
+                "T (exact)": sp.ImmutableMatrix(_symbolic.T(g)).T,
+                "T⁻¹ (float)": sp.ImmutableMatrix(_symbolic.T_inv(g)).T,
+                "T⁻¹ (exact)": sp.ImmutableMatrix(_symbolic.T_inv(g)).T,
+            },
+            runtime={
+                "A": system_matrix,
+                "b": lambda p: input_vector(p).reshape(1, 3),
+                "P": lyapunov_matrix,
+                "T (float)": lambda p: z_to_x(p, basis_f),
+                "T (exact)": lambda p: z_to_x(p, basis_q),
+                "T⁻¹ (float)": lambda p: x_to_z(p, basis_f),
+                "T⁻¹ (exact)": lambda p: x_to_z(p, basis_q),
+            },
+            params=INSTANCE,
+            constants=_gain_values(g, INSTANCE),
+        )
+
+    def verify(self, subject: MatricesSubject) -> Outcome:
+        for name, M in subject.symbolic.items():
+            want = M.xreplace(subject.constants)
+            got = np.asarray(subject.runtime[name](subject.params))
+            if got.shape != want.shape:
+                return Outcome.fail(f"{name}: shape {got.shape}, expected {want.shape}")
+            exact = "exact" in name
+            for i, j in itertools.product(range(want.shape[0]), range(want.shape[1])):
+                w, x = want[i, j], got[i, j]
+                same = (x == _as_exact(w) and isinstance(x, (Fraction, int))) if exact else float(x) == float(w)
+                if not same:
+                    return Outcome.fail(f"{name}[{i + 1},{j + 1}] = {x!r} at the instance gains; symbolically {w}")
+        return Outcome(True, f"{len(subject.symbolic)} matrices equal entry by entry at dyadic gains")
+
+
+@dataclass(frozen=True)
+class ModesSubject:
+    """The appendix table proved by ``claim1.cases`` and the simulators' mode selection."""
+
+    rows: tuple[Any, ...]
+    table_row: Callable[..., str]
+    select_mode: Callable[..., int]
+    select_modes: Callable[..., Any]
+    f_c: Fraction
+    points: tuple[tuple[Fraction, Fraction, Fraction], ...]
+
+
+def _classes(point: tuple[Fraction, Fraction, Fraction], f_c: Fraction) -> tuple[str, str, str]:
+    """The row-table classes (as :func:`.claim1.table_rows` writes them) of an exact point."""
+    sigma, phi, v = point
+
+    def sgn(q: Fraction) -> str:
+        return "> 0" if q > 0 else "< 0" if q < 0 else "= 0"
+
+    phi_class = (
+        "φ > f_c" if phi > f_c else "φ = f_c" if phi == f_c else "φ = -f_c" if phi == -f_c else "φ < -f_c" if phi < -f_c else "|φ| < f_c"
+    )
+    return sgn(v), phi_class, sgn(sigma)
+
+
+class ModesRuntime(Obligation):
+    id = "model.modes_runtime"
+    paper = "Claim 1; Appendix (table of cases (i)-(xi))"
+    statement = "the simulators' mode selection (exact table_row/select_mode, vectorised select_modes) gives the row and k of the table that claim1.cases proves, in every class"
+    method = "a dyadic point in each of the 45 sign/φ classes (every boundary included), compared with =="
+
+    def derive(self) -> ModesSubject:
+        f_c = INSTANCE.f_c
+        return ModesSubject(
+            rows=table_rows(sp.Rational(f_c)),
+            table_row=table_row,
+            select_mode=select_mode,
+            select_modes=select_modes,
+            f_c=f_c,
+            points=instance_points(f_c),
+        )
+
+    def verify(self, subject: ModesSubject) -> Outcome:
+        arr = np.array([[float(c) for c in p] for p in subject.points])
+        vectorised = np.asarray(subject.select_modes(arr[:, 0], arr[:, 1], arr[:, 2], float(subject.f_c)))
+        seen: set[str] = set()
+        for i, point in enumerate(subject.points):
+            v_class, phi_class, sigma_class = _classes(point, subject.f_c)
+            rows = [
+                r for r in subject.rows
+                if r.v == v_class and r.phi in (None, phi_class) and r.sigma in (None, sigma_class)
+            ]
+            where = "(σ, φ, v) = (" + ", ".join(str(c) for c in point) + ")"
+            if len(rows) != 1:
+                return Outcome.fail(f"{where}: {len(rows)} rows of the proved table apply; expected exactly one")
+            row = rows[0]
+            seen.add(row.label)
+            label = subject.table_row(*point, subject.f_c)
+            if label != row.label:
+                return Outcome.fail(f"{where}: table_row gives row ({label}), the proved table row ({row.label})")
+            k = subject.select_mode(*point, subject.f_c)
+            if k != row.k:
+                return Outcome.fail(f"{where}: select_mode gives k = {k}, row ({row.label}) has k = {row.k}")
+            if int(vectorised[i]) != row.k:
+                return Outcome.fail(f"{where}: select_modes (floats) gives k = {int(vectorised[i])}, row ({row.label}) has k = {row.k}")
+        missing = [r.label for r in subject.rows if r.label not in seen]
+        if missing:
+            return Outcome.fail(f"rows {missing} were never reached by a point: the check would be vacuous for them")
+        return Outcome(True, f"all {len(subject.rows)} rows agree at {len(subject.points)} points")
+
+
+@dataclass(frozen=True)
+class PNormSubject:
+    """The simulators' written-out ``|y|_P`` (scalar and vectorised) and the package's quadratic form."""
+
+    p_norm: Callable[..., float]
+    p_norm_vec: Callable[..., Any]
+    weights: tuple[float, float]
+    params: Parameters
+    points: tuple[tuple[Fraction, Fraction, Fraction], ...]
+
+
+class PNormRuntime(Obligation):
+    id = "model.P_norm_runtime"
+    paper = "eq. (lyapLikeP); eq. (dVdt) (|y|_P is nonincreasing along a slip)"
+    statement = "the certified root search's written-out |y|_P (scalar and vectorised) squares to the package's (σ, φ, v)P(σ, φ, v)ᵀ"
+    method = "evaluate at a dyadic point of every class (63 points, gains dyadic) against the exact form; a float square root is compared to within 4 ulps"
+
+    def derive(self) -> PNormSubject:
+        from .._simulation.affine import MatrixExponential
+        from .._simulation.search import p_norm, p_norm_vec, p_weights
+
+        return PNormSubject(
+            p_norm=p_norm,
+            p_norm_vec=p_norm_vec,
+            weights=p_weights(MatrixExponential.from_params(INSTANCE)),
+            params=INSTANCE,
+            points=instance_points(),
+        )
+
+    def verify(self, subject: PNormSubject) -> Outcome:
+        arr = np.array([[float(c) for c in p] for p in subject.points])
+        vec = np.asarray(subject.p_norm_vec(arr[:, 0], arr[:, 1], arr[:, 2], *subject.weights))
+        for i, point in enumerate(subject.points):
+            want = quadratic_form(subject.params, *point)
+            where = "(" + ", ".join(str(c) for c in point) + ")"
+            for name, got in (("p_norm", subject.p_norm(*(float(c) for c in point), *subject.weights)), ("p_norm_vec", vec[i])):
+                got2 = Fraction(float(got)) ** 2
+                if abs(got2 - want) > 8 * Fraction(2) ** -52 * want:
+                    return Outcome.fail(f"at {where}: {name}² = {float(got2)!r}, the package's |y|²_P = {want}")
+        return Outcome(True, f"scalar and vectorised |y|_P agree with the package's P at {len(subject.points)} points")
+
+
+OBLIGATIONS = (VRuntime, HatVRuntime, RRuntime, DistanceRuntime, DistanceZRuntime, MatricesRuntime, ModesRuntime, PNormRuntime)

@@ -1,0 +1,236 @@
+"""Binding obligations ``model.*_runtime``: each holds, and each fails when
+the runtime function it binds is broken in one place (in one kind only, or
+in the symbolic form only)."""
+
+import dataclasses
+from fractions import Fraction
+
+import numpy as np
+import pytest
+import sympy as sp
+
+from symbolic_friction._attractor import squared_distance_x, squared_distance_z
+from symbolic_friction._lyapunov import V, V_hat, in_R
+from symbolic_friction._obligations import all_obligations
+from symbolic_friction._obligations._decide import G
+from symbolic_friction._obligations.runtime import (
+    INSTANCE,
+    K_INSTANCE,
+    DistanceRuntime,
+    DistanceZRuntime,
+    HatVRuntime,
+    MatricesRuntime,
+    ModesRuntime,
+    PNormRuntime,
+    RRuntime,
+    VRuntime,
+    instance_points,
+)
+
+from ._helpers import assert_fails, assert_holds, obligation_fixture
+
+g = G()
+
+v_runtime = obligation_fixture(VRuntime)
+hatv_runtime = obligation_fixture(HatVRuntime)
+r_runtime = obligation_fixture(RRuntime)
+distance_runtime = obligation_fixture(DistanceRuntime)
+distance_z_runtime = obligation_fixture(DistanceZRuntime)
+matrices_runtime = obligation_fixture(MatricesRuntime)
+modes_runtime = obligation_fixture(ModesRuntime)
+pnorm_runtime = obligation_fixture(PNormRuntime)
+
+
+def test_every_binding_is_listed_by_check():
+    ids = [ob.id for ob in all_obligations()]
+    for cls in (VRuntime, HatVRuntime, RRuntime, DistanceRuntime, DistanceZRuntime, MatricesRuntime, ModesRuntime, PNormRuntime):
+        assert cls.id in ids
+
+
+def test_instance_points_cover_every_class_and_boundary():
+    points = instance_points()
+    assert len(points) == 63
+    phis = {p[1] for p in points}
+    assert {INSTANCE.f_c, -INSTANCE.f_c} <= phis  # both boundaries of dz and of the table
+    assert {np.sign(float(p[2])) for p in points} == {-1.0, 0.0, 1.0}
+
+
+@pytest.mark.parametrize(
+    "fixture",
+    ["v_runtime", "hatv_runtime", "r_runtime", "distance_runtime", "distance_z_runtime", "matrices_runtime", "modes_runtime", "pnorm_runtime"],
+)
+def test_binding_holds(fixture, request):
+    ob, subject = request.getfixturevalue(fixture)
+    assert_holds(ob, subject)
+
+
+# ---------------------------------------------------------------- V
+
+
+def _v_zero_at_rest(p, x):
+    """Exact V with the friction value 0 at v = 0 instead of the projection of φ."""
+    sigma, phi, v = x
+    return V(p, x) if v != 0 else V(p, [sigma, Fraction(0), v]) + phi**2
+
+
+def test_V_wrong_minimiser_symbolic_fails(v_runtime):
+    ob, s = v_runtime
+    wrong = V(g, [g.sigma, g.phi, 0 * g.v]).subs(g.phi, 0) + g.phi**2  # f = 0 instead of sat(φ) at v = 0
+    broken = sp.Piecewise((s.symbolic, sp.Ne(g.v, 0)), (wrong, True))
+    assert_fails(ob, dataclasses.replace(s, symbolic=broken), "v = 0", "differs from the paper")
+
+
+def test_V_wrong_exact_kind_fails(v_runtime):
+    ob, s = v_runtime
+    assert_fails(ob, dataclasses.replace(s, exact=_v_zero_at_rest), "the exact V")
+
+
+def test_V_wrong_float_kind_fails(v_runtime):
+    ob, s = v_runtime
+
+    def float_v(p, x):
+        out = np.array(V(p, x), dtype=float)
+        return out + (x[:, 2] == 0) * 1.0  # off by one at rest
+    assert_fails(ob, dataclasses.replace(s, floats=float_v), "the float V")
+
+
+def test_V_exact_kind_returning_a_float_fails(v_runtime):
+    ob, s = v_runtime
+    assert_fails(ob, dataclasses.replace(s, exact=lambda p, x: float(V(p, x))), "the exact V")
+
+
+# ---------------------------------------------------------------- V̂
+
+
+def test_hatV_doubled_cross_term_fails(hatv_runtime):
+    ob, s = hatv_runtime
+    k3 = sp.Symbol("k_3", positive=True)
+    broken = s.symbolic + k3 * sp.Abs(g.sigma) * sp.Abs(g.v)
+    assert_fails(ob, dataclasses.replace(s, symbolic=broken), "differs from the paper")
+
+
+def test_hatV_without_dead_zone_fails_in_exact_kind(hatv_runtime):
+    ob, s = hatv_runtime
+
+    def no_dz(p, x):
+        sigma, phi, v = x
+        k1, k2, k3, k4 = K_INSTANCE
+        return k1 * sigma**2 / 2 + k2 * phi**2 / 2 + k3 * abs(sigma) * abs(v) + k4 * v**2 / 2
+
+    assert_fails(ob, dataclasses.replace(s, exact=no_dz), "the exact V̂")
+
+
+def test_hatV_float_kind_off_fails(hatv_runtime):
+    ob, s = hatv_runtime
+    assert_fails(ob, dataclasses.replace(s, floats=lambda p, x: V_hat(p, x, K_INSTANCE) * 1.5), "the float V̂")
+
+
+# ---------------------------------------------------------------- R
+
+
+def test_R_strict_fails(r_runtime):
+    ob, s = r_runtime
+    strict = sp.StrictGreaterThan(s.symbolic.lhs, 0)
+    assert_fails(ob, dataclasses.replace(s, symbolic=strict), "x ∈ R")
+
+
+def test_R_sign_flip_fails(r_runtime):
+    ob, s = r_runtime
+    flipped = sp.GreaterThan(g.v * (g.phi + sp.sign(g.v) * g.f_c), 0)
+    assert_fails(ob, dataclasses.replace(s, symbolic=flipped), "the paper")
+
+
+def test_R_strict_float_kind_fails(r_runtime):
+    ob, s = r_runtime
+    from symbolic_friction._lyapunov import R_margin
+
+    assert_fails(ob, dataclasses.replace(s, floats=lambda p, x: R_margin(p, x) > 0), "the float x ∈ R")
+
+
+def test_R_exact_kind_not_a_bool_fails(r_runtime):
+    ob, s = r_runtime
+    assert_fails(ob, dataclasses.replace(s, exact=lambda p, x: int(in_R(p, x))), "the exact x ∈ R")
+
+
+# ---------------------------------------------------------------- distances
+
+
+def test_distance_without_v_fails(distance_runtime):
+    ob, s = distance_runtime
+    assert_fails(ob, dataclasses.replace(s, symbolic=s.symbolic - g.v**2), "differs from the paper")
+
+
+def test_distance_float_kind_off_fails(distance_runtime):
+    ob, s = distance_runtime
+    assert_fails(
+        ob, dataclasses.replace(s, floats=lambda p, x: squared_distance_x(p, x) + (np.abs(x[:, 1]) == 2)), "the float |x|²_𝒜"
+    )
+
+
+def test_distance_z_wrong_bound_fails(distance_z_runtime):
+    ob, s = distance_z_runtime
+    assert_fails(
+        ob,
+        dataclasses.replace(s, exact=lambda p, z: squared_distance_z(p, z) + (abs(z[0]) > 1) * (z[0] ** 2 - (abs(z[0]) - 1) ** 2)),
+        "the exact |z|²_𝒜",
+    )
+
+
+# ---------------------------------------------------------------- matrices, modes, |y|_P
+
+
+def test_matrices_swapped_gains_fail(matrices_runtime):
+    ob, s = matrices_runtime
+    from symbolic_friction._coordinates import system_matrix_entries
+
+    swapped = lambda p: np.array(system_matrix_entries(float(p.k_v), float(p.k_i), float(p.k_p)))  # noqa: E731
+    assert_fails(ob, dataclasses.replace(s, runtime={**s.runtime, "A": swapped}), "A[")
+
+
+def test_matrices_inexact_coordinate_map_fails(matrices_runtime):
+    ob, s = matrices_runtime
+    assert_fails(
+        ob, dataclasses.replace(s, runtime={**s.runtime, "T (exact)": lambda p: np.eye(3)}), "T (exact)"
+    )
+
+
+def test_modes_wrong_boundary_fails(modes_runtime):
+    ob, s = modes_runtime
+
+    def select_mode(sigma, phi, v, f_c):  # row (v) sent to k = -1 instead of 0
+        k = s.select_mode(sigma, phi, v, f_c)
+        return -1 if (v == 0 and phi == f_c and sigma < 0) else k
+
+    assert_fails(ob, dataclasses.replace(s, select_mode=select_mode), "select_mode gives k = -1", "row (v)")
+
+
+def test_modes_vectorised_strict_boundary_fails(modes_runtime):
+    ob, s = modes_runtime
+
+    def select_modes(sigma, phi, v, f_c):
+        k = np.asarray(s.select_modes(sigma, phi, v, f_c)).copy()
+        k[(v == 0) & (phi == f_c) & (sigma > 0)] = 0  # row (iii) as stick
+        return k
+
+    assert_fails(ob, dataclasses.replace(s, select_modes=select_modes), "select_modes", "row (iii)")
+
+
+def test_modes_unreached_row_fails(modes_runtime):
+    ob, s = modes_runtime
+    few = tuple(p for p in s.points if p[2] != 0)
+    assert_fails(ob, dataclasses.replace(s, points=few), "never reached")
+
+
+def test_pnorm_sign_flip_fails(pnorm_runtime):
+    ob, s = pnorm_runtime
+
+    def wrong(sv, p, v, kv_ki, k_p):
+        return float(np.sqrt(kv_ki * sv * sv + 2.0 * sv * v + k_p * v * v + p * p))
+
+    assert_fails(ob, dataclasses.replace(s, p_norm=wrong), "p_norm²")
+
+
+def test_pnorm_vectorised_swapped_weights_fail(pnorm_runtime):
+    ob, s = pnorm_runtime
+    vec = s.p_norm_vec
+    assert_fails(ob, dataclasses.replace(s, p_norm_vec=lambda sv, p, v, a, b: vec(sv, p, v, b, a)), "p_norm_vec²")
