@@ -234,3 +234,24 @@ def test_pnorm_vectorised_swapped_weights_fail(pnorm_runtime):
     ob, s = pnorm_runtime
     vec = s.p_norm_vec
     assert_fails(ob, dataclasses.replace(s, p_norm_vec=lambda sv, p, v, a, b: vec(sv, p, v, b, a)), "p_norm_vec²")
+
+
+def test_modes_at_rest_strict_boundary_fails(modes_runtime):
+    ob, s = modes_runtime
+
+    def mode_at_rest(sigma, base, offset, f_c, tol):  # rows (iii)-(v) decided by the sign of the offset only
+        b, o, k = s.mode_at_rest(sigma, base, offset, f_c, tol)
+        phi = base * f_c + offset
+        return (b, o, 0) if phi == f_c else (b, o, k)
+
+    assert_fails(ob, dataclasses.replace(s, mode_at_rest=mode_at_rest), "mode_at_rest gives k = 0", "row (iii)")
+
+
+def test_modes_at_rest_vectorised_fails(modes_runtime):
+    ob, s = modes_runtime
+
+    def modes_at_rest(sigma, base, offset, f_c, tol):
+        b, o, k = s.modes_at_rest(sigma, base, offset, f_c, tol)
+        return b, o, -k
+
+    assert_fails(ob, dataclasses.replace(s, modes_at_rest=modes_at_rest), "modes_at_rest k =")
