@@ -225,8 +225,16 @@ def _paper_dz(case: Case, y: sp.Expr, c: sp.Expr) -> sp.Expr:
     return value - bound if above else value + bound if below else sp.Integer(0)
 
 
-def _x_state(g: _symbolic.Gains) -> dict:
-    return dict(cases=tuple(_state_cases(g)), points=instance_points(), state=(g.sigma, g.phi, g.v))
+def _x_subject(name: str, function: Callable[[Any, Any], Any], paper: Callable[[Case], Any], **fields: Any) -> BindingSubject:
+    """The subject binding ``function(params, x)`` of the state ``x = (σ, φ, v)`` to ``paper``."""
+    g = G()
+    state = [g.sigma, g.phi, g.v]
+    defaults = dict(
+        symbolic=function(g, state), exact=function, floats=function, params=INSTANCE,
+        constants=_gain_values(g, INSTANCE), cases=tuple(_state_cases(g)), points=instance_points(), state=tuple(state),
+    )
+    defaults.update(fields)
+    return BindingSubject(name=name, paper=paper, **defaults)
 
 
 class VRuntime(_Binding):
@@ -248,10 +256,7 @@ class VRuntime(_Binding):
             form = sp.expand(case((vec.T * P * vec)[0]))
             return minimum_on(form, w, sgn[_sign(case, g.v)])
 
-        return BindingSubject(
-            name="V", symbolic=V(g, [g.sigma, g.phi, g.v]), paper=paper, exact=V, floats=V,
-            params=INSTANCE, constants=_gain_values(g, INSTANCE), **_x_state(g),
-        )
+        return _x_subject("V", V, paper)
 
 
 class HatVRuntime(_Binding):
@@ -276,10 +281,7 @@ class HatVRuntime(_Binding):
 
         constants = _gain_values(g, INSTANCE)
         constants.update(zip(k, (sp.Rational(q) for q in K_INSTANCE)))
-        return BindingSubject(
-            name="V̂", symbolic=V_hat(g, [g.sigma, g.phi, g.v], k), paper=paper, exact=runtime, floats=runtime,
-            params=INSTANCE, constants=constants, **_x_state(g),
-        )
+        return _x_subject("V̂", runtime, paper, symbolic=V_hat(g, [g.sigma, g.phi, g.v], k), constants=constants)
 
 
 class RRuntime(_Binding):
@@ -293,10 +295,7 @@ class RRuntime(_Binding):
         def paper(case: Case) -> Any:
             return sp.GreaterThan(sp.expand(case(g.v) * (case(g.phi) - _sign(case, g.v) * case(g.f_c))), 0)
 
-        return BindingSubject(
-            name="x ∈ R", symbolic=in_R(g, [g.sigma, g.phi, g.v]), paper=paper, exact=in_R, floats=in_R,
-            params=INSTANCE, constants=_gain_values(g, INSTANCE), relation=True, **_x_state(g),
-        )
+        return _x_subject("x ∈ R", in_R, paper, relation=True)
 
 
 class DistanceRuntime(_Binding):
@@ -310,11 +309,7 @@ class DistanceRuntime(_Binding):
         def paper(case: Case) -> sp.Expr:
             return case(g.sigma) ** 2 + case(g.v) ** 2 + _paper_dz(case, g.phi, g.f_c) ** 2
 
-        return BindingSubject(
-            name="|x|²_𝒜", symbolic=squared_distance_x(g, [g.sigma, g.phi, g.v]), paper=paper,
-            exact=squared_distance_x, floats=squared_distance_x,
-            params=INSTANCE, constants=_gain_values(g, INSTANCE), **_x_state(g),
-        )
+        return _x_subject("|x|²_𝒜", squared_distance_x, paper)
 
 
 class DistanceZRuntime(_Binding):
@@ -335,10 +330,9 @@ class DistanceZRuntime(_Binding):
             return case(g.s) ** 2 + case(g.v) ** 2 + _paper_dz(case, g.e_i, beta) ** 2
 
         points = tuple((e, s, v) for s, e, v in instance_points(INSTANCE.f_c / INSTANCE.k_i))
-        return BindingSubject(
-            name="|z|²_𝒜", symbolic=squared_distance_z(g, [g.e_i, g.s, g.v]), paper=paper,
-            cases=tuple(cases), exact=squared_distance_z, floats=squared_distance_z,
-            params=INSTANCE, constants=_gain_values(g, INSTANCE), points=points, state=(g.e_i, g.s, g.v),
+        return _x_subject(
+            "|z|²_𝒜", squared_distance_z, paper, symbolic=squared_distance_z(g, [g.e_i, g.s, g.v]),
+            cases=tuple(cases), points=points, state=(g.e_i, g.s, g.v),
         )
 
 
