@@ -23,6 +23,7 @@ __all__ = [
     "InaccurateSolveError",
     "SimulationError",
     "StaleFileError",
+    "UsageError",
 ]
 
 
@@ -76,3 +77,7 @@ class SimulationError(SymbolicFrictionError, ValueError):
 
 class StaleFileError(SymbolicFrictionError, RuntimeError):
     """A committed generated file differs from what would be generated now."""
+
+
+class UsageError(SymbolicFrictionError, ValueError):
+    """A command was asked for something it cannot do as given (a missing directory, a bad combination)."""

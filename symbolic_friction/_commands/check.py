@@ -12,6 +12,13 @@ The obligations section runs every obligation from
 compares ``<DIR>/obligations.md`` with what it would write now (``--write``
 regenerates it).
 
+Nothing passes vacuously: a ``--proofs DIR`` that does not exist is a usage
+error (exit 2) unless ``--write`` creates it; a directory with no
+certificate fails unless ``--no-certificates`` says that only the
+derivations are to be checked; a section that crashes fails.  Each section
+has a one-line summary with counts, and the last line of the output,
+``check: PASSED — …`` or ``check: FAILED — …``, agrees with the exit code.
+
 Only the standard library is imported at module level (fast ``--help``).
 """
 
@@ -41,7 +48,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "--proofs",
         metavar="DIR",
         default="proofs",
-        help="directory of the committed proof files (default: proofs); if it does not exist the staleness check is skipped",
+        help="directory of the committed proof files (default: proofs); it must exist unless --write creates it",
+    )
+    parser.add_argument(
+        "--no-certificates",
+        action="store_true",
+        help="check only the derivations (and obligations.md); without it, check fails when no certificate was verified",
     )
 
 
@@ -63,6 +75,11 @@ class Section:
         Whether this section is satisfied.
     notes : list of str
         Lines printed after the table (to stderr under ``--json``).
+    summary : str
+        One line saying what was checked, with counts (e.g. ``"27 of 27
+        obligations hold"``); the closing line of ``check`` joins them.
+    counts : dict
+        The numbers behind ``summary`` (``--json``'s ``"counts"``).
     """
 
     title: str
@@ -71,6 +88,8 @@ class Section:
     json: dict[str, Any]
     ok: bool
     notes: list[str] = field(default_factory=list)
+    summary: str = ""
+    counts: dict[str, int] = field(default_factory=dict)
 
 
 def _short(text: str, width: int) -> str:
@@ -109,17 +128,23 @@ def obligations_section(args: argparse.Namespace) -> Section:
     text = render_report(results, errata)
     proofs = Path(args.proofs)
     target = report_path(proofs)
+    report_state = "up to date"
     if args.write:
         proofs.mkdir(parents=True, exist_ok=True)
         write_atomic(target, text)
         notes.append(f"wrote {target}")
+        report_state = "written"
     elif not proofs.is_dir():
-        notes.append(f"note: {proofs} is not a directory; skipped the staleness check of {target}")
+        # only reachable with --no-certificates (run() refuses a missing DIR otherwise)
+        report_state = "not checked (no such directory)"
+        notes.append(f"note: {proofs} does not exist; {target} was not compared")
     elif not target.is_file():
         ok = False
+        report_state = "missing"
         notes.append(f"STALE: {target} is missing; run `symbolic-friction check --write` and commit it")
     elif target.read_bytes() != text.encode("utf-8"):
         ok = False
+        report_state = "STALE"
         notes.append(f"STALE: {target} differs from what `check` derives now; run `symbolic-friction check --write` and commit it")
 
     rows = [
@@ -129,6 +154,8 @@ def obligations_section(args: argparse.Namespace) -> Section:
     total = sum(r.seconds for r in results)
     held = sum(1 for r in results if r.holds)
     notes.insert(0, f"{held} of {len(results)} obligations hold ({total:.1f} s)")
+    if not results:
+        ok = False  # a run that checked nothing proves nothing
     return Section(
         title="Proof obligations",
         columns=("id", "paper", "statement", "method", "status", "seconds"),
@@ -136,6 +163,8 @@ def obligations_section(args: argparse.Namespace) -> Section:
         json={"obligations": [r.as_json() for r in results], "errata": [e.as_json() for e in errata]},
         ok=ok,
         notes=notes,
+        summary=f"{held} of {len(results)} obligations hold, {target} {report_state}",
+        counts={"obligations": len(results), "obligations_hold": held},
     )
 
 
@@ -147,9 +176,10 @@ def certificates_section(args: argparse.Namespace) -> Section:
     so it imports cvxpy).  Table I's four certificates must exist.
     """
     proofs = Path(args.proofs)
-    if not proofs.is_dir():
+    if getattr(args, "no_certificates", False):
         return Section("Certificates", ("file", "proved", "up to date"), [], {"certificates": []}, True,
-                       [f"note: {proofs} is not a directory; no certificates checked"])
+                       ["certificates: not checked (--no-certificates)"],
+                       summary="certificates not checked (--no-certificates)", counts={"certificates": 0})
     from .._certify import TABLE_I_FILES, certify_table_i, check_committed_certificates
 
     written: list[str] = []
@@ -163,8 +193,14 @@ def certificates_section(args: argparse.Namespace) -> Section:
          e.report.certificate.overshoot_bound if e.report is not None else "-")
         for e in entries
     ]
-    ok = all(e.ok for e in entries)
-    notes = [f"{sum(e.ok for e in entries)} of {len(entries)} certificates proved exactly and up to date"]
+    ok = bool(entries) and all(e.ok for e in entries)
+    proved = sum(e.proved for e in entries)
+    current = sum(e.ok for e in entries)
+    if entries:
+        summary = f"{proved} of {len(entries)} certificates proved exactly, {current} of {len(entries)} up to date"
+    else:
+        summary = f"no certificates checked in {proofs} (pass --no-certificates to check only the derivations)"
+    notes = [summary]
     notes += [e.describe() for e in entries if not e.ok]
     notes += written
     payload = [
@@ -172,7 +208,8 @@ def certificates_section(args: argparse.Namespace) -> Section:
         for e in entries
     ]
     return Section("Certificates (exact re-verification)", ("file", "proved", "up to date", "kappa"), rows,
-                   {"certificates": payload}, ok, notes)
+                   {"certificates": payload}, ok, notes, summary=summary,
+                   counts={"certificates": len(entries), "certificates_proved": proved, "certificates_current": current})
 
 
 SECTIONS: list[Callable[[argparse.Namespace], Section]] = [obligations_section, certificates_section]
@@ -189,21 +226,64 @@ def _format_table(section: Section) -> str:
     return "\n".join([section.title, head.rstrip(), line, *body])
 
 
+def _crashed(make: Callable[[argparse.Namespace], Section], exc: Exception) -> Section:
+    """A section that raised: reported as failing, never as passing."""
+    name = getattr(make, "__name__", "section")
+    reason = f"{name} crashed: {type(exc).__name__}: {exc}"
+    return Section(name, ("error",), [(reason,)], {}, False, [f"FAILED {reason}"], summary=reason)
+
+
+def _validate(args: argparse.Namespace) -> None:
+    """Refuse a ``--proofs`` that cannot be what the user meant (exit 2), before any work."""
+    from .._errors import UsageError
+
+    proofs = Path(args.proofs)
+    if proofs.exists() and not proofs.is_dir():
+        raise UsageError(f"--proofs {proofs} is not a directory")
+    if not proofs.exists() and not args.write and not getattr(args, "no_certificates", False):
+        raise UsageError(
+            f"proofs directory {str(proofs)!r} does not exist; pass --proofs DIR with your certificates, "
+            "--write to create it, or --no-certificates to check only the derivations"
+        )
+
+
+def closing_line(sections: list[Section]) -> str:
+    """``check: PASSED — …`` or ``check: FAILED — …`` (failed sections named first)."""
+    failed = [s for s in sections if not s.ok]
+    passed = [s for s in sections if s.ok]
+    parts = [s.summary or s.title for s in failed + passed]
+    return f"check: {'FAILED' if failed else 'PASSED'} — " + "; ".join(parts)
+
+
 def run(args: argparse.Namespace) -> int:
-    """Run every section; 0 if all are satisfied, 1 otherwise."""
-    sections = [make(args) for make in SECTIONS]
+    """Run every section; 0 if all are satisfied, 1 otherwise (2 for a bad ``--proofs``)."""
+    _validate(args)
+    sections = []
+    for make in SECTIONS:
+        try:
+            sections.append(make(args))
+        except Exception as exc:  # a crashing section fails loudly, it never passes
+            sections.append(_crashed(make, exc))
+    passed = all(s.ok for s in sections)
+    last = closing_line(sections)
     if args.json:
         payload: dict[str, Any] = {}
+        counts: dict[str, int] = {}
         for s in sections:
             payload.update(s.json)
+            counts.update(s.counts)
+        payload["passed"] = passed
+        payload["counts"] = counts
         print(json.dumps(payload, indent=2, ensure_ascii=False))
         for s in sections:
             for note in s.notes:
                 print(note, file=sys.stderr)
+        print(last, file=sys.stderr)
     else:
         for s in sections:
             print(_format_table(s))
             print()
             for note in s.notes:
                 print(note)
-    return 0 if all(s.ok for s in sections) else 1
+        print(last)
+    return 0 if passed else 1

@@ -57,7 +57,10 @@ def test_every_obligation_holds(full_run):
 
 def test_json_schema(full_run):
     _, payload, _, _ = full_run
-    assert set(payload) == {"obligations", "errata", "certificates"}
+    assert set(payload) == {"obligations", "errata", "certificates", "passed", "counts"}
+    assert payload["passed"] is True
+    assert payload["counts"]["obligations"] == payload["counts"]["obligations_hold"] == len(payload["obligations"])
+    assert payload["counts"]["certificates"] == payload["counts"]["certificates_proved"] == 4
     assert [c["proved"] and not c["stale"] for c in payload["certificates"]] == [True] * 4
     ids = [o["id"] for o in payload["obligations"]]
     assert len(ids) == len(set(ids))
@@ -172,7 +175,7 @@ def test_failing_obligation_exits_1_and_shows_the_residual(fake, tmp_path, capsy
 
 def test_crashing_obligation_is_reported_as_failing(fake, tmp_path, capsys):
     fake(_Crashes)
-    assert main(["check", "--json", "--proofs", str(tmp_path / "none")]) == 1
+    assert main(["check", "--json", "--no-certificates", "--proofs", str(tmp_path / "none")]) == 1
     record = json.loads(capsys.readouterr().out)["obligations"][0]
     assert record["status"] == "fails"
     assert "ZeroDivisionError: division by zero in a broken check" in record["reason"]
@@ -208,12 +211,33 @@ def test_missing_report_exits_1(fake, tmp_path, capsys):
     assert f"STALE: {tmp_path / 'obligations.md'} is missing; run `symbolic-friction check --write`" in out
 
 
-def test_missing_proofs_dir_skips_the_staleness_check(fake, tmp_path, capsys):
+def test_missing_proofs_dir_is_a_usage_error(fake, tmp_path, capsys):
     fake(_Holds)
     missing = tmp_path / "no-such-dir"
-    assert main(["check", "--proofs", str(missing)]) == 0
-    assert f"note: {missing} is not a directory; skipped the staleness check" in capsys.readouterr().out
+    assert main(["check", "--proofs", str(missing)]) == 2
+    captured = capsys.readouterr()
+    assert captured.out == ""
+    lines = captured.err.strip().splitlines()
+    assert len(lines) == 1 and "Traceback" not in captured.err
+    assert f"proofs directory {str(missing)!r} does not exist" in lines[0] and "--no-certificates" in lines[0]
     assert not missing.exists()
+
+
+def test_proofs_path_that_is_a_file_is_a_usage_error(fake, tmp_path, capsys):
+    fake(_Holds)
+    a_file = tmp_path / "proofs"
+    a_file.write_text("not a directory", encoding="utf-8")
+    assert main(["check", "--proofs", str(a_file)]) == 2
+    assert f"--proofs {a_file} is not a directory" in capsys.readouterr().err
+
+
+def test_missing_proofs_dir_with_no_certificates_says_what_was_not_checked(fake, tmp_path, capsys):
+    fake(_Holds)
+    missing = tmp_path / "no-such-dir"
+    assert main(["check", "--no-certificates", "--proofs", str(missing)]) == 0
+    last = capsys.readouterr().out.strip().splitlines()[-1]
+    assert last.startswith("check: PASSED — 1 of 1 obligations hold")
+    assert "not checked (no such directory)" in last
 
 
 def test_write_creates_the_proofs_dir(fake, tmp_path, capsys):
@@ -241,8 +265,50 @@ def test_sections_can_be_appended(fake, tmp_path, capsys, monkeypatch):
 
     monkeypatch.setattr(check, "SECTIONS", [*check.SECTIONS, certificates])
     assert main(["check", "--json", "--write", "--proofs", str(tmp_path)]) == 1
-    payload = json.loads(capsys.readouterr().out)
-    assert set(payload) == {"obligations", "errata", "certificates"}
+    captured = capsys.readouterr()
+    payload = json.loads(captured.out)
+    assert set(payload) == {"obligations", "errata", "certificates", "passed", "counts"}
+    assert payload["passed"] is False
+    assert captured.err.strip().splitlines()[-1].startswith("check: FAILED — Certificates; 1 of 1 obligations hold")
+
+
+def test_crashing_section_fails(fake, tmp_path, capsys, monkeypatch):
+    fake(_Holds)
+
+    def broken(args):
+        raise RuntimeError("boom")
+
+    monkeypatch.setattr(check, "SECTIONS", [*check.SECTIONS, broken])
+    assert main(["check", "--write", "--proofs", str(tmp_path)]) == 1
+    last = capsys.readouterr().out.strip().splitlines()[-1]
+    assert last.startswith("check: FAILED — broken crashed: RuntimeError: boom")
+
+
+def test_stale_report_makes_the_last_line_say_failed(fake, tmp_path, capsys):
+    fake(_Holds)
+    assert main(["check", "--write", "--proofs", str(tmp_path)]) == 0
+    assert capsys.readouterr().out.strip().splitlines()[-1].startswith("check: PASSED")
+    (tmp_path / "obligations.md").write_text("edited", encoding="utf-8")
+    assert main(["check", "--proofs", str(tmp_path)]) == 1
+    last = capsys.readouterr().out.strip().splitlines()[-1]
+    assert last == f"check: FAILED — 1 of 1 obligations hold, {tmp_path / 'obligations.md'} STALE"
+
+
+def test_no_obligations_is_a_failure(fake, tmp_path, capsys):
+    fake()
+    assert main(["check", "--write", "--proofs", str(tmp_path)]) == 1
+    assert "check: FAILED — 0 of 0 obligations hold" in capsys.readouterr().out
+
+
+def test_no_certificates_flag_and_empty_directory(tmp_path, capsys):
+    args = check_args(tmp_path)
+    args.no_certificates = True
+    section = check.certificates_section(args)
+    assert section.ok and section.summary == "certificates not checked (--no-certificates)"
+    args.no_certificates = False
+    section = check.certificates_section(args)
+    assert not section.ok  # Table I's files are required and missing
+    assert section.summary.startswith("0 of 4 certificates proved exactly")
 
 
 # --------------------------------------------------------------------------- start-up cost
@@ -309,4 +375,4 @@ def test_certificates_section_requires_table_i_files(tmp_path):
 def check_args(proofs, *, write=False):
     import argparse
 
-    return argparse.Namespace(proofs=str(proofs), write=write, json=False)
+    return argparse.Namespace(proofs=str(proofs), write=write, json=False, no_certificates=False)
