@@ -124,6 +124,11 @@ def _decimal_field(value: object, key: str) -> str:
     return value
 
 
+def kappa_squared(c1: Any, c2: Any, c1_hat: Any, c2_hat: Any) -> Any:
+    """``κ² = c₂ĉ₂/(c₁ĉ₁)`` of eq. (stabState), with plain arithmetic (exact or symbolic)."""
+    return (c2 * c2_hat) / (c1 * c1_hat)
+
+
 @dataclass(frozen=True)
 class Provenance:
     """How a certificate was found (informative; never part of the proof).
@@ -289,7 +294,7 @@ class Certificate:
     @property
     def kappa_squared(self) -> Fraction:
         """``c₂ĉ₂/(c₁ĉ₁)``, the exact square of Proposition 1's constant."""
-        return (self.c2 * self.c2_hat) / (self.c1 * self.c1_hat)
+        return kappa_squared(self.c1, self.c2, self.c1_hat, self.c2_hat)
 
     @property
     def kappa(self) -> float:

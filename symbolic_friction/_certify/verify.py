@@ -34,19 +34,21 @@ The inequalities checked (each one a :class:`Check` in the report):
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import os
 from dataclasses import dataclass
 from fractions import Fraction
 from pathlib import Path
-from typing import Sequence
+from typing import Any, Sequence
 
 from .._errors import CertificateError
+from .._kconditions import k_conditions
 from .._lyapunov import lyapunov_matrix_entries, vhat_matrix_entries
 from .._rational import format_rational as _f
-from .certificate import Certificate, load
+from .certificate import Certificate, kappa_squared, load
 
-__all__ = ["Check", "VerificationReport", "verify_certificate", "verify_file"]
+__all__ = ["Check", "VerificationReport", "Inequality", "Semidefinite", "premises", "decide", "verify_certificate", "verify_file"]
 
 
 @dataclass(frozen=True)
@@ -121,65 +123,162 @@ class VerificationReport:
             raise CertificateError(self.summary())
 
 
-# -- exact linear algebra (Fractions only) -----------------------------------------------
-def _det(m: Sequence[Sequence[Fraction]]) -> Fraction:
-    """Determinant by cofactor expansion (the matrices here are at most 3×3)."""
+# -- the premises, built once with plain arithmetic -------------------------------------
+
+
+@dataclass(frozen=True)
+class Inequality:
+    """One premise ``lhs op rhs`` the verifier decides.
+
+    Built with plain arithmetic from the certificate's numbers, so the same
+    premise is a Fraction comparison at verification time and a sympy
+    relation in the obligation ``certificate.verifier``, which shows that
+    the premises imply every claim of the certificate.
+    """
+
+    obligation: str
+    name: str
+    lhs: Any
+    op: str
+    rhs: Any
+    rhs_text: str | None = None
+    rhs_terms: tuple[Any, ...] = ()
+
+    def margin(self) -> tuple[Any, str]:
+        """``(m, kind)`` with the premise equivalent to ``m > 0``, ``m ≥ 0`` or ``m = 0`` (kind ``">"``, ``">="``, ``"=="``)."""
+        if self.op == "<=":
+            return self.rhs - self.lhs, ">="
+        return self.lhs - self.rhs, self.op
+
+
+@dataclass(frozen=True)
+class Semidefinite:
+    """The premise ``matrix ⪰ 0``, decided by *all* its principal minors (``≥ 0``)."""
+
+    obligation: str
+    name: str
+    matrix: tuple[tuple[Any, ...], ...]
+
+    def minors(self) -> list[tuple[tuple[int, ...], Any]]:
+        """``(rows, minor)`` for every principal minor, smallest first."""
+        n = len(self.matrix)
+        return [
+            (idx, _det([[self.matrix[i][j] for j in idx] for i in idx]))
+            for size in range(1, n + 1)
+            for idx in itertools.combinations(range(n), size)
+        ]
+
+
+def _det(m: Sequence[Sequence[Any]]) -> Any:
+    """Determinant by cofactor expansion (the matrices here are at most 3×3), in the entries' own arithmetic."""
     n = len(m)
     if n == 0:
         return Fraction(1)
     if n == 1:
-        return Fraction(m[0][0])
-    total = Fraction(0)
+        return m[0][0]
+    total = 0
     for j in range(n):
         if m[0][j] == 0:
             continue
         minor = [row[:j] + row[j + 1 :] for row in m[1:]]
-        total += (-1) ** j * Fraction(m[0][j]) * _det(minor)
+        total += (-1) ** j * m[0][j] * _det(minor)
     return total
+
+
+def premises(cert: Any) -> list[Inequality | Semidefinite]:
+    """Every inequality the verifier decides, in paper order, for a certificate-like ``cert``.
+
+    ``cert`` has the attributes of :class:`~.certificate.Certificate`
+    (``k_p … f_c``, ``k1 … k4``, ``c``, ``c1``, ``c2``, ``c1_hat``, ``c2_hat``)
+    and ``kappa``, the claimed overshoot bound as a number.  Only plain
+    arithmetic is used, so Fractions and sympy symbols both work.
+    """
+    k_p, k_i, k_v, f_c = cert.k_p, cert.k_i, cert.k_v, cert.f_c
+    zero = k_i - k_i
+    out: list[Inequality | Semidefinite] = [
+        Inequality("lemma2.P", "k_i > 0", k_i, ">", zero),
+        Inequality("lemma2.P", "k_p > 0", k_p, ">", zero),
+        Inequality("lemma2.P", "k_v·k_p > k_i", k_v * k_p, ">", k_i),
+        Inequality("model", "f_c > 0", f_c, ">", zero),
+        Inequality("lemma2.dVdt", "c = 2(k_v·k_p − k_i)", cert.c, "==", 2 * (k_v * k_p - k_i), "2·({} − {})", (k_v * k_p, k_i)),
+        Inequality("lemma2.dVdt", "c > 0", cert.c, ">", zero),
+        Inequality("lemma2.lower_bound", "c1 > 0", cert.c1, ">", zero),
+    ]
+    p = lyapunov_matrix_entries(k_p, k_i, k_v)
+    identity = [[int(i == j) for j in range(3)] for i in range(3)]
+    out.append(Semidefinite("lemma2.lower_bound", "P − c1·I ⪰ 0", _matrix(p[i][j] - cert.c1 * identity[i][j] for i in range(3) for j in range(3))))
+    out.append(Semidefinite("lemma3.R", "c2·I − P ⪰ 0", _matrix(cert.c2 * identity[i][j] - p[i][j] for i in range(3) for j in range(3))))
+    for cond in k_conditions(k_p, k_i, k_v, cert.k1, cert.k2, cert.k3, cert.k4):
+        # k1·k4 > k3² is the paper's route to K ≻ 0 (eq. hatVandHatR); the rest come from eq. (hatVdot)
+        obligation = "lemma3.hatV_bounds" if cond.kind == "definiteness" else "lemma3.hatV_derivative"
+        out.append(Inequality(obligation, cond.name, cond.lhs, ">" if cond.strict else ">=", cond.rhs))
+    k = vhat_matrix_entries(cert.k1, cert.k2, cert.k3, cert.k4)
+    out.append(Inequality("lemma3.hatV_bounds", "c1_hat > 0", cert.c1_hat, ">", zero))
+    for j, kj in ((1, cert.k1), (2, cert.k2), (4, cert.k4)):
+        out.append(Inequality("lemma3.hatV_bounds", f"c1_hat ≤ k{j}/2", cert.c1_hat, "<=", kj / 2))
+    out.append(Semidefinite("lemma3.hatV_bounds", "c2_hat·I − K/2 ⪰ 0", _matrix(cert.c2_hat * identity[i][j] - (k[i][j] + zero) / 2 for i in range(3) for j in range(3))))
+    kappa = cert.kappa
+    out += [
+        Inequality("prop1.stability_bound", "c1 ≤ c2", cert.c1, "<=", cert.c2),
+        Inequality("prop1.stability_bound", "c1_hat ≤ c2_hat", cert.c1_hat, "<=", cert.c2_hat),
+        Inequality("prop1.stability_bound", "overshoot_bound > 0", kappa, ">", zero),
+        Inequality(
+            "prop1.stability_bound",
+            "overshoot_bound² ≥ c2·c2_hat/(c1·c1_hat)",
+            kappa * kappa,
+            ">=",
+            kappa_squared(cert.c1, cert.c2, cert.c1_hat, cert.c2_hat),
+            "({})/({})",
+            (cert.c2 * cert.c2_hat, cert.c1 * cert.c1_hat),
+        ),
+    ]
+    return out
+
+
+def _matrix(entries: Any) -> tuple[tuple[Any, ...], ...]:
+    flat = list(entries)
+    return tuple(tuple(flat[3 * i : 3 * i + 3]) for i in range(3))
+
+
+# -- the decision, in exact rationals only ------------------------------------------------
+
+_DECIDE = {">": lambda m: m > 0, ">=": lambda m: m >= 0, "==": lambda m: m == 0}
+_SYMBOL = {">": ">", ">=": "≥", "<=": "≤", "==": "="}
+
+
+def _exact(value: Any, what: str) -> Fraction:
+    if isinstance(value, bool) or not isinstance(value, (int, Fraction)):
+        raise CertificateError(f"{what}: the verifier decides exact rationals only; got {type(value).__name__} {value!r}")
+    return Fraction(value)
 
 
 def _matrix_text(m: Sequence[Sequence[Fraction]]) -> str:
     return "[" + "; ".join(", ".join(_f(Fraction(x)) for x in row) for row in m) + "]"
 
 
-def _psd_check(obligation: str, name: str, m: Sequence[Sequence[Fraction]]) -> Check:
-    """PSD iff every principal minor is ≥ 0 (not only the leading ones)."""
-    m = [[Fraction(x) for x in row] for row in m]
-    n = len(m)
-    minors: list[tuple[tuple[int, ...], Fraction]] = []
-    for size in range(1, n + 1):
-        for idx in itertools.combinations(range(n), size):
-            minors.append((idx, _det([[m[i][j] for j in idx] for i in idx])))
-    negative = [(idx, d) for idx, d in minors if d < 0]
-    if negative:
-        idx, d = negative[0]
-        rows = ",".join(str(i + 1) for i in idx)
-        # `Check.message` appends "is false": the instance states the claim, then the witness
-        instance = f"{_matrix_text(m)} ⪰ 0 (principal minor {{{rows}}} = {_f(d)} < 0)"
-        return Check(obligation, name, instance, False)
-    smallest = min(d for _, d in minors)
-    instance = f"{_matrix_text(m)} ⪰ 0 (all {len(minors)} principal minors ≥ 0, smallest {_f(smallest)})"
-    return Check(obligation, name, instance, True)
-
-
-def _cmp(obligation: str, name: str, lhs: Fraction, op: str, rhs: Fraction, *, rhs_text: str | None = None) -> Check:
-    holds = {">": lhs > rhs, ">=": lhs >= rhs, "<=": lhs <= rhs, "==": lhs == rhs}[op]
-    symbol = {">": ">", ">=": "≥", "<=": "≤", "==": "="}[op]
-    right = _f(rhs) if rhs_text is None else f"{rhs_text} = {_f(rhs)}"
-    return Check(obligation, name, f"{_f(lhs)} {symbol} {right}", holds)
-
-
-def _k_condition_checks(cert: Certificate) -> list[Check]:
-    """Lemma 3's conditions on k1…k4 (eq. hatVdot), from :mod:`symbolic_friction._kconditions`."""
-    from .. import _kconditions
-
-    checks = []
-    for cond in _kconditions.k_conditions(cert.k_p, cert.k_i, cert.k_v, cert.k1, cert.k2, cert.k3, cert.k4):
-        op = ">" if cond.strict else ">="
-        # k1·k4 > k3² is the paper's route to K ≻ 0 (eq. hatVandHatR); the rest come from eq. (hatVdot)
-        obligation = "lemma3.hatV_bounds" if cond.kind == "definiteness" else "lemma3.hatV_derivative"
-        checks.append(_cmp(obligation, cond.name, Fraction(cond.lhs), op, Fraction(cond.rhs)))
-    return checks
+def decide(premise: Inequality | Semidefinite) -> Check:
+    """Decide one premise in exact rational arithmetic (the only place a premise is judged)."""
+    if isinstance(premise, Semidefinite):
+        matrix = [[_exact(x, premise.name) for x in row] for row in premise.matrix]
+        minors = dataclasses.replace(premise, matrix=tuple(map(tuple, matrix))).minors()
+        negative = [(idx, d) for idx, d in minors if not d >= 0]
+        if negative:
+            idx, d = negative[0]
+            rows = ",".join(str(i + 1) for i in idx)
+            # `Check.message` appends "is false": the instance states the claim, then the witness
+            instance = f"{_matrix_text(matrix)} ⪰ 0 (principal minor {{{rows}}} = {_f(d)} < 0)"
+            return Check(premise.obligation, premise.name, instance, False)
+        smallest = min(d for _, d in minors)
+        instance = f"{_matrix_text(matrix)} ⪰ 0 (all {len(minors)} principal minors ≥ 0, smallest {_f(smallest)})"
+        return Check(premise.obligation, premise.name, instance, True)
+    lhs, rhs = _exact(premise.lhs, premise.name), _exact(premise.rhs, premise.name)
+    margin, kind = Inequality(premise.obligation, premise.name, lhs, premise.op, rhs).margin()
+    holds = bool(_DECIDE[kind](margin))
+    right = _f(rhs)
+    if premise.rhs_text is not None:
+        terms = (_f(_exact(t, premise.name)) for t in premise.rhs_terms)
+        right = f"{premise.rhs_text.format(*terms)} = {right}"
+    return Check(premise.obligation, premise.name, f"{_f(lhs)} {_SYMBOL[premise.op]} {right}", holds)
 
 
 def verify_certificate(certificate: Certificate, *, source: str = "<certificate>") -> VerificationReport:
@@ -206,65 +305,19 @@ def verify_certificate(certificate: Certificate, *, source: str = "<certificate>
     """
     if not isinstance(certificate, Certificate):
         raise TypeError(f"verify_certificate needs a Certificate; got {type(certificate).__name__}")
-    cert = certificate
-    k_p, k_i, k_v, f_c = cert.k_p, cert.k_i, cert.k_v, cert.f_c
-    zero = Fraction(0)
-    checks: list[Check] = [
-        _cmp("lemma2.P", "k_i > 0", k_i, ">", zero),
-        _cmp("lemma2.P", "k_p > 0", k_p, ">", zero),
-        _cmp("lemma2.P", "k_v·k_p > k_i", k_v * k_p, ">", k_i),
-        _cmp("model", "f_c > 0", f_c, ">", zero),
-        _cmp(
-            "lemma2.dVdt",
-            "c = 2(k_v·k_p − k_i)",
-            cert.c,
-            "==",
-            2 * (k_v * k_p - k_i),
-            rhs_text=f"2·({_f(k_v * k_p)} − {_f(k_i)})",
-        ),
-        _cmp("lemma2.dVdt", "c > 0", cert.c, ">", zero),
-        _cmp("lemma2.lower_bound", "c1 > 0", cert.c1, ">", zero),
-    ]
-    p = [[Fraction(x) for x in row] for row in lyapunov_matrix_entries(k_p, k_i, k_v)]
-    identity = [[Fraction(int(i == j)) for j in range(3)] for i in range(3)]
-    checks.append(
-        _psd_check(
-            "lemma2.lower_bound",
-            "P − c1·I ⪰ 0",
-            [[p[i][j] - cert.c1 * identity[i][j] for j in range(3)] for i in range(3)],
-        )
-    )
-    checks.append(
-        _psd_check("lemma3.R", "c2·I − P ⪰ 0", [[cert.c2 * identity[i][j] - p[i][j] for j in range(3)] for i in range(3)])
-    )
-    checks.extend(_k_condition_checks(cert))
-    k = [[Fraction(x) for x in row] for row in vhat_matrix_entries(cert.k1, cert.k2, cert.k3, cert.k4)]
-    checks.append(_cmp("lemma3.hatV_bounds", "c1_hat > 0", cert.c1_hat, ">", zero))
-    for j, kj in ((1, cert.k1), (2, cert.k2), (4, cert.k4)):
-        checks.append(_cmp("lemma3.hatV_bounds", f"c1_hat ≤ k{j}/2", cert.c1_hat, "<=", kj / 2))
-    checks.append(
-        _psd_check(
-            "lemma3.hatV_bounds",
-            "c2_hat·I − K/2 ⪰ 0",
-            [[cert.c2_hat * identity[i][j] - k[i][j] / 2 for j in range(3)] for i in range(3)],
-        )
-    )
-    kappa = Fraction(cert.overshoot_bound)
-    checks.extend(
-        [
-            _cmp("prop1.stability_bound", "c1 ≤ c2", cert.c1, "<=", cert.c2),
-            _cmp("prop1.stability_bound", "c1_hat ≤ c2_hat", cert.c1_hat, "<=", cert.c2_hat),
-            _cmp(
-                "prop1.stability_bound",
-                "overshoot_bound² ≥ c2·c2_hat/(c1·c1_hat)",
-                kappa * kappa,
-                ">=",
-                cert.kappa_squared,
-                rhs_text=f"({_f(cert.c2 * cert.c2_hat)})/({_f(cert.c1 * cert.c1_hat)})",
-            ),
-        ]
-    )
-    return VerificationReport(certificate=cert, checks=tuple(checks), source=source)
+    checks = tuple(decide(premise) for premise in premises(_Exact(certificate)))
+    return VerificationReport(certificate=certificate, checks=checks, source=source)
+
+
+class _Exact:
+    """A certificate's numbers as the premises read them (``kappa`` exact from its decimal string)."""
+
+    def __init__(self, cert: Certificate) -> None:
+        self._cert = cert
+        self.kappa = Fraction(cert.overshoot_bound)
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._cert, name)
 
 
 def verify_file(path: str | os.PathLike[str]) -> VerificationReport:

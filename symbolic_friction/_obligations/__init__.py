@@ -25,6 +25,7 @@ OBLIGATION_MODULES: tuple[str, ...] = (
     "prop1_stability",
     "cor1",
     "table1",
+    "verifier",
 )
 
 

@@ -13,7 +13,11 @@ import pytest
 from symbolic_friction import CertificateError, Parameters
 from symbolic_friction._certify import Certificate, VerificationReport, certify, verify_certificate, verify_file
 from symbolic_friction._certify import verify as verify_module
-from symbolic_friction._certify.verify import _det, _psd_check
+from symbolic_friction._certify.verify import Inequality, Semidefinite, _det, decide
+
+
+def _psd_check(obligation, name, m):
+    return decide(Semidefinite(obligation, name, tuple(tuple(F(x) for x in row) for row in m)))
 
 
 @pytest.fixture(scope="module")
@@ -34,8 +38,8 @@ def test_table_i_certificates_are_proved(cert_a, cert_b):
     for cert in (cert_a, cert_b):
         report = verify_certificate(cert)
         assert report.proved and report.failures == ()
-        assert len(report.checks) == 26
-        assert report.summary().startswith("PROVED <certificate>: all 26 inequalities hold")
+        assert len(report.checks) == 27
+        assert report.summary().startswith("PROVED <certificate>: all 27 inequalities hold")
         report.raise_if_failed()  # no exception
 
 
@@ -209,3 +213,19 @@ def test_verifier_shares_no_code_with_the_search_and_uses_no_floats():
     assert "float" not in calls
     floats = [node.value for node in ast.walk(tree) if isinstance(node, ast.Constant) and isinstance(node.value, float)]
     assert floats == []
+
+
+def test_decision_refuses_inexact_numbers():
+    with pytest.raises(CertificateError, match="exact rationals only; got float 0.5"):
+        decide(Inequality("x", "c1 > 0", 0.5, ">", F(0)))
+
+
+def test_premises_are_built_once_for_fractions_and_symbols(cert_a):
+    import sympy as sp
+
+    from symbolic_friction._obligations.verifier import _symbolic_certificate
+
+    exact = verify_module.premises(verify_module._Exact(cert_a))
+    symbolic = verify_module.premises(_symbolic_certificate())
+    assert [p.name for p in exact] == [p.name for p in symbolic]
+    assert all(isinstance(p.margin()[0], sp.Expr) for p in symbolic if isinstance(p, Inequality))
