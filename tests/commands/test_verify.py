@@ -37,7 +37,7 @@ def test_verbose_prints_every_inequality(capsys):
     assert main(["verify", "-v", str(PROOFS / "case_b_tightest.json")]) == 0
     out = capsys.readouterr().out
     assert "  ✓ k3 > k2: " in out and "[lemma3.hatV_derivative]" in out
-    assert out.count("  ✓ ") == 26
+    assert out.count("  ✓ ") == 27
 
 
 # -- failed inequalities: exit 1, the message names the inequality -----------------------
