@@ -28,6 +28,8 @@ from ._errors import (
     SimulationError,
     SolverError,
     StaleFileError,
+    UnprovedCertificateError,
+    UsageError,
     SymbolicFrictionError,
 )
 from ._parameters import TABLE_I, Parameters
@@ -139,6 +141,8 @@ __all__ = [
     "InaccurateSolveError",
     "SimulationError",
     "StaleFileError",
+    "UnprovedCertificateError",
+    "UsageError",
     *_LAZY,
 ]
 

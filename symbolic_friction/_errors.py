@@ -24,6 +24,7 @@ __all__ = [
     "SimulationError",
     "StaleFileError",
     "UsageError",
+    "UnprovedCertificateError",
 ]
 
 
@@ -53,6 +54,10 @@ class SceneError(SymbolicFrictionError, ValueError):
 
 class CertificateError(SymbolicFrictionError, ValueError):
     """A certificate does not prove what it claims."""
+
+
+class UnprovedCertificateError(CertificateError):
+    """A certificate was given where a proved one is required, and exact verification rejects it."""
 
 
 class CertificateFormatError(CertificateError):

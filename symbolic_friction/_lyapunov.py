@@ -24,6 +24,7 @@ from typing import Any
 import numpy as np
 
 from ._attractor import dz, sat, state_components
+from ._coordinates import input_vector_entries, system_matrix_entries
 from ._kinds import kind_of
 from ._parameters import Parameters
 
@@ -38,6 +39,7 @@ __all__ = [
     "in_R",
     "R_margin",
     "friction_selection",
+    "V_hat_rate",
 ]
 
 
@@ -146,3 +148,26 @@ def in_R(params: Parameters, x: Any) -> Any:
     A bool for exact input, a boolean array for floats, a relational for sympy.
     """
     return R_margin(params, x) >= 0
+
+
+def V_hat_rate(params: Parameters, x: Any, k: tuple[Any, Any, Any, Any]) -> Any:
+    """``V̂°(x)`` of eq. (hatVdot) for ``x ∈ R̂``, where ``v ≠ 0`` and ``F(x) = Ax - b sign(v)`` is single valued.
+
+    ``V̂° = max_{ζ ∈ SGN(σ)} (k₁σ + k₃ζ|v|)σ' + k₂dz(φ)φ' + (k₃|σ| sign(v) + k₄v)v'``
+    with ``(σ', φ', v') = F(x)`` (eq. almostEverywhereDerivatives): at ``σ = 0``
+    the maximum over ``ζ ∈ [-1, 1]`` is ``|σ'|``.  Outside ``R̂`` the value is
+    not ``V̂°`` (there ``F`` may be set valued); callers mask it with :func:`in_R`.
+    """
+    sigma, phi, v = state_components(x)
+    kind = kind_of(sigma, phi, v, params.f_c, *k)
+    gains = (kind.scalar(q) for q in (params.k_p, params.k_i, params.k_v))
+    A = system_matrix_entries(*gains)
+    b = input_vector_entries(kind.scalar(params.f_c))
+    k1, k2, k3, k4 = (kind.scalar(q) for q in k)
+    sv = kind.sign(v)
+    f = [A[i][0] * sigma + A[i][1] * phi + A[i][2] * v - b[i] * sv for i in range(3)]
+    d = dz(phi, kind.scalar(params.f_c))
+    # the max over ζ ∈ SGN(σ) of ζσ': sign(σ)σ' for σ ≠ 0, |σ'| at σ = 0
+    abs_rate = kind.where(kind.abs(sigma) > 0, kind.sign(sigma) * f[0], kind.abs(f[0]))
+    rate = k1 * sigma * f[0] + k2 * d * f[1] + k3 * (abs_rate * kind.abs(v) + kind.abs(sigma) * sv * f[2]) + k4 * v * f[2]
+    return kind.finish(rate)

@@ -3,9 +3,12 @@
 Every inequality a certificate instantiates (Lemma 2, Lemma 3, Proposition 1
 and the Remark after Lemma 2) is checked along solutions of eq. (xDot)
 simulated by the exact event-driven method, from random, grid, special and
-adversarial initial states.  Exit status: 0 if every property holds within
-the stated tolerance, 1 if some property is violated (counterexamples are
-written to ``--out``), 2 on bad input (missing or malformed file, bad option).
+adversarial initial states.  Every certificate is verified exactly first: one that does not verify is
+refused (exit 1, one line naming the failing inequality).  Exit status: 0 if
+every property holds within the stated tolerance on complete trajectories, 1
+if some property is violated (counterexamples are written to ``--out``), a
+certificate is not proved, or a trajectory is incomplete (event limit); 2 on
+bad input (missing or malformed file, bad option).
 """
 
 from __future__ import annotations
@@ -61,6 +64,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--no-adversarial", action="store_true", help="skip the optimisers")
     parser.add_argument("--decay", action="store_true",
                         help="also fit the decay of |x(t)|_A (power law or exponential)")
+    parser.add_argument("--max-events", type=_positive_int, default=10_000, metavar="N",
+                        help="event limit per trajectory; a trajectory reaching it is incomplete (default 10000)")
     parser.add_argument("--iss", action="store_true",
                         help="also estimate Corollary 1's ISS gain (a few seconds per gain set)")
 
@@ -70,7 +75,7 @@ def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
     from .._crosscheck import crosscheck, format_report, write_counterexamples
-    from .._errors import ParameterError
+    from .._errors import ParameterError, UnprovedCertificateError
 
     files = list(args.certificates)
     if not files:
@@ -81,7 +86,21 @@ def run(args: argparse.Namespace) -> int:
         raise ParameterError(f"--rtol must be < 1; got {args.rtol:g}")
     if args.theta > 1:
         raise ParameterError(f"--theta must be ≤ 1; got {args.theta:g}")
-    report = crosscheck(
+    try:
+        report = _run_crosscheck(crosscheck, files, args)
+    except UnprovedCertificateError as exc:
+        print(f"crosscheck: REFUSED — {exc}")
+        return 1
+    print(format_report(report))
+    if report.counterexamples():
+        for path in write_counterexamples(report, args.out):
+            print(f"counterexamples written to {path}")
+        print(report.summary())
+    return 0 if report.passed else 1
+
+
+def _run_crosscheck(crosscheck, files, args):
+    return crosscheck(
         files,
         trajectories=args.trajectories,
         seed=args.seed,
@@ -92,13 +111,8 @@ def run(args: argparse.Namespace) -> int:
         adversarial=not args.no_adversarial,
         decay=args.decay,
         iss=args.iss,
+        max_events=args.max_events,
     )
-    print(format_report(report))
-    if not report.passed:
-        for path in write_counterexamples(report, args.out):
-            print(f"counterexamples written to {path}")
-        return 1
-    return 0
 
 
 __all__ = ["HELP", "add_arguments", "run"]

@@ -48,27 +48,18 @@ def _V_d2(params: Parameters, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np
 
 
 def hat_V_rate(params: Parameters, claim: Claims, x: np.ndarray) -> np.ndarray:
-    """``V̂'(x)/V̂(x)`` along eq. (xDot) at states ``x`` in ``R̂`` (NaN elsewhere).
+    """``V̂°(x)/V̂(x)`` along eq. (xDot) at states ``x`` in ``R̂`` (NaN elsewhere).
 
-    In ``R̂`` the velocity is nonzero, so the flow is the single vector
-    ``A x - b sign(v)`` (proof of eq. hatVdot).  Where ``σ = 0`` the
-    derivative of ``|σ|`` is taken as ``|σ'|``, the largest element of the
-    generalized gradient term ``SGN(σ)σ'`` (the paper's ``max``).
+    ``V̂°`` is the package's :func:`~symbolic_friction._lyapunov.V_hat_rate`
+    (eq. hatVdot, the Clarke ``max`` at ``σ = 0``), ``R̂`` its
+    :func:`~symbolic_friction._lyapunov.in_R` complement.
     """
-    k_p, k_i, k_v, f_c = params.as_floats()
-    s, p, v = x[..., 0], x[..., 1], x[..., 2]
-    k = np.sign(v)
-    rhat = (v != 0) & (k * p < f_c)
-    ds = -k_i * v
-    dp = s - k_p * v
-    dv = p - k_v * v - k * f_c
-    dzp = p - np.clip(p, -f_c, f_c)
-    dabs_s = np.where(s != 0, np.sign(s) * ds, np.abs(ds))
-    k1, k2, k3, k4 = claim.k
-    rate = k1 * s * ds + k2 * dzp * dp + k3 * (dabs_s * np.abs(v) + np.abs(s) * k * dv) + k4 * v * dv
-    Vh = 0.5 * k1 * s * s + 0.5 * k2 * dzp * dzp + k3 * np.abs(s) * np.abs(v) + 0.5 * k4 * v * v
+    from .._lyapunov import V_hat, V_hat_rate, in_R
+
+    rate = V_hat_rate(params, x, claim.k)
+    Vh = V_hat(params, x, claim.k)
     with np.errstate(divide="ignore", invalid="ignore"):
-        return np.where(rhat & (Vh > 0), rate / Vh, np.nan)
+        return np.where(~in_R(params, x) & (Vh > 0), rate / Vh, np.nan)
 
 
 def _de(func: Callable[[np.ndarray], np.ndarray], *, seed: int, maxiter: int, popsize: int) -> tuple[np.ndarray, float]:

@@ -49,6 +49,9 @@ class TrajectoryBatch:
     event_residual : ndarray, shape (N, E)
         ``|v|`` that the closed-form flow gives at each event time before
         ``v`` is set to 0 (a check of the event times; 0 if not known).
+    complete : ndarray of bool, shape (N,)
+        False where the simulation stopped before the last sample (the event
+        limit): its samples after the stop are NaN, never made up.
     """
 
     params: Parameters
@@ -63,6 +66,7 @@ class TrajectoryBatch:
     z0: np.ndarray
     source: np.ndarray = field(default=None)  # type: ignore[assignment]
     event_residual: np.ndarray = field(default=None)  # type: ignore[assignment]
+    complete: np.ndarray = field(default=None)  # type: ignore[assignment]
 
     def __post_init__(self) -> None:
         N, n = self.mode.shape
@@ -86,6 +90,8 @@ class TrajectoryBatch:
             object.__setattr__(self, "source", np.full(N, "", dtype=object))
         if self.event_residual is None:
             object.__setattr__(self, "event_residual", np.zeros(self.event_t.shape))
+        if self.complete is None:
+            object.__setattr__(self, "complete", np.ones(N, dtype=bool))
 
     @property
     def size(self) -> int:
@@ -107,4 +113,5 @@ class TrajectoryBatch:
             z0=self.z0[index],
             source=self.source[index],
             event_residual=self.event_residual[index],
+            complete=self.complete[index],
         )

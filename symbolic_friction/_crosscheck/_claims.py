@@ -113,9 +113,13 @@ class Claims:
     @property
     def kappa_formula(self) -> float:
         """``√(c₂ĉ₂/(c₁ĉ₁))`` from the constants (the bound ``kappa`` must not be below it)."""
-        return math.sqrt(self.c2 * self.c2_hat / (self.c1 * self.c1_hat))
+        from .._certify.certificate import kappa_squared
+
+        return math.sqrt(kappa_squared(self.c1, self.c2, self.c1_hat, self.c2_hat))
 
     def lambda_max_K_half(self) -> float:
         """Largest eigenvalue of ``K/2`` (``V̂ = ½wᵀKw``), used only to scale tolerances."""
-        K = np.array([[self.k1, 0.0, self.k3], [0.0, self.k2, 0.0], [self.k3, 0.0, self.k4]])
+        from .._lyapunov import vhat_matrix_entries
+
+        K = np.array(vhat_matrix_entries(*self.k), dtype=float)
         return float(np.linalg.eigvalsh(K)[-1]) / 2.0

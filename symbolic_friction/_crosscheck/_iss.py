@@ -139,9 +139,9 @@ def iss_gain(
         if r < 0:
             raise ParameterError(f"rho must be ≥ 0; got rho = {r}")
     if initial_states is None:
-        k_i = float(params.k_i)
-        f_c = float(params.f_c)
-        e = f_c / k_i
+        from .._attractor import attractor_bound_z
+
+        e = float(attractor_bound_z(params))
         initial_states = np.array(
             [[e, 0.0, 0.0], [0.0, 0.0, 0.0], [-e, 0.0, 0.0], [e, 0.0, 0.5], [0.0, 0.5, 0.0], [-e, -0.5, 0.5]]
         )

@@ -335,7 +335,8 @@ def _build_chain(batch: TrajectoryBatch) -> _Chain:
     N, n = batch.mode.shape
     E = batch.event_t.shape[1]
     t = batch.t
-    keep = np.ones((N, n), dtype=bool)
+    # samples after an incomplete simulation stopped are NaN: they were never simulated, drop them
+    keep = np.isfinite(batch.x).all(axis=-1)
     ev_valid = np.isfinite(batch.event_t)
     if E:
         # A sample at an event time duplicates the event and its mode is ambiguous: drop it.
@@ -409,7 +410,6 @@ class BatchChecker:
         self.rtol = float(rtol)
         self.theta = float(theta)
         self.k_p, self.k_i, self.k_v, self.f_c = params.as_floats()
-        self.P11 = self.k_v / self.k_i
         self.W = observability_gramian(params)
         self.lam_P = float(np.linalg.eigvalsh(lyapunov_matrix(params))[-1])
         self._accs = [{spec.id: _Acc(spec, self.rtol) for spec in PROPERTIES} for _ in self.claims]
@@ -419,27 +419,29 @@ class BatchChecker:
         self._final_ratio: list[np.ndarray] = []
         self._final_z: list[np.ndarray] = []
         self._pending: list[tuple] = []
+        self.incomplete = 0
+        """Trajectories the simulator could not finish (event limit): never checked as holding."""
+        self.incomplete_examples: list[tuple[str, tuple[float, float, float]]] = []
+        self.max_events = 10_000
         from .._simulation.affine import MatrixExponential
 
         self._expm = MatrixExponential.from_params(params)
 
-    # -- the functions of the paper, vectorised ----------------------------------------
+    # -- the functions of the paper: the package's one model, vectorised ----------------
     def _V_piece(self, x: np.ndarray, piece: np.ndarray) -> np.ndarray:
-        """``V_k`` of eq. (subcasesAffine:Vs) for ``k = piece``; ``piece = 2``: ``V`` at ``v = 0``."""
-        s, p, v = x[..., 0], x[..., 1], x[..., 2]
-        f_c = self.f_c
-        sv = self.P11 * s * s - 2.0 * s * v + self.k_p * v * v
-        dzp = p - np.clip(p, -f_c, f_c)
-        out = np.where(piece == 1, sv + (p - f_c) ** 2, 0.0)
-        out = np.where(piece == -1, sv + (p + f_c) ** 2, out)
-        out = np.where(piece == 0, self.P11 * s * s, out)
-        out = np.where(piece == 2, self.P11 * s * s + dzp * dzp, out)
-        return out
+        """``V_k`` of eq. (subcasesAffine:Vs) for ``k = piece``; ``piece = 2``: ``V`` of eq. (lyapLike) at ``v = 0``."""
+        from .._lyapunov import V, V_k
+
+        at_rest = x * np.array([1.0, 1.0, 0.0])
+        out = np.where(piece == 1, V_k(self.params, x, 1), 0.0)
+        out = np.where(piece == -1, V_k(self.params, x, -1), out)
+        out = np.where(piece == 0, V_k(self.params, x, 0), out)
+        return np.where(piece == 2, V(self.params, at_rest), out)
 
     def _d2(self, x: np.ndarray) -> np.ndarray:
-        p = x[..., 1]
-        dzp = p - np.clip(p, -self.f_c, self.f_c)
-        return x[..., 0] ** 2 + dzp * dzp + x[..., 2] ** 2
+        from .._attractor import squared_distance_x
+
+        return squared_distance_x(self.params, x)
 
     def _gram(self, x: np.ndarray, k: np.ndarray) -> np.ndarray:
         """``yᵀWy`` with ``y = x - (0, k f_c, 0)``."""
@@ -458,6 +460,11 @@ class BatchChecker:
         N = batch.size
         if N == 0:
             return
+        complete = np.asarray(batch.complete, dtype=bool)
+        if not complete.all():
+            self.incomplete += int(np.count_nonzero(~complete))
+            for i in np.flatnonzero(~complete)[: 5 - len(self.incomplete_examples)]:
+                self.incomplete_examples.append((str(batch.source[i]), tuple(float(q) for q in batch.z0[i])))
         ch = _build_chain(batch)
         f_c = self.f_c
         valid = ch.valid
@@ -484,7 +491,11 @@ class BatchChecker:
         # R and R̂ (Lemma 3) with sign(v) read from the mode (the sample's own mode is the
         # mode of the solution through it; v's float sign is unreliable next to an event).
         smode = np.where(is_sample, ch.piece, 0)
-        in_Rhat = valid & is_sample & (smode != 0) & (smode * xs[..., 1] < f_c)
+        from .._lyapunov import in_R as _in_R
+
+        # the package's R with v replaced by the mode's sign (R depends on v only through it, and through v ≠ 0)
+        signed = np.stack([xs[..., 0], xs[..., 1], smode.astype(float)], axis=-1)
+        in_Rhat = valid & is_sample & ~_in_R(self.params, np.where(np.isfinite(signed), signed, 0.0))
         in_R = point & ~in_Rhat
         # Points of 𝒜 make both sides of the homogeneous bounds vanish identically (V = V̂ = 0
         # there, Lemma 2 item 1): they are left out of those bounds so the margins stay informative.
@@ -506,16 +517,19 @@ class BatchChecker:
         # Overshoot and attractivity (certificate-independent numbers)
         dmax = np.where(point, d, -np.inf).max(axis=1)
         with np.errstate(divide="ignore", invalid="ignore"):
-            overshoot = np.where(d0 > 0, dmax / d0, np.nan)
+            # an incomplete trajectory's maximum is over part of [0, T] only: not a measurement
+            overshoot = np.where((d0 > 0) & complete, dmax / d0, np.nan)
         d_final = d[:, :][np.arange(N), self._last_sample_pos(ch)]
         if attractivity:
             with np.errstate(divide="ignore", invalid="ignore"):
-                self._final_ratio.append(np.where(d0 > 0, d_final / d0, 0.0))
+                self._final_ratio.append(np.where(complete, np.where(d0 > 0, d_final / d0, 0.0), np.nan))
             # In z (Proposition 1, item 1): s, v → 0 and e_i enters [-f_c/k_i, f_c/k_i].
             from .._coordinates import x_to_z
 
             zT = x_to_z(self.params, batch.x[:, -1, :])
-            bound = f_c / self.k_i
+            from .._attractor import attractor_bound_z
+
+            bound = float(attractor_bound_z(self.params))
             self._final_z.append(np.stack([np.abs(zT[:, 1]), np.abs(zT[:, 2]),
                                            np.maximum(np.abs(zT[:, 0]) - bound, 0.0)], axis=1))
         self._overshoot.append(overshoot)
@@ -586,7 +600,7 @@ class BatchChecker:
                 # so trajectories that have not yet made it are re-simulated on a longer
                 # horizon by :meth:`resolve_attractivity` before being called failures.
                 rel = (self.theta * d0 - d_final) / L
-                conclusive = d0 > 0
+                conclusive = (d0 > 0) & complete
                 ok = conclusive & (rel >= -self.rtol)
                 acc["prop1.attractivity"].add(rel, ok, lambda idx: None)  # type: ignore[arg-type,return-value]
                 if ci == 0:
@@ -614,9 +628,9 @@ class BatchChecker:
 
     # -- pieces ---------------------------------------------------------------------------
     def _V_hat(self, x: np.ndarray, cl: Claims) -> np.ndarray:
-        s, p, v = x[..., 0], x[..., 1], x[..., 2]
-        dzp = p - np.clip(p, -self.f_c, self.f_c)
-        return 0.5 * cl.k1 * s * s + 0.5 * cl.k2 * dzp * dzp + cl.k3 * np.abs(s) * np.abs(v) + 0.5 * cl.k4 * v * v
+        from .._lyapunov import V_hat
+
+        return V_hat(self.params, x, cl.k)
 
     def _last_sample_pos(self, ch: _Chain) -> np.ndarray:
         pos = np.where(ch.valid & (ch.kind == 3), np.arange(ch.t.shape[1])[None, :], -1)
@@ -642,7 +656,10 @@ class BatchChecker:
             q = np.array([0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875])
             taus = h[:, None] * q[None, :]
             mids = self._expm.apply(taus, np.broadcast_to(y[:, None, :], taus.shape + (3,))) + star[:, None, :]
-            inside = ((k[:, None] * mids[..., 1]) < f_c) & ((k[:, None] * mids[..., 2]) > 0)
+            from .._lyapunov import in_R as _in_R
+
+            # still in the same slip (k v > 0) and in the package's R̂
+            inside = ((k[:, None] * mids[..., 2]) > 0) & ~_in_R(self.params, mids)
             run[rows, cols] = inside.all(axis=1)
         return run
 
@@ -733,27 +750,16 @@ class BatchChecker:
         )
 
     def _exact_hat_rate(self, cl: Claims, x: tuple[float, float, float]) -> Fraction | None:
-        """``V̂'`` along eq. (xDot) at ``x ∈ R̂``, exactly (``None`` outside R̂).
+        """``V̂°`` (eq. hatVdot) at ``x ∈ R̂``, exactly, from the package's model (``None`` outside R̂)."""
+        from .._lyapunov import V_hat_rate, in_R
 
-        Where ``σ = 0`` the derivative of ``|σ|`` is ``|σ'|`` (the largest
-        element of ``SGN(σ)σ'``, as in the paper's ``max`` of eq. hatVdot).
-        """
         if not all(math.isfinite(q) for q in x):
             return None
-        s, p, v = (Fraction(q) for q in x)
-        P = self.params
-        f_c = P.f_c
-        k = (v > 0) - (v < 0)
-        if k == 0 or not k * p < f_c:
+        xq = [Fraction(q) for q in x]
+        if in_R(self.params, xq):
             return None
-        ex = {name: Fraction(cl.exact[name]) for name in ("k1", "k2", "k3", "k4")}
-        ds = -P.k_i * v
-        dp = s - P.k_p * v
-        dv = p - P.k_v * v - k * f_c
-        dzp = p - f_c if p > f_c else p + f_c if p < -f_c else Fraction(0)
-        dabs = ds * ((s > 0) - (s < 0)) if s != 0 else abs(ds)
-        return (ex["k1"] * s * ds + ex["k2"] * dzp * dp + ex["k3"] * (dabs * abs(v) + abs(s) * k * dv)
-                + ex["k4"] * v * dv)
+        k = tuple(Fraction(cl.exact[name]) for name in ("k1", "k2", "k3", "k4"))
+        return V_hat_rate(self.params, xq, k)
 
     @staticmethod
     def _run_slack(F: np.ndarray, run: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -848,8 +854,10 @@ class BatchChecker:
         window = max(p[6] for p in self._pending)
         # Windows stop growing at 300/|Re λ| (λ the slowest root): a slip converging to x*_k
         # for much longer underflows to denormals, where the event search of the simulator
-        # crawls (see the report of issue 5); e^{-300} is still far from underflow.
-        slowest = float(np.max(np.roots([1.0, self.k_v, self.k_p, self.k_i]).real))
+        # crawls; e^{-300} is still far from underflow.
+        from ._run import slowest_root
+
+        slowest = slowest_root(self.params)
         cap = max(window, 300.0 / abs(slowest))
         start = 0.0
         outcome: list[tuple[bool, float, float, tuple]] = [
@@ -860,10 +868,14 @@ class BatchChecker:
             if active.size == 0:
                 break
             t = np.concatenate([[0.0], np.geomspace(window / samples, window, samples)])
-            b = simulate_trajectories(self.params, z[active], t)
+            b = simulate_trajectories(self.params, z[active], t, max_events=self.max_events)
             d = distance_x(self.params, b.x)
             still = []
             for row, k in enumerate(active):
+                if not b.complete[row]:
+                    outcome[k] = None  # incomplete: neither holds nor fails
+                    self.incomplete += 1
+                    continue
                 hit = np.nonzero(d[row, 1:] <= target[k])[0]
                 if hit.size:
                     j = int(hit[0]) + 1
@@ -878,7 +890,10 @@ class BatchChecker:
         for ci, cl in enumerate(self.claims):
             acc = self._accs[ci]["prop1.attractivity"]
             times = []
-            for (gi, z0, x0, d0, L, source, _T), (ok, tk, dk, xk) in zip(self._pending, outcome):
+            for (gi, z0, x0, d0, L, source, _T), result in zip(self._pending, outcome):
+                if result is None:
+                    continue
+                ok, tk, dk, xk = result
                 rel = np.array([(self.theta * d0 - dk) / L])
                 if ok:
                     times.append(tk)
@@ -914,16 +929,17 @@ class BatchChecker:
                 times = getattr(accs["prop1.attractivity"], "details_times", [])
                 accs["prop1.attractivity"].details |= {
                     "theta": self.theta,
-                    "median_final_ratio": float(np.median(final)),
-                    "max_final_ratio": float(final.max()),
+                    "median_final_ratio": float(np.nanmedian(final)) if np.any(np.isfinite(final)) else math.nan,
+                    "max_final_ratio": float(np.nanmax(final)) if np.any(np.isfinite(final)) else math.nan,
                     "extended": len(times),
                     "latest_time_to_theta": max(times) if times else None,
                 }
                 fz = np.concatenate(self._final_z)
                 accs["prop1.attractivity"].details |= {
-                    "median |s(T)|": float(np.median(fz[:, 0])),
-                    "median |v(T)|": float(np.median(fz[:, 1])),
-                    "share e_i(T) in [-f_c/k_i, f_c/k_i]": float(np.mean(fz[:, 2] == 0.0)),
+                    "median |s(T)|": float(np.nanmedian(fz[:, 0])) if np.any(np.isfinite(fz[:, 0])) else math.nan,
+                    "median |v(T)|": float(np.nanmedian(fz[:, 1])) if np.any(np.isfinite(fz[:, 1])) else math.nan,
+                    "share e_i(T) in [-f_c/k_i, f_c/k_i]": float(np.mean(fz[np.isfinite(fz[:, 2]), 2] == 0.0))
+                    if np.any(np.isfinite(fz[:, 2])) else math.nan,
                 }
             out.append([accs[spec.id].result() for spec in PROPERTIES])
         return out

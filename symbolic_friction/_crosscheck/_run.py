@@ -18,7 +18,7 @@ from typing import Any, Iterable, Sequence
 
 import numpy as np
 
-from .._errors import ParameterError
+from .._errors import ParameterError, UnprovedCertificateError
 from .._parameters import Parameters
 from ._claims import Claims
 from ._properties import DEFAULT_RTOL, DEFAULT_THETA, BatchChecker, Counterexample, PropertyResult
@@ -48,11 +48,16 @@ def search_mode(label: str) -> str:
     return "special"
 
 
+def slowest_root(params: Parameters) -> float:
+    """``Re λ`` of the slowest eigenvalue ``λ`` of ``A`` (eq. xDot), i.e. root of ``det(sI - A)``."""
+    from .._coordinates import system_matrix
+
+    return float(np.max(np.linalg.eigvals(system_matrix(params)).real))
+
+
 def default_horizon(params: Parameters) -> float:
-    """``20/|Re λ|`` for the slowest root ``λ`` of ``s³ + k_v s² + k_p s + k_i`` (rounded up)."""
-    k_p, k_i, k_v, _ = params.as_floats()
-    slowest = float(np.max(np.roots([1.0, k_v, k_p, k_i]).real))
-    return float(math.ceil(20.0 / abs(slowest)))
+    """``20/|Re λ|`` for the slowest eigenvalue ``λ`` of ``A`` (rounded up)."""
+    return float(math.ceil(20.0 / abs(slowest_root(params))))
 
 
 def sample_times(horizon: float, samples: int) -> np.ndarray:
@@ -80,6 +85,12 @@ class CertificateCheck:
         ``x(0)`` of the largest overshoot found.
     seconds : float
         Wall time of the gain set's run (shared by its certificates).
+    incomplete : int
+        Trajectories the simulator could not finish (event limit); they are
+        never counted as holding, and any makes the check incomplete.
+    proved : bool or None
+        Whether exact verification proved the certificate first (``None``:
+        candidate constants checked on purpose, ``require_proved=False``).
     """
 
     claims: Claims
@@ -93,14 +104,29 @@ class CertificateCheck:
     overshoots: np.ndarray = field(default=None, repr=False)  # type: ignore[assignment]
     initial_distance: np.ndarray = field(default=None, repr=False)  # type: ignore[assignment]
     modes: np.ndarray = field(default=None, repr=False)  # type: ignore[assignment]
+    incomplete: int = 0
+    proved: bool | None = None
 
     @property
     def label(self) -> str:
         return self.claims.label
 
     @property
+    def complete(self) -> bool:
+        """Every trajectory was simulated to its horizon."""
+        return self.incomplete == 0
+
+    @property
     def passed(self) -> bool:
-        return all(r.passed for r in self.results)
+        """Every property held on complete data (an incomplete run never passes)."""
+        return self.complete and all(r.passed for r in self.results)
+
+    @property
+    def verdict(self) -> str:
+        """``"passed"``, ``"failed"`` (a property is violated) or ``"incomplete"``."""
+        if not all(r.passed for r in self.results):
+            return "failed"
+        return "passed" if self.complete else "incomplete"
 
     @property
     def tightness(self) -> dict:
@@ -140,24 +166,81 @@ class CrosscheckReport:
 
     @property
     def passed(self) -> bool:
-        return all(c.passed for c in self.checks)
+        return bool(self.checks) and all(c.passed for c in self.checks)
+
+    @property
+    def incomplete(self) -> int:
+        """Incomplete trajectories over every gain set (each gain set counted once)."""
+        seen: dict[Any, int] = {}
+        for c in self.checks:
+            seen[c.claims.params] = c.incomplete
+        return sum(seen.values())
+
+    @property
+    def trajectories(self) -> int:
+        seen: dict[Any, int] = {}
+        for c in self.checks:
+            seen[c.claims.params] = c.trajectories
+        return sum(seen.values())
+
+    def summary(self) -> str:
+        """The last line: what was checked, with counts, and the verdict."""
+        failed = [c.label for c in self.checks if c.verdict == "failed"]
+        verdict = "FAILED" if failed else ("INCOMPLETE" if self.incomplete else "PASSED")
+        checked = sum(r.samples for c in self.checks for r in c.results)
+        text = (
+            f"crosscheck: {verdict} — {len(self.checks)} certificate(s), {self.trajectories} trajectories "
+            f"({self.incomplete} incomplete), {checked} instances of {len(self.checks[0].results) if self.checks else 0} "
+            f"properties checked"
+        )
+        if failed:
+            text += f"; violated by {', '.join(failed)}"
+        return text + f" ({self.seconds:.1f} s)"
 
     def counterexamples(self) -> list[Counterexample]:
         return [cx for c in self.checks for cx in c.counterexamples()]
 
 
-def _as_claims(items: Iterable[Any]) -> list[tuple[Claims, str]]:
-    from .._certify.certificate import load
+def _as_claims(items: Iterable[Any], *, require_proved: bool) -> list[tuple[Claims, str, bool | None]]:
+    """``(claims, source, proved)`` per item; with ``require_proved`` every certificate is verified exactly first.
+
+    Raises
+    ------
+    UnprovedCertificateError
+        With ``require_proved``, for a certificate that exact verification
+        rejects (the message names the file and the failing inequalities), or
+        for :class:`Claims` (floats: nothing left to verify).
+    """
+    from .._certify.certificate import Certificate, load
+    from .._certify.verify import verify_certificate
 
     out = []
     for item in items:
         if isinstance(item, Claims):
-            out.append((item, ""))
-        elif isinstance(item, (str, os.PathLike)):
+            if require_proved:
+                raise UnprovedCertificateError(
+                    f"{item.label}: Claims hold floats and cannot be verified exactly; pass the certificate, "
+                    "or require_proved=False to check candidate constants"
+                )
+            out.append((item, "", None))
+            continue
+        if isinstance(item, (str, os.PathLike)):
             path = Path(item)
-            out.append((Claims.from_certificate(load(path), label=path.stem), str(path)))
+            cert, source, label = load(path), str(path), path.stem
         else:
-            out.append((Claims.from_certificate(item), ""))
+            cert, source, label = item, "", None
+        proved = None
+        if require_proved:
+            if not isinstance(cert, Certificate):
+                raise UnprovedCertificateError(f"{type(cert).__name__} is not a certificate; it cannot be verified exactly")
+            report = verify_certificate(cert, source=source or "<certificate>")
+            if not report.proved:
+                raise UnprovedCertificateError(
+                    f"{source or 'certificate'} does not verify, refusing to cross-check it: "
+                    + "; ".join(check.message for check in report.failures)
+                )
+            proved = True
+        out.append((Claims.from_certificate(cert, label=label), source, proved))
     return out
 
 
@@ -175,14 +258,16 @@ def crosscheck(
     iss: bool = False,
     chunk: int = 1000,
     progress: bool | None = None,
+    require_proved: bool = True,
+    max_events: int = 10_000,
 ) -> CrosscheckReport:
     """Check certificates on exact simulated trajectories.
 
     Parameters
     ----------
     certificates : sequence
-        Certificate objects (possibly altered copies: they are *not*
-        verified first), :class:`Claims`, or paths to certificate files.
+        Certificate objects or paths to certificate files; with
+        ``require_proved=False`` also altered copies and :class:`Claims`.
     trajectories : int, keyword-only
         Trajectories per gain set (shared by the certificates of that gain set).
     seed : int, keyword-only
@@ -203,6 +288,13 @@ def crosscheck(
         Trajectories simulated and checked at a time (memory bound).
     progress : bool or None, keyword-only
         Progress bar on stderr; ``None``: only if stderr is a terminal.
+    require_proved : bool, keyword-only
+        Verify every certificate exactly first and refuse one that does not
+        verify (default).  ``False`` checks candidate constants on purpose,
+        e.g. deliberately wrong ones, to show that the cross-check catches them.
+    max_events : int, keyword-only
+        Event limit per trajectory; a trajectory that reaches it is reported
+        as incomplete, never as holding.
 
     Returns
     -------
@@ -213,6 +305,8 @@ def crosscheck(
     ParameterError
         If ``trajectories``, ``samples``, ``horizon``, ``rtol`` or ``theta``
         is out of range.
+    UnprovedCertificateError
+        If ``require_proved`` and a certificate does not verify exactly.
     """
     from .._progress import Progress
 
@@ -227,12 +321,14 @@ def crosscheck(
     if not (isinstance(theta, (int, float)) and 0 < theta <= 1):
         raise ParameterError(f"theta must be in (0, 1]; got {theta!r}")
     start = time.perf_counter()
-    claims = _as_claims(certificates)
+    if isinstance(max_events, bool) or not isinstance(max_events, (int, np.integer)) or max_events < 1:
+        raise ParameterError(f"max_events must be an integer ≥ 1; got {max_events!r}")
+    claims = _as_claims(certificates, require_proved=require_proved)
     if not claims:
         raise ParameterError("no certificate to cross-check")
-    groups: dict[Parameters, list[tuple[Claims, str]]] = {}
-    for cl, src in claims:
-        groups.setdefault(cl.params, []).append((cl, src))
+    groups: dict[Parameters, list[tuple[Claims, str, bool | None]]] = {}
+    for cl, src, proved in claims:
+        groups.setdefault(cl.params, []).append((cl, src, proved))
     checks: list[CertificateCheck] = []
     decay_fits: dict[str, Any] = {}
     iss_estimates: dict[str, Any] = {}
@@ -242,7 +338,7 @@ def crosscheck(
             t0 = time.perf_counter()
             T = float(horizon) if horizon is not None else default_horizon(params)
             run = _GroupRun(params, [m[0] for m in members], T=T, samples=samples, rtol=rtol, theta=theta,
-                            seed=seed + 1000 * gi, chunk=chunk, bar=bar)
+                            seed=seed + 1000 * gi, chunk=chunk, bar=bar, max_events=int(max_events))
             run.execute(trajectories, adversarial=adversarial)
             seconds = time.perf_counter() - t0
             ov = run.checker.overshoots()
@@ -251,7 +347,7 @@ def crosscheck(
             finite = np.isfinite(ov)
             max_ov = {m: float(ov[finite & (modes == m)].max()) for m in SEARCH_MODES if np.any(finite & (modes == m))}
             best = int(np.nanargmax(np.where(finite, ov, -np.inf))) if np.any(finite) else 0
-            for (cl, source), results in zip(members, run.checker.results()):
+            for (cl, source, proved), results in zip(members, run.checker.results()):
                 checks.append(
                     CertificateCheck(
                         claims=cl,
@@ -265,6 +361,8 @@ def crosscheck(
                         overshoots=ov,
                         initial_distance=run.d0_all,
                         modes=modes,
+                        incomplete=run.checker.incomplete,
+                        proved=proved,
                     )
                 )
             key = members[0][0].label
@@ -293,7 +391,7 @@ class _GroupRun:
     """Simulate and check one gain set's trajectories within the budget."""
 
     def __init__(self, params: Parameters, claims: list[Claims], *, T: float, samples: int, rtol: float, theta: float,
-                 seed: int, chunk: int, bar: Any) -> None:
+                 seed: int, chunk: int, bar: Any, max_events: int = 10_000) -> None:
         self.params = params
         self.claims = claims
         self.t = sample_times(T, samples)
@@ -302,6 +400,8 @@ class _GroupRun:
         self.chunk = max(1, int(chunk))
         self.bar = bar
         self.checker = BatchChecker(params, claims, rtol=rtol, theta=theta)
+        self.checker.max_events = max_events
+        self.max_events = max_events
         self.count = 0
         self._x0: list[np.ndarray] = []
 
@@ -327,7 +427,7 @@ class _GroupRun:
             part = X0[lo : lo + self.chunk]
             batch = simulate_trajectories(
                 self.params, x0_to_z0(self.params, part), self.t if t is None else t,
-                source=np.full(part.shape[0], label, dtype=object),
+                source=np.full(part.shape[0], label, dtype=object), max_events=self.max_events,
             )
             # the simulator starts from z(0); use the x(0) it actually simulated
             self.checker.add(batch, attractivity=attractivity)

@@ -104,8 +104,8 @@ def simulate_trajectories(
         Strictly increasing sample times with ``t[0] = 0``.
     max_events : int, keyword-only
         Cap on mode changes per trajectory; a trajectory that reaches it is
-        held at its last state (with the defaults this does not happen on
-        the cross-check's horizons).
+        *incomplete* (``batch.complete`` is False): its samples after the stop
+        stay NaN and no property is checked on them.
     source : ndarray of str, optional, keyword-only
         Label of each initial state.
     """
@@ -114,16 +114,11 @@ def simulate_trajectories(
     Z0 = np.asarray(Z0, dtype=float).reshape(-1, 3)
     t = np.asarray(t, dtype=float)
     sol = simulate_batch(params, Z0, float(t[-1]), t_eval=t, max_events=max_events)
+    from .._simulation._base import Status
+
     x = sol.x.copy()
     mode = sol.mode.copy()
-    stopped = ~np.isfinite(x[..., 0])
-    if np.any(stopped):
-        # MAX_EVENTS: hold the last computed state (documented above)
-        for i in np.flatnonzero(stopped.any(axis=1)):
-            good = np.flatnonzero(~stopped[i])
-            last = good[-1] if good.size else 0
-            x[i, last + 1 :] = x[i, last]
-            mode[i, last + 1 :] = mode[i, last]
+    complete = np.asarray(sol.status) != Status.MAX_EVENTS
     ev_t = sol.event_times
     before = sol.event_modes[..., 0]
     after = sol.event_modes[..., 1]
@@ -141,6 +136,7 @@ def simulate_trajectories(
         z0=Z0,
         source=np.asarray(source, dtype=object) if source is not None else None,  # type: ignore[arg-type]
         event_residual=resid,
+        complete=complete,
     )
 
 

@@ -32,7 +32,9 @@ def test_paper_certificates_pass(capsys):
     files = [str(PROOFS / f"case_{c}_tightest.json") for c in "ab"]
     assert main(["crosscheck", *files, *FAST]) == 0
     out = capsys.readouterr().out
-    assert "PASSED: 2 certificate(s)" in out
+    last = out.strip().splitlines()[-1]
+    assert last.startswith("crosscheck: PASSED — 2 certificate(s), 120 trajectories (0 incomplete)")
+    assert "proved exactly before the cross-check" in out
     for pid in ("lemma2.decrease", "lemma3.hatV_nonincreasing", "prop1.stability", "remark.stick_sigma"):
         assert pid in out
     assert "traj" in out and "checked" in out and "margin" in out and "fail" in out
@@ -44,26 +46,45 @@ def test_default_is_every_committed_certificate(monkeypatch, capsys):
     monkeypatch.chdir(REPO)
     assert main(["crosscheck", "--trajectories", "30", "--no-adversarial", "--samples", "51"]) == 0
     out = capsys.readouterr().out
-    assert "PASSED: 4 certificate(s)" in out
+    assert "crosscheck: PASSED — 4 certificate(s)" in out.strip().splitlines()[-1]
     for stem in ("case_a_feasible", "case_a_tightest", "case_b_feasible", "case_b_tightest"):
         assert stem in out
 
 
-def test_wrong_certificate_exits_1_and_writes_a_counterexample(tmp_path, capsys):
+def test_unproved_certificate_is_refused_with_the_inequality_named(tmp_path, capsys):
     data = _case("a")
     c = Fraction(data["constants"]["c"])
-    data["constants"]["c"] = str(10 * c).replace(" ", "")  # 10 × 2(k_v k_p - k_i): the verifier would reject it
+    data["constants"]["c"] = str(10 * c).replace(" ", "")  # 10 × 2(k_v k_p - k_i): the verifier rejects it
     path = _write(tmp_path, data, "wrong_c.json")
     out_dir = tmp_path / "cx"
     assert main(["crosscheck", path, *FAST, "--out", str(out_dir)]) == 1
+    captured = capsys.readouterr()
+    lines = captured.out.strip().splitlines()
+    assert len(lines) == 1 and "Traceback" not in captured.err
+    assert lines[0].startswith(f"crosscheck: REFUSED — {path} does not verify")
+    assert "c = 2(k_v·k_p − k_i): 304 = 2·(96/5 − 4) = 152/5 is false" in lines[0]
+    assert not out_dir.exists()
+
+
+def test_edited_overshoot_bound_is_refused(tmp_path, capsys):
+    data = _case("a")
+    data["overshoot_bound"] = "3.2"  # below √(c₂ĉ₂/(c₁ĉ₁)) ≈ 3.4670: verify rejects it
+    path = _write(tmp_path, data, "forged.json")
+    assert main(["crosscheck", path, *FAST]) == 1
+    line = capsys.readouterr().out.strip()
+    assert line.startswith("crosscheck: REFUSED") and "overshoot_bound² ≥ c2·c2_hat/(c1·c1_hat)" in line
+
+
+def test_event_limit_makes_the_run_incomplete_not_passed(capsys):
+    assert main(["crosscheck", str(PROOFS / "case_a_tightest.json"), *FAST, "--max-events", "3"]) == 1
     out = capsys.readouterr().out
-    assert "FAILED: wrong_c" in out and "counterexamples written to" in out
-    files = list(out_dir.glob("*.json"))
-    assert len(files) == 1
-    saved = json.loads(files[0].read_text(encoding="utf-8"))
-    cx = next(c for c in saved["counterexamples"] if c["property"] == "lemma2.decrease")
-    assert cx["values"]["integral_v2"] > 0 and cx["t"] > cx["t_start"]
-    assert len(cx["z0"]) == 3 and cx["relative_slack"] < -1e-8
+    assert "INCOMPLETE:" in out and "nothing was checked on their unsimulated part" in out
+    last = out.strip().splitlines()[-1]
+    assert last.startswith("crosscheck: INCOMPLETE — 1 certificate(s), 60 trajectories (")
+    import re
+
+    incomplete = int(re.search(r"trajectories \((\d+) incomplete\)", last).group(1))
+    assert 0 < incomplete <= 60
 
 
 def test_no_certificate_found(monkeypatch, tmp_path, capsys):
