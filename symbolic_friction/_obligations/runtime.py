@@ -13,6 +13,9 @@ fast code.  The obligations here bind those instantiations to the paper:
 * ``model.hatV_runtime`` — ``V̂`` of eq. (Vhat) equals ``½wᵀKw`` with
   ``w = (|σ|, |dz(φ)|, |v|)``, ``K`` the package's matrix, ``dz`` the
   paper's dead zone; exact and float agree with it.
+* ``model.hatV_rate_runtime`` — ``V̂°`` of eq. (hatVdot) on ``R̂`` (the
+  cross-check's growth test) equals the Clarke maximum of the gradient of the
+  package's ``V̂`` along ``F``, differentiated by sympy.
 * ``model.R_runtime`` — membership in ``R = {v(φ - sign(v) f_c) ≥ 0}``
   (Lemma 3), boundary included, in all three kinds.
 * ``model.distance_runtime`` and ``model.distance_z_runtime`` — ``|x|²_𝒜``
@@ -48,7 +51,7 @@ import sympy as sp
 from .. import _symbolic
 from .._attractor import dz, squared_distance_x, squared_distance_z
 from .._coordinates import input_vector, system_matrix, x_to_z, z_to_x
-from .._lyapunov import V, V_hat, in_R, lyapunov_matrix, quadratic_form
+from .._lyapunov import V, V_hat, V_hat_rate, in_R, lyapunov_matrix, quadratic_form
 from .._parameters import Parameters
 from .._simulation.modes import mode_at_rest, modes_at_rest, select_mode, select_modes, table_row
 from ._base import Obligation, Outcome
@@ -64,6 +67,7 @@ __all__ = [
     "BindingSubject",
     "VRuntime",
     "HatVRuntime",
+    "HatVRateRuntime",
     "RRuntime",
     "DistanceRuntime",
     "DistanceZRuntime",
@@ -282,6 +286,49 @@ class HatVRuntime(_Binding):
         constants = _gain_values(g, INSTANCE)
         constants.update(zip(k, (sp.Rational(q) for q in K_INSTANCE)))
         return _x_subject("V̂", runtime, paper, symbolic=V_hat(g, [g.sigma, g.phi, g.v], k), constants=constants)
+
+
+class HatVRateRuntime(_Binding):
+    id = "model.hatV_rate_runtime"
+    paper = "Lemma 3, eq. (hatVdot) and eq. (almostEverywhereDerivatives)"
+    statement = (
+        "the package's V̂° on R̂ (used by the cross-check) is max_{ζ ∈ ∂|σ|} ⟨∂V̂, F⟩ with ∂V̂ differentiated from "
+        "the package's V̂ and F = Ax − b sign(v), in exact, float and symbolic form"
+    )
+
+    def derive(self) -> BindingSubject:
+        g = G()
+        k = tuple(sp.symbols("k_1 k_2 k_3 k_4", positive=True))
+        zeta = sp.Symbol("zeta", real=True)
+        state = (g.sigma, g.phi, g.v)
+        Vh = V_hat(g, list(state), k)
+        F = _symbolic.A(g) * sp.Matrix(state) - _symbolic.b(g) * sp.sign(g.v)
+        # Clarke: ∂|σ| = SGN(σ); keep ζ for the element of SGN(σ) that sympy writes sign(σ)
+        rate = sum(sp.diff(Vh, x) * F[i] for i, x in enumerate(state)).xreplace({sp.sign(g.sigma): zeta})
+
+        def paper(case: Case) -> sp.Expr:
+            if _sign(case, g.sigma) != 0:
+                return case(rate).xreplace({zeta: _sign(case, g.sigma)})
+            ends = [resolve_piecewise(case(rate).xreplace({zeta: z})) for z in (1, -1)]
+            order = sign_of(sp.expand(ends[0] - ends[1]))
+            if order is None:
+                raise Undecided(f"cannot compare ζ = ±1 in {ends}")
+            return ends[0] if order >= 0 else ends[1]
+
+        def in_rhat(case: Case) -> bool:
+            margin = sp.expand(case(g.v) * (case(g.phi) - _sign(case, g.v) * case(g.f_c)))
+            return sign_of(margin) == -1
+
+        def runtime(p: Parameters, x: Any) -> Any:
+            return V_hat_rate(p, x, K_INSTANCE)
+
+        constants = _gain_values(g, INSTANCE)
+        constants.update(zip(k, (sp.Rational(q) for q in K_INSTANCE)))
+        cases = tuple(c for c in _state_cases(g) if in_rhat(c))
+        points = tuple(p for p in instance_points() if p[2] != 0 and (1 if p[2] > 0 else -1) * p[1] < INSTANCE.f_c)
+        return _x_subject(
+            "V̂°", runtime, paper, symbolic=V_hat_rate(g, list(state), k), constants=constants, cases=cases, points=points
+        )
 
 
 class RRuntime(_Binding):
@@ -526,4 +573,4 @@ class PNormRuntime(Obligation):
         return Outcome(True, f"scalar and vectorised |y|_P agree with the package's P at {len(subject.points)} points")
 
 
-OBLIGATIONS = (VRuntime, HatVRuntime, RRuntime, DistanceRuntime, DistanceZRuntime, MatricesRuntime, ModesRuntime, PNormRuntime)
+OBLIGATIONS = (VRuntime, HatVRuntime, HatVRateRuntime, RRuntime, DistanceRuntime, DistanceZRuntime, MatricesRuntime, ModesRuntime, PNormRuntime)

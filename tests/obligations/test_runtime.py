@@ -18,6 +18,7 @@ from symbolic_friction._obligations.runtime import (
     K_INSTANCE,
     DistanceRuntime,
     DistanceZRuntime,
+    HatVRateRuntime,
     HatVRuntime,
     MatricesRuntime,
     ModesRuntime,
@@ -255,3 +256,31 @@ def test_modes_at_rest_vectorised_fails(modes_runtime):
         return b, o, -k
 
     assert_fails(ob, dataclasses.replace(s, modes_at_rest=modes_at_rest), "modes_at_rest k =")
+
+
+hatv_rate_runtime = obligation_fixture(HatVRateRuntime)
+
+
+def test_hatV_rate_holds(hatv_rate_runtime):
+    assert_holds(*hatv_rate_runtime)
+
+
+def test_hatV_rate_without_clarke_max_fails(hatv_rate_runtime):
+    ob, s = hatv_rate_runtime
+    from symbolic_friction._lyapunov import V_hat_rate
+
+    def smooth_only(p, x):  # sign(σ)σ' also at σ = 0, i.e. 0 instead of |σ'|
+        value = V_hat_rate(p, x, K_INSTANCE)
+        sigma, phi, v = x
+        if sigma != 0:
+            return value
+        k3 = K_INSTANCE[2]
+        return value - k3 * abs(p.k_i * v) * abs(v)
+
+    assert_fails(ob, dataclasses.replace(s, exact=smooth_only), "the exact V̂°")
+
+
+def test_hatV_rate_wrong_flow_fails(hatv_rate_runtime):
+    ob, s = hatv_rate_runtime
+    k4 = sp.Symbol("k_4", positive=True)
+    assert_fails(ob, dataclasses.replace(s, symbolic=s.symbolic + k4 * g.v * g.f_c * sp.sign(g.v)), "differs from the paper")
