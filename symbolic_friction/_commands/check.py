@@ -212,7 +212,59 @@ def certificates_section(args: argparse.Namespace) -> Section:
                    counts={"certificates": len(entries), "certificates_proved": proved, "certificates_current": current})
 
 
-SECTIONS: list[Callable[[argparse.Namespace], Section]] = [obligations_section, certificates_section]
+def crosscheck_section(args: argparse.Namespace) -> Section:
+    """The cross-check passes Table I's proved certificates and catches each wrong variant (:mod:`._crosscheck._selftest`).
+
+    Uses ``DIR/case_{a,b}_tightest.json`` when they verify, else certifies
+    Table I in memory.
+    """
+    from .._certify import certify, load, verify_certificate
+    from .._crosscheck._selftest import crosscheck_self_test
+    from .._parameters import Parameters
+
+    certificates = {}
+    for case in ("a", "b"):
+        path = Path(args.proofs) / f"case_{case}_tightest.json"
+        cert = None
+        if path.is_file():
+            try:
+                cert = load(path)
+            except Exception:  # a malformed file is the certificates section's to report
+                cert = None
+        if cert is None or not verify_certificate(cert).proved:
+            cert = certify(Parameters.table_i(case), mode="tightest")
+        certificates[case] = cert
+    result = crosscheck_self_test(certificates)
+    rows = [(f"({r.case})", r.variant, r.expected, ", ".join(r.caught_by) or "-", "ok" if r.ok else "NOT CAUGHT" if r.variant != "proved" else "FAILED")
+            for r in result.rows]
+    wrong = [r for r in result.rows if r.variant != "proved"]
+    proved = [r for r in result.rows if r.variant == "proved"]
+    summary = (
+        f"cross-check self-test: {sum(r.ok for r in proved)} of {len(proved)} proved certificates pass, "
+        f"{sum(r.ok for r in wrong)} of {len(wrong)} wrong certificates caught ({result.trajectories} trajectories)"
+    )
+    notes = [summary + f" ({result.seconds:.1f} s)"]
+    notes += [f"FAILED cross-check self-test ({r.case}) {r.variant}: expected {r.expected}, got {', '.join(r.caught_by) or 'nothing'}"
+              for r in result.rows if not r.ok]
+    return Section(
+        "Cross-check self-test (it passes proved certificates and catches wrong ones)",
+        ("case", "certificate", "must be", "failing properties", "verdict"),
+        rows,
+        {"crosscheck_self_test": [dataclasses_asdict(r) for r in result.rows]},
+        result.ok,
+        notes,
+        summary=summary,
+        counts={"selftest_rows": len(result.rows), "selftest_ok": sum(r.ok for r in result.rows)},
+    )
+
+
+def dataclasses_asdict(obj: Any) -> dict[str, Any]:
+    import dataclasses
+
+    return {k: (list(v) if isinstance(v, tuple) else v) for k, v in dataclasses.asdict(obj).items()}
+
+
+SECTIONS: list[Callable[[argparse.Namespace], Section]] = [obligations_section, certificates_section, crosscheck_section]
 """The parts of ``check``, in order; append to extend the command."""
 
 

@@ -1,0 +1,143 @@
+"""The cross-check's own check: it passes proved certificates and catches wrong ones.
+
+``symbolic-friction check`` runs this so that a cross-check that can no
+longer fail (a flipped comparison, a tolerance made huge, a property left
+out) fails ``check`` itself, which is what users run in CI.  For Table I's
+cases (a) and (b):
+
+* the proved (tightest) certificate must pass on complete trajectories;
+* each deliberately wrong variant must be caught, with a counterexample, by
+  the property that its error breaks:
+
+  ========== ========================================== ============================
+  variant    error                                      caught by
+  ========== ========================================== ============================
+  ``kappa``  κ below the observed overshoot              ``prop1.stability``
+  ``c``      c = 10 · 2(k_v k_p − k_i)                   ``lemma2.decrease``
+  ``c1``     c₁ = 1.01 λ_min(P)                          ``lemma2.lower_bound``
+  ``k4``     k₄ = k_p k₂/2 (breaks a derived condition)  ``lemma3.hatV_nonincreasing``
+  ========== ========================================== ============================
+
+Deterministic (fixed seed); a few hundred trajectories per gain set.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+from fractions import Fraction
+from typing import Any
+
+import numpy as np
+
+__all__ = ["EXPECTED", "SelfTestRow", "SelfTest", "wrong_variants", "crosscheck_self_test"]
+
+EXPECTED: dict[str, str] = {
+    "kappa": "prop1.stability",
+    "c": "lemma2.decrease",
+    "c1": "lemma2.lower_bound",
+    "k4": "lemma3.hatV_nonincreasing",
+}
+"""Wrong variant → the property that must catch it."""
+
+
+@dataclass(frozen=True)
+class SelfTestRow:
+    """One certificate of the self-test and what the cross-check said about it."""
+
+    case: str
+    variant: str
+    expected: str
+    caught_by: tuple[str, ...]
+    ok: bool
+
+
+@dataclass(frozen=True)
+class SelfTest:
+    """All rows; ``ok`` iff the proved certificates pass and every wrong variant is caught as expected."""
+
+    rows: tuple[SelfTestRow, ...]
+    trajectories: int
+    seconds: float
+
+    @property
+    def ok(self) -> bool:
+        return bool(self.rows) and all(r.ok for r in self.rows)
+
+
+def _lambda_min_P(cert: Any) -> float:
+    from .._lyapunov import lyapunov_matrix
+
+    return float(np.linalg.eigvalsh(lyapunov_matrix(cert.as_parameters()))[0])
+
+
+def wrong_variants(cert: Any, observed_overshoot: float) -> dict[str, Any]:
+    """Altered copies of ``cert`` that the exact verifier rejects (see the module table)."""
+    kappa = 0.5 * (1.0 + observed_overshoot)  # strictly between 1 and the observed overshoot
+    return {
+        "kappa": dataclasses.replace(cert, overshoot_bound=f"{kappa:.6f}"),
+        "c": dataclasses.replace(cert, c=10 * 2 * (cert.k_v * cert.k_p - cert.k_i)),
+        "c1": dataclasses.replace(cert, c1=Fraction(_lambda_min_P(cert) * 1.01).limit_denominator(10**9)),
+        "k4": dataclasses.replace(cert, k4=cert.k_p * cert.k2 / 2),
+    }
+
+
+def crosscheck_self_test(certificates: dict[str, Any], *, trajectories: int = 150, seed: int = 0) -> SelfTest:
+    """Run the self-test on ``{case: proved certificate}``.
+
+    Parameters
+    ----------
+    certificates : dict
+        E.g. ``{"a": Certificate, "b": Certificate}``; each must verify exactly.
+    trajectories : int, keyword-only
+        Per gain set and run.
+    seed : int, keyword-only
+    """
+    import time
+
+    from ._claims import Claims
+    from ._run import crosscheck
+
+    start = time.perf_counter()
+    options = dict(trajectories=trajectories, seed=seed, adversarial=False, samples=101, progress=False)
+    rows: list[SelfTestRow] = []
+    total = 0
+    for case, cert in certificates.items():
+        report = crosscheck([cert], **options)
+        check = report.checks[0]
+        total += check.trajectories
+        failing = tuple(r.id for r in check.results if not r.passed)
+        rows.append(SelfTestRow(case, "proved", "passes, complete", failing, check.passed))
+        observed = max(check.max_overshoot.values()) if check.max_overshoot else 1.0
+        wrong = wrong_variants(cert, observed)
+        claims = [Claims.from_certificate(c, label=name) for name, c in wrong.items()]
+        bad = crosscheck(claims[:3], require_proved=False, **options)
+        total += bad.checks[0].trajectories
+        results = [(wc.label, wc.results) for wc in bad.checks]
+        # V̂ grows only from a thin set of R̂: start short runs where the model's V̂°/V̂ is largest
+        n, k4_results = _growth_run(claims[3], seed=seed)
+        total += n
+        results.append((claims[3].label, k4_results))
+        for label, res in results:
+            caught = tuple(r.id for r in res if not r.passed and r.counterexample is not None)
+            rows.append(SelfTestRow(case, label, EXPECTED[label], caught, EXPECTED[label] in caught))
+    return SelfTest(rows=tuple(rows), trajectories=total, seconds=time.perf_counter() - start)
+
+
+def _growth_run(claims: Any, *, seed: int, starts: int = 16) -> tuple[int, list[Any]]:
+    """Short dense runs from the maximisers of ``V̂°/V̂`` on ``R̂`` (the model's eq. hatVdot), as the full cross-check does."""
+    from ._adversarial import rate_maximisers
+    from ._run import _GroupRun, default_horizon
+
+    params = claims.params
+    X = rate_maximisers(params, claims, seed=seed, count=starts, maxiter=10)
+
+    class _NoBar:
+        def update(self, n: int) -> None:
+            pass
+
+    run = _GroupRun(params, [claims], T=default_horizon(params), samples=101, rtol=1e-8, theta=0.5,
+                    seed=seed, chunk=starts, bar=_NoBar())
+    t_short = np.concatenate([[0.0], np.geomspace(1e-6, 5.0, 199)])
+    run.evaluate(X, "self-test max V̂'/V̂ on R̂", t=t_short, attractivity=False)
+    return X.shape[0], run.checker.results()[0]

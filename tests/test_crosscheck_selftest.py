@@ -1,0 +1,67 @@
+"""The cross-check's self-test, which ``check`` runs: it can fail."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from symbolic_friction._certify import load
+from symbolic_friction._commands import check
+from symbolic_friction._crosscheck import _properties
+from symbolic_friction._crosscheck._selftest import EXPECTED, crosscheck_self_test
+
+PROOFS = Path(__file__).resolve().parents[1] / "proofs"
+
+
+@pytest.fixture(scope="module")
+def certs():
+    return {case: load(PROOFS / f"case_{case}_tightest.json") for case in "ab"}
+
+
+def test_self_test_passes_and_names_what_caught_each_variant(certs):
+    result = crosscheck_self_test(certs)
+    assert result.ok
+    assert [r.variant for r in result.rows] == ["proved", *EXPECTED] * 2
+    for row in result.rows:
+        if row.variant != "proved":
+            assert EXPECTED[row.variant] in row.caught_by
+
+
+def test_a_cross_check_that_cannot_fail_fails_the_self_test(certs, monkeypatch):
+    # every relative slack reported as comfortably positive: no property can fail any more
+    real_add = _properties._Acc.add
+
+    def never_fails(self, rel, mask, make, **kw):
+        return real_add(self, np.where(np.isfinite(rel), np.abs(rel), rel), mask, make, **kw)
+
+    monkeypatch.setattr(_properties._Acc, "add", never_fails)
+    result = crosscheck_self_test(certs)
+    assert not result.ok
+    assert all(not r.ok for r in result.rows if r.variant != "proved")
+
+
+def test_a_cross_check_that_always_fails_fails_the_self_test(certs, monkeypatch):
+    real_add = _properties._Acc.add
+
+    def always_fails(self, rel, mask, make, **kw):
+        return real_add(self, np.where(np.isfinite(rel), -np.abs(rel) - 1.0, rel), mask, make, **kw)
+
+    monkeypatch.setattr(_properties._Acc, "add", always_fails)
+    result = crosscheck_self_test(certs)
+    assert not result.ok
+    assert not next(r for r in result.rows if r.variant == "proved").ok
+
+
+def test_check_section_reports_a_broken_cross_check(monkeypatch, capsys):
+    real_add = _properties._Acc.add
+    monkeypatch.setattr(
+        _properties._Acc, "add", lambda self, rel, mask, make, **kw: real_add(self, np.abs(rel), mask, make, **kw)
+    )
+    args = argparse.Namespace(proofs=str(PROOFS), write=False, json=False, no_certificates=False)
+    section = check.crosscheck_section(args)
+    assert not section.ok
+    assert "0 of 8 wrong certificates caught" in section.summary
+    assert any(note.startswith("FAILED cross-check self-test (a) kappa: expected prop1.stability") for note in section.notes)
