@@ -24,9 +24,9 @@ def certs():
 def test_self_test_passes_and_names_what_caught_each_variant(certs):
     result = crosscheck_self_test(certs)
     assert result.ok
-    assert [r.variant for r in result.rows] == ["proved", *EXPECTED] * 2
+    assert [r.variant for r in result.rows] == ["edited kappa", "event limit", "proved", *EXPECTED] * 2
     for row in result.rows:
-        if row.variant != "proved":
+        if row.variant in EXPECTED:
             assert EXPECTED[row.variant] in row.caught_by
 
 
@@ -40,7 +40,7 @@ def test_a_cross_check_that_cannot_fail_fails_the_self_test(certs, monkeypatch):
     monkeypatch.setattr(_properties._Acc, "add", never_fails)
     result = crosscheck_self_test(certs)
     assert not result.ok
-    assert all(not r.ok for r in result.rows if r.variant != "proved")
+    assert all(not r.ok for r in result.rows if r.variant in EXPECTED)
 
 
 def test_a_cross_check_that_always_fails_fails_the_self_test(certs, monkeypatch):
@@ -63,5 +63,32 @@ def test_check_section_reports_a_broken_cross_check(monkeypatch, capsys):
     args = argparse.Namespace(proofs=str(PROOFS), write=False, json=False, no_certificates=False)
     section = check.crosscheck_section(args)
     assert not section.ok
-    assert "0 of 8 wrong certificates caught" in section.summary
+    assert "0 of 8 wrong certificates caught" in section.summary and "4 of 4 refusals hold" in section.summary
     assert any(note.startswith("FAILED cross-check self-test (a) kappa: expected prop1.stability") for note in section.notes)
+
+
+def test_a_cross_check_that_accepts_unproved_certificates_fails_the_self_test(certs, monkeypatch):
+    from symbolic_friction._crosscheck import _run
+
+    real = _run._as_claims
+    monkeypatch.setattr(_run, "_as_claims", lambda items, require_proved: real(items, require_proved=False))
+    result = crosscheck_self_test(certs)
+    assert not result.ok
+    assert [r.caught_by for r in result.rows if r.variant == "edited kappa"] == [("accepted",)] * 2
+
+
+def test_a_cross_check_that_hides_the_event_limit_fails_the_self_test(certs, monkeypatch):
+    import dataclasses
+
+    from symbolic_friction._crosscheck import _simulate
+
+    real = _simulate.simulate_trajectories
+
+    def hide(*args, **kw):  # a simulator wrapper that reports every trajectory as complete
+        batch = real(*args, **kw)
+        return dataclasses.replace(batch, complete=np.ones(batch.size, dtype=bool))
+
+    monkeypatch.setattr(_simulate, "simulate_trajectories", hide)
+    result = crosscheck_self_test(certs)
+    assert not result.ok
+    assert not next(r for r in result.rows if r.variant == "event limit").ok

@@ -18,6 +18,11 @@ cases (a) and (b):
   ``k4``     k₄ = k_p k₂/2 (breaks a derived condition)  ``lemma3.hatV_nonincreasing``
   ========== ========================================== ============================
 
+It also checks the two refusals that keep the cross-check from passing
+vacuously: a certificate whose overshoot bound was edited below
+``√(c₂ĉ₂/(c₁ĉ₁))`` is refused (it does not verify), and a run whose
+trajectories hit the event limit is *incomplete*, not passed.
+
 Deterministic (fixed seed); a few hundred trajectories per gain set.
 """
 
@@ -103,6 +108,15 @@ def crosscheck_self_test(certificates: dict[str, Any], *, trajectories: int = 15
     rows: list[SelfTestRow] = []
     total = 0
     for case, cert in certificates.items():
+        rows.append(_refusal_row(case, cert))
+        try:
+            limited = crosscheck([cert], **{**options, "trajectories": 10, "max_events": 2})
+        except Exception as exc:  # a broken guard may also crash; that is a failure of the row, not of the test
+            rows.append(SelfTestRow(case, "event limit", "incomplete", (f"error: {type(exc).__name__}",), False))
+        else:
+            total += limited.checks[0].trajectories
+            rows.append(SelfTestRow(case, "event limit", "incomplete", (limited.checks[0].verdict,),
+                                    limited.checks[0].verdict == "incomplete" and not limited.passed))
         report = crosscheck([cert], **options)
         check = report.checks[0]
         total += check.trajectories
@@ -122,6 +136,19 @@ def crosscheck_self_test(certificates: dict[str, Any], *, trajectories: int = 15
             caught = tuple(r.id for r in res if not r.passed and r.counterexample is not None)
             rows.append(SelfTestRow(case, label, EXPECTED[label], caught, EXPECTED[label] in caught))
     return SelfTest(rows=tuple(rows), trajectories=total, seconds=time.perf_counter() - start)
+
+
+def _refusal_row(case: str, cert: Any) -> SelfTestRow:
+    """An overshoot bound edited below κ must be refused before any trajectory is run."""
+    from .._errors import UnprovedCertificateError
+    from ._run import crosscheck
+
+    forged = dataclasses.replace(cert, overshoot_bound="1.0")  # κ ≥ 1 always (c₁ ≤ c₂, ĉ₁ ≤ ĉ₂): 1 is below it
+    try:
+        crosscheck([forged], trajectories=1, adversarial=False, progress=False)
+    except UnprovedCertificateError as exc:
+        return SelfTestRow(case, "edited kappa", "refused", ("refused: " + str(exc).split(": ", 1)[-1][:60],), True)
+    return SelfTestRow(case, "edited kappa", "refused", ("accepted",), False)
 
 
 def _growth_run(claims: Any, *, seed: int, starts: int = 16) -> tuple[int, list[Any]]:
