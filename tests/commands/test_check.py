@@ -59,7 +59,7 @@ def test_json_schema(full_run):
     _, payload, _, _ = full_run
     assert set(payload) == {"obligations", "errata", "certificates", "crosscheck_self_test", "passed", "counts"}
     assert payload["passed"] is True
-    assert payload["counts"]["selftest_ok"] == payload["counts"]["selftest_rows"] == 12
+    assert payload["counts"]["selftest_ok"] == payload["counts"]["selftest_rows"] == 14
     assert payload["counts"]["obligations"] == payload["counts"]["obligations_hold"] == len(payload["obligations"])
     assert payload["counts"]["certificates"] == payload["counts"]["certificates_proved"] == 4
     assert [c["proved"] and not c["stale"] for c in payload["certificates"]] == [True] * 4

@@ -1,0 +1,169 @@
+"""Single-point mutants of the runtime model, the verifier, the k-conditions and the cross-check.
+
+Each mutant replaces one snippet (which must occur exactly once in its
+file) by a wrong version.  ``python tests/mutation/run.py`` applies each to
+a copy of the package and runs ``symbolic-friction check`` and
+``symbolic-friction verify`` on it: every mutant must be caught by one of
+them, or be listed as *equivalent* with a one-line proof that it cannot
+change any result.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+__all__ = ["Mutant", "MUTANTS", "FAST"]
+
+TARGETS = ("model", "verifier", "k-conditions", "cross-check")
+
+
+@dataclass(frozen=True)
+class Mutant:
+    """One single-point change: ``old`` → ``new`` in ``path`` (relative to the repository root)."""
+
+    id: str
+    target: str
+    path: str
+    old: str
+    new: str
+    description: str
+    equivalent: str | None = None
+
+
+_L = "symbolic_friction/_lyapunov.py"
+_A = "symbolic_friction/_attractor.py"
+_C = "symbolic_friction/_coordinates.py"
+_K = "symbolic_friction/_kinds.py"
+_M = "symbolic_friction/_simulation/modes.py"
+_S = "symbolic_friction/_simulation/search.py"
+_KC = "symbolic_friction/_kconditions.py"
+_V = "symbolic_friction/_certify/verify.py"
+_CE = "symbolic_friction/_certify/certificate.py"
+_P = "symbolic_friction/_crosscheck/_properties.py"
+_R = "symbolic_friction/_crosscheck/_run.py"
+_SI = "symbolic_friction/_crosscheck/_simulate.py"
+
+MUTANTS: tuple[Mutant, ...] = (
+    # ------------------------------------------------------------------ the runtime model
+    Mutant("V.at_rest", "model", _L, "kind.where(v < 0, -f_c, sat(phi, f_c))", "kind.where(v < 0, -f_c, 0 * phi)",
+           "V at v = 0 uses f = 0 instead of the minimiser sat(φ)"),
+    Mutant("V.slip_sign", "model", _L, "return kind.where(v > 0, f_c, kind.where(", "return kind.where(v > 0, -f_c, kind.where(",
+           "V for v > 0 uses f = -f_c"),
+    Mutant("quadratic_form.half", "model", _L, "if P[i][j] != 0)", "if P[i][j] != 0 and i <= j)",
+           "the quadratic form drops the symmetric half of the σv cross term"),
+    Mutant("P.swapped_gains", "model", _L, "return ((k_v / k_i, 0, -1), (0, 1, 0), (-1, 0, k_p))",
+           "return ((k_p / k_i, 0, -1), (0, 1, 0), (-1, 0, k_v))", "P with k_p and k_v swapped"),
+    Mutant("P.cross_sign", "model", _L, "return ((k_v / k_i, 0, -1), (0, 1, 0), (-1, 0, k_p))",
+           "return ((k_v / k_i, 0, 1), (0, 1, 0), (1, 0, k_p))", "P with the sign of the σv entries flipped"),
+    Mutant("V_k.stick_piece", "model", _L, "return quadratic_form(params, sigma, phi * 0, v * 0)",
+           "return quadratic_form(params, sigma, phi * 0, v)", "V_0 keeps the v terms"),
+    Mutant("V_k.slip_piece", "model", _L, "return quadratic_form(params, sigma, phi - f_c, v)",
+           "return quadratic_form(params, sigma, phi + f_c, v)", "V_1 uses φ + f_c"),
+    Mutant("Vhat.cross_term", "model", _L, "+ k3 * kind.abs(sigma) * kind.abs(v) + k4 * v**2 / 2",
+           "+ 2 * k3 * kind.abs(sigma) * kind.abs(v) + k4 * v**2 / 2", "V̂'s k₃|σ||v| term doubled"),
+    Mutant("Vhat.dz_term", "model", _L, "value = k1 * sigma**2 / 2 + k2 * d**2 / 2", "value = k1 * sigma**2 / 2 + k2 * phi**2 / 2",
+           "V̂ uses φ² instead of dz(φ)²"),
+    Mutant("Vhat.half_k4", "model", _L, "+ k4 * v**2 / 2\n", "+ k4 * v**2\n", "V̂'s ½k₄v² without the ½"),
+    Mutant("R.strict", "model", _L, "return R_margin(params, x) >= 0", "return R_margin(params, x) > 0", "x ∈ R made strict"),
+    Mutant("R.sign", "model", _L, "return v * (phi - kind.sign(v) * kind.scalar(params.f_c))",
+           "return v * (phi + kind.sign(v) * kind.scalar(params.f_c))", "R with the sign of f_c flipped"),
+    Mutant("hatV_rate.clarke", "model", _L, "abs_rate = kind.where(kind.abs(sigma) > 0, kind.sign(sigma) * f[0], kind.abs(f[0]))",
+           "abs_rate = kind.sign(sigma) * f[0]", "V̂° without the Clarke max at σ = 0"),
+    Mutant("hatV_rate.flow", "model", _L, "- b[i] * sv for i in range(3)]", "+ b[i] * sv for i in range(3)]",
+           "V̂° along Ax + b sign(v) instead of Ax − b sign(v)"),
+    Mutant("dz.bound", "model", _A, "    return kind.finish(y - sat(y, c))", "    return kind.finish(y - sat(y, 2 * c))",
+           "dz_c with the dead zone [-2c, 2c]"),
+    Mutant("dist_x.no_v", "model", _A, "    return sigma**2 + v**2 + dz(phi, attractor_bound_x(params)) ** 2",
+           "    return sigma**2 + dz(phi, attractor_bound_x(params)) ** 2", "|x|²_𝒜 without v²"),
+    Mutant("dist_z.bound", "model", _A, "dz(e_i, attractor_bound_z(params))", "dz(e_i, params.f_c)",
+           "|z|²_𝒜 with dead zone f_c instead of f_c/k_i"),
+    Mutant("attractor.bound_z", "model", _A, "return params.f_c / params.k_i", "return params.f_c / params.k_p",
+           "𝒜 in z bounded by f_c/k_p"),
+    Mutant("A.swapped", "model", _C, "return ((0, 0, -k_i), (1, 0, -k_p), (0, 1, -k_v))",
+           "return ((0, 0, -k_i), (1, 0, -k_v), (0, 1, -k_p))", "A with k_p and k_v swapped"),
+    Mutant("T_inv.sign", "model", _C, "return ((k_p / k_i**2, -1 / k_i, 0), (-1 / k_i, 0, 0), (0, 0, 1))",
+           "return ((k_p / k_i**2, 1 / k_i, 0), (-1 / k_i, 0, 0), (0, 0, 1))", "T⁻¹ with one sign flipped"),
+    Mutant("T.sign", "model", _C, "return ((0, -k_i, 0), (-k_i, -k_p, 0), (0, 0, 1))",
+           "return ((0, -k_i, 0), (-k_i, k_p, 0), (0, 0, 1))", "T with φ = −k_i e_i + k_p s"),
+    Mutant("b.scale", "model", _C, "    return (0, 0, f_c)", "    return (0, 0, 2 * f_c)", "b = (0, 0, 2f_c)"),
+    Mutant("A.float_args", "model", _C, "    return np.array(system_matrix_entries(k_p, k_i, k_v), dtype=float)",
+           "    return np.array(system_matrix_entries(k_p, k_v, k_i), dtype=float)", "the float A built with k_i, k_v swapped"),
+    Mutant("kinds.float_clip", "model", _K, "        return np.clip(y, lo, hi)", "        return np.clip(y, lo, 2 * hi)",
+           "the float projection on [lo, 2hi]"),
+    Mutant("kinds.exact_sign", "model", _K, "        return (y > 0) - (y < 0)", "        return (y > 0) - (y <= 0)",
+           "the exact sign(0) = -1"),
+    Mutant("kinds.exact_clip_boundary", "model", _K, "        return lo if y < lo else hi if y > hi else y",
+           "        return lo if y <= lo else hi if y > hi else y", "the exact projection tests y ≤ lo",
+           equivalent="at y = lo both versions return lo (= y): the value is the same for every y"),
+    Mutant("kinds.float_sign_zero", "model", _K, "        return np.sign(y)", "        return np.sign(y) * (y != 0)",
+           "the float sign multiplied by [y ≠ 0]", equivalent="np.sign(0) = 0 already, so the factor changes no value"),
+    Mutant("modes.vectorised_boundary", "model", _M, "(at_plus & (sigma > 0))", "(at_plus & (sigma >= 0))",
+           "select_modes sends row (iv) (an equilibrium) to slip"),
+    Mutant("modes.at_rest", "model", _M, "return -1, 0.0 * offset, -1 if sigma < 0 else 0  # rows (vii), (viii), (ix)",
+           "return -1, 0.0 * offset, -1 if sigma <= 0 else 0  # rows (vii), (viii), (ix)", "mode_at_rest sends row (viii) to slip"),
+    Mutant("modes.table_row", "model", _M, 'return "iii" if sigma > 0 else "iv" if sigma == 0 else "v"',
+           'return "iii" if sigma >= 0 else "iv" if sigma == 0 else "v"', "table_row puts σ = 0 in row (iii)"),
+    Mutant("search.p_norm", "model", _S, "return m * math.sqrt(max(kv_ki * s * s - 2.0 * s * v + k_p * v * v + p * p, 0.0))",
+           "return m * math.sqrt(max(kv_ki * s * s + 2.0 * s * v + k_p * v * v + p * p, 0.0))",
+           "the root search's |y|_P with +2σv (its bracket bound would be wrong)"),
+    Mutant("search.p_weights", "model", _S, "    return P[0][0], P[2][2]", "    return P[2][2], P[0][0]",
+           "the root search reads P₁₁ and P₃₃ swapped"),
+    # ------------------------------------------------------------------ the k-conditions
+    Mutant("kcond.k3_k2", "k-conditions", _KC, "        (k3, k2),", "        (k3, k2 / 2),", "k₃ > k₂ weakened to k₃ > k₂/2"),
+    Mutant("kcond.k3_k1", "k-conditions", _KC, "        (k3, k_i * k1 / k_v),", "        (k3, k_v * k1 / k_i),",
+           "k₃ > (k_i/k_v)k₁ with k_i and k_v swapped"),
+    Mutant("kcond.k4_k2", "k-conditions", _KC, "        (k4, k_p * k2),", "        (k4, k2),", "k₄ > k_p k₂ without k_p"),
+    Mutant("kcond.k4_k3", "k-conditions", _KC, "        (k4, k_i * k3 / k_v),", "        (k4, k_i * k3 / k_v / 2),",
+           "k₄ > (k_i/k_v)k₃ halved"),
+    Mutant("kcond.definiteness", "k-conditions", _KC, "        (k1 * k4, k3**2),", "        (k1 * k4, k3),",
+           "k₁k₄ > k₃² with k₃ unsquared"),
+    Mutant("kcond.holds_strict", "k-conditions", _KC, "        return sides[0] > sides[1]", "        return sides[0] >= sides[1]",
+           "Condition.holds made non-strict"),
+    # ------------------------------------------------------------------ the verifier
+    Mutant("verify.drop_c2", "verifier", _V,
+           '    out.append(Semidefinite("lemma3.R", "c2·I − P ⪰ 0", _matrix(cert.c2 * identity[i][j] - p[i][j] for i in range(3) for j in range(3))))\n',
+           "", "c₂I − P ⪰ 0 dropped (a c₂ below λ_max(P) would verify)"),
+    Mutant("verify.drop_c1hat_k4", "verifier", _V, "for j, kj in ((1, cert.k1), (2, cert.k2), (4, cert.k4)):",
+           "for j, kj in ((1, cert.k1), (2, cert.k2)):", "ĉ₁ ≤ k₄/2 dropped"),
+    Mutant("verify.leading_minors", "verifier", _V, "            for idx in itertools.combinations(range(n), size)\n        ]",
+           "            for idx in [tuple(range(size))]\n        ]", "semidefiniteness by leading principal minors only"),
+    Mutant("verify.kappa_hat_factor", "verifier", _CE, "    return (c2 * c2_hat) / (c1 * c1_hat)", "    return c2 / c1",
+           "κ² without the hat factor ĉ₂/ĉ₁"),
+    Mutant("verify.strict_decision", "verifier", _V, '_DECIDE = {">": lambda m: m > 0,', '_DECIDE = {">": lambda m: m >= 0,',
+           "strict inequalities decided as non-strict"),
+    Mutant("verify.c_formula", "verifier", _V, 'cert.c, "==", 2 * (k_v * k_p - k_i)', 'cert.c, "==", (k_v * k_p - k_i)',
+           "c = k_v k_p − k_i (the factor 2 dropped)"),
+    Mutant("verify.drop_c1_positive", "verifier", _V, '        Inequality("lemma2.lower_bound", "c1 > 0", cert.c1, ">", zero),\n', "",
+           "c₁ > 0 dropped"),
+    Mutant("verify.kappa_reversed", "verifier", _V, '            kappa * kappa,\n            ">=",', '            kappa * kappa,\n            "<=",',
+           "κ² compared the wrong way"),
+    Mutant("verify.le_margin", "verifier", _V, '            return self.rhs - self.lhs, ">="', '            return self.lhs - self.rhs, ">="',
+           "every ≤ premise decided reversed"),
+    Mutant("verify.psd_some_minors", "verifier", _V, "negative = [(idx, d) for idx, d in minors if not d >= 0]",
+           "negative = [(idx, d) for idx, d in minors[:3] if not d >= 0]", "the PSD decision looks at the 1×1 minors only"),
+    Mutant("verify.drop_kappa_positive", "verifier", _V,
+           '        Inequality("prop1.stability_bound", "overshoot_bound > 0", kappa, ">", zero),\n', "", "κ > 0 dropped"),
+    Mutant("verify.drop_assumption1", "verifier", _V, '        Inequality("lemma2.P", "k_v·k_p > k_i", k_v * k_p, ">", k_i),\n', "",
+           "Assumption 1's k_v k_p > k_i dropped"),
+    Mutant("verify.c1_halved", "verifier", _V, "_matrix(p[i][j] - cert.c1 * identity[i][j]",
+           "_matrix(p[i][j] - cert.c1 * identity[i][j] / 2", "P − c₁I ⪰ 0 weakened to P − (c₁/2)I ⪰ 0"),
+    # ------------------------------------------------------------------ the cross-check
+    Mutant("cc.acc_never_fails", "cross-check", _P, "self.failures += int(np.count_nonzero(r < -self.rtol))",
+           "self.failures += int(np.count_nonzero(r < -np.inf))", "no property can record a failure"),
+    Mutant("cc.decrease_without_c", "cross-check", _P, 'for pid, c in (("lemma2.decrease", cl.c), ("lemma2.nonincreasing", 0.0)):',
+           'for pid, c in (("lemma2.decrease", 0.0), ("lemma2.nonincreasing", 0.0)):', "Lemma 2's decrease checked without c∫v²"),
+    Mutant("cc.lower_bound_half", "cross-check", _P, "rel = (Vv - cl.c1 * d2) / scaleV", "rel = (Vv - 0.5 * cl.c1 * d2) / scaleV",
+           "Lemma 2's lower bound checked with c₁/2"),
+    Mutant("cc.stability_kappa", "cross-check", _P, "rel = (cl.kappa * d0[:, None] - d) / L[:, None]",
+           "rel = (2 * cl.kappa * d0[:, None] - d) / L[:, None]", "Proposition 1's bound checked with 2κ"),
+    Mutant("cc.rhat_flipped", "cross-check", _P, "in_Rhat = valid & is_sample & ~_in_R(", "in_Rhat = valid & is_sample & _in_R(",
+           "R̂ and R swapped in the cross-check"),
+    Mutant("cc.tolerance", "cross-check", _P, "DEFAULT_RTOL = 1e-8", "DEFAULT_RTOL = 1e3", "tolerance made huge"),
+    Mutant("cc.accepts_unproved", "cross-check", _R, "            if not report.proved:", "            if False:",
+           "unproved certificates are cross-checked instead of refused"),
+    Mutant("cc.hides_event_limit", "cross-check", _SI, "    complete = np.asarray(sol.status) != Status.MAX_EVENTS",
+           "    complete = np.ones(len(sol.status), dtype=bool)", "trajectories that hit the event limit count as complete"),
+)
+
+FAST: tuple[str, ...] = ("V.at_rest", "verify.drop_c2")
+"""The subset the default test run executes (one model and one verifier mutant)."""

@@ -1,0 +1,229 @@
+"""Whole-pipeline mutation testing: is every single-point error caught by ``check`` or ``verify`` alone?
+
+Usage (from the repository root)::
+
+    python tests/mutation/run.py                      # every mutant, one at a time
+    python tests/mutation/run.py --jobs 2 --out tests/mutation/report.md
+    python tests/mutation/run.py --fast               # the subset the test suite runs
+    python tests/mutation/run.py --only V.at_rest R.strict
+
+For each mutant of :data:`mutants.MUTANTS` the package sources
+(``symbolic_friction/``, ``proofs/``, ``pyproject.toml``: the files git
+lists there, tracked or untracked-but-not-ignored) are copied to a fresh
+temporary directory, the one snippet is replaced, and, with that directory
+as working directory and ``PYTHONPATH``:
+
+1. ``python -m symbolic_friction check --write`` regenerates ``proofs/`` first,
+   so that a committed report going stale can never be what catches a mutant;
+2. ``python -m symbolic_friction check --json`` must fail: the failing
+   obligations, certificates and self-test rows are recorded;
+3. ``python -m symbolic_friction verify proofs/*.json``: its ``FAILED`` lines
+   are recorded.
+
+A mutant is *caught* when step 2 or 3 exits non-zero.  The unmutated
+baseline is run the same way first and must pass both (otherwise every
+"caught" would be vacuous).  A mutant whose snippet does not occur exactly
+once is an error, never skipped.  The table is printed (and written
+atomically with ``--out``); the exit status is 0 only if every mutant is
+caught or listed as equivalent with its proof.
+"""
+
+from __future__ import annotations
+
+import argparse
+import concurrent.futures
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+if str(ROOT) not in sys.path:
+    sys.path.insert(0, str(ROOT))
+
+from tests.mutation.mutants import FAST, MUTANTS, Mutant  # noqa: E402
+
+TIMEOUT = 300.0
+SOURCES = ("symbolic_friction", "proofs", "pyproject.toml")
+
+
+class DoesNotApply(ValueError):
+    """A mutant's snippet does not occur exactly once in its file."""
+
+
+@dataclass(frozen=True)
+class Outcome:
+    """What ``check`` and ``verify`` said about one mutant (or the baseline)."""
+
+    mutant: Mutant | None
+    check_rc: int | None
+    verify_rc: int | None
+    caught_by: str
+    seconds: float
+    error: str = ""
+
+    @property
+    def caught(self) -> bool:
+        return not self.error and ((self.check_rc or 0) != 0 or (self.verify_rc or 0) != 0)
+
+    @property
+    def verdict(self) -> str:
+        if self.error:
+            return self.error
+        if self.mutant is not None and self.mutant.equivalent:
+            return "equivalent" if not self.caught else "caught (listed as equivalent)"
+        return "caught" if self.caught else "SURVIVED"
+
+    @property
+    def ok(self) -> bool:
+        return not self.error and (self.caught or bool(self.mutant and self.mutant.equivalent))
+
+
+def source_files(root: Path = ROOT) -> list[str]:
+    """The files to copy: tracked and untracked-but-not-ignored, under :data:`SOURCES`."""
+    listed = subprocess.run(
+        ["git", "ls-files", "--cached", "--others", "--exclude-standard", "--", *SOURCES],
+        cwd=root, capture_output=True, text=True, check=True,
+    ).stdout.splitlines()
+    return sorted({f for f in listed if (root / f).is_file()})
+
+
+def apply(text: str, mutant: Mutant) -> str:
+    """``text`` with the mutant's one snippet replaced.
+
+    Raises
+    ------
+    DoesNotApply
+        If ``mutant.old`` occurs zero times or more than once.
+    """
+    count = text.count(mutant.old)
+    if count != 1:
+        raise DoesNotApply(f"mutant {mutant.id}: its snippet occurs {count} times in {mutant.path}, expected once")
+    return text.replace(mutant.old, mutant.new)
+
+
+def line_of(mutant: Mutant, root: Path = ROOT) -> int:
+    text = (root / mutant.path).read_text(encoding="utf-8")
+    return text[: text.find(mutant.old)].count("\n") + 1
+
+
+def _copy_tree(dest: Path, files: list[str], root: Path) -> None:
+    for rel in files:
+        target = dest / rel
+        target.parent.mkdir(parents=True, exist_ok=True)
+        shutil.copyfile(root / rel, target)
+
+
+def _run(args: list[str], cwd: Path) -> subprocess.CompletedProcess:
+    env = dict(os.environ, PYTHONPATH=str(cwd), PYTHONDONTWRITEBYTECODE="1")
+    return subprocess.run([sys.executable, "-m", "symbolic_friction", *args], cwd=cwd, env=env,
+                          capture_output=True, text=True, timeout=TIMEOUT)
+
+
+def _what_failed(check: subprocess.CompletedProcess, verify: subprocess.CompletedProcess) -> str:
+    parts: list[str] = []
+    try:
+        payload = json.loads(check.stdout)
+    except json.JSONDecodeError:
+        payload = None
+    if payload is not None:
+        parts += [o["id"] for o in payload.get("obligations", []) if o.get("status") != "holds"]
+        parts += [f"certificate {Path(c['file']).name}" for c in payload.get("certificates", []) if not c.get("proved")]
+        parts += [f"self-test ({r['case']}) {r['variant']}" for r in payload.get("crosscheck_self_test", []) if not r.get("ok")]
+        if not parts and check.returncode:
+            last = check.stderr.strip().splitlines()[-1:] or ["?"]
+            parts.append(last[0][:90])
+    elif check.returncode:
+        last = (check.stderr or check.stdout).strip().splitlines()[-1:] or ["?"]
+        parts.append("check crashed: " + last[0][:80])
+    out = []
+    if check.returncode:
+        out.append("check: " + ", ".join(dict.fromkeys(parts)))
+    if verify.returncode:
+        failed = [line.split(":")[0].replace("FAILED ", "") for line in verify.stdout.splitlines() if line.startswith("FAILED")]
+        out.append("verify: " + (", ".join(Path(f).name for f in failed) or f"exit {verify.returncode}"))
+    return "; ".join(out) or "-"
+
+
+def run_one(mutant: Mutant | None, files: list[str], root: Path = ROOT) -> Outcome:
+    """Apply ``mutant`` (``None``: the baseline) to a fresh copy and run ``check --write``, ``check``, ``verify``."""
+    start = time.perf_counter()
+    with tempfile.TemporaryDirectory(prefix="sf-mutant-") as tmp:
+        dest = Path(tmp)
+        _copy_tree(dest, files, root)
+        if mutant is not None:
+            path = dest / mutant.path
+            try:
+                path.write_text(apply(path.read_text(encoding="utf-8"), mutant), encoding="utf-8")
+            except DoesNotApply:
+                return Outcome(mutant, None, None, "-", time.perf_counter() - start, "does not apply")
+        try:
+            _run(["check", "--write"], dest)
+            check = _run(["check", "--json"], dest)
+            certs = sorted(str(p.relative_to(dest)) for p in (dest / "proofs").glob("*.json"))
+            verify = _run(["verify", *certs], dest)
+        except subprocess.TimeoutExpired:
+            return Outcome(mutant, None, None, "-", time.perf_counter() - start, "timeout")
+        return Outcome(mutant, check.returncode, verify.returncode, _what_failed(check, verify), time.perf_counter() - start)
+
+
+def table(outcomes: list[Outcome], root: Path = ROOT) -> str:
+    rows = [
+        "| id | target | where | mutation | caught by | verdict |",
+        "|---|---|---|---|---|---|",
+    ]
+    for o in outcomes:
+        m = o.mutant
+        assert m is not None
+        where = f"{m.path}:{line_of(m, root)}" if o.error != "does not apply" else m.path
+        verdict = o.verdict if not (m.equivalent and not o.caught) else f"equivalent: {m.equivalent}"
+        rows.append(f"| {m.id} | {m.target} | `{where}` | {m.description} | {o.caught_by} | {verdict} |")
+    caught = sum(o.caught for o in outcomes)
+    equivalent = sum(bool(o.mutant and o.mutant.equivalent) and not o.caught and not o.error for o in outcomes)
+    survived = sum(o.verdict == "SURVIVED" for o in outcomes)
+    errors = sum(bool(o.error) for o in outcomes)
+    rows.append("")
+    rows.append(f"{len(outcomes)} mutants: {caught} caught, {equivalent} equivalent, {survived} survived, {errors} errors")
+    return "\n".join(rows)
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--only", nargs="+", metavar="ID", help="run only these mutants")
+    parser.add_argument("--fast", action="store_true", help="run only the fast subset (the default test run's)")
+    parser.add_argument("--jobs", type=int, default=1, help="mutants run in parallel (default 1)")
+    parser.add_argument("--out", metavar="FILE", help="also write the table to FILE (atomically)")
+    args = parser.parse_args(argv)
+    selected = list(MUTANTS)
+    if args.fast:
+        selected = [m for m in MUTANTS if m.id in FAST]
+    if args.only:
+        unknown = set(args.only) - {m.id for m in MUTANTS}
+        if unknown:
+            parser.error(f"unknown mutant id(s): {', '.join(sorted(unknown))}")
+        selected = [m for m in MUTANTS if m.id in args.only]
+    files = source_files()
+    base = run_one(None, files)
+    if base.check_rc != 0 or base.verify_rc != 0:
+        print(f"baseline fails (check exit {base.check_rc}, verify exit {base.verify_rc}): {base.caught_by}; "
+              "every 'caught' would be vacuous, so nothing was run", file=sys.stderr)
+        return 2
+    print(f"baseline: check and verify pass ({base.seconds:.0f} s); {len(selected)} mutants", file=sys.stderr, flush=True)
+    with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
+        outcomes = list(pool.map(lambda m: run_one(m, files), selected))
+    text = table(outcomes)
+    print(text)
+    if args.out:
+        from symbolic_friction._io import atomic_write_text
+
+        atomic_write_text(Path(args.out), text + "\n")
+    return 0 if all(o.ok for o in outcomes) else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
