@@ -23,6 +23,7 @@ import sympy as sp
 from .. import _symbolic
 from .._lyapunov import V_k, quadratic_form
 from ._base import Erratum, Obligation, Outcome
+from ._statements import lemma2_decrease, lemma2_lower_bound, statement_failure
 from ._decide import G, Undecided, is_zero, latex, minimum_on, phi_classes, pos, resolve_piecewise, sign_of, sign_classes
 from .model import distance_squared, sgn_sets
 
@@ -153,6 +154,8 @@ class LowerBoundSubject:
     v: sp.Symbol
     y: sp.Symbol
     f_c: sp.Symbol
+    statement: Any = lemma2_lower_bound
+    """The conclusion Proposition 1 uses (:func:`._statements.lemma2_lower_bound`)."""
 
 
 def _smallest_eigenvalue_2x2(M: sp.Matrix) -> sp.Expr:
@@ -187,6 +190,9 @@ class Lemma2LowerBound(Obligation):
 
     def verify(self, subject: LowerBoundSubject) -> Outcome:
         S = subject
+        problem = statement_failure(S.statement, lambda c1, dist2, V: V - c1 * dist2)
+        if problem:
+            return Outcome.fail(f"Lemma 2 item 1 as Proposition 1 uses it: {problem}")
         X = sp.Matrix([S.sigma, S.y, S.v])
         if not is_zero(S.form - (X.T * S.P * X)[0]):
             return Outcome.fail(f"the quadratic form {S.form} is not (σ, y, v) P (σ, y, v)ᵀ")
@@ -252,6 +258,8 @@ class DVdtSubject:
     state: tuple[sp.Symbol, sp.Symbol, sp.Symbol]
     A: sp.ImmutableMatrix
     P: sp.ImmutableMatrix
+    statement: Any = lemma2_decrease
+    """The conclusion Proposition 1 uses (:func:`._statements.lemma2_decrease`)."""
 
 
 class Lemma2dVdt(Obligation):
@@ -282,6 +290,10 @@ class Lemma2dVdt(Obligation):
 
     def verify(self, subject: DVdtSubject) -> Outcome:
         S = subject
+        # dV_k/dt = -c v² ≤ 0 on every piece gives V(t₂) ≤ V(t₁) (eq. Vdecrease without c∫v² ≥ 0)
+        problem = statement_failure(S.statement, lambda later, earlier: earlier - later)
+        if problem:
+            return Outcome.fail(f"Lemma 2 item 2 as Proposition 1 uses it: {problem}")
         sigma, phi, v = S.state
         details = [("A^T P + P A", latex((S.A.T * S.P + S.P * S.A).applyfunc(sp.factor)))]
         if sign_of(under_assumption1(S.c)) != 1:

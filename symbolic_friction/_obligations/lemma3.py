@@ -36,6 +36,7 @@ from .. import _symbolic
 from .._kconditions import Condition, k_conditions
 from .._lyapunov import R_margin, V_hat, friction_selection
 from ._base import Erratum, Obligation, Outcome
+from ._statements import lemma3_hatV_bounds, lemma3_hatV_nonincreasing, lemma3_V_bounds, statement_failure
 from ._decide import G, Undecided, decide, is_zero, latex, resolve_piecewise, sign_of
 from ._inequalities import (
     Case,
@@ -139,6 +140,8 @@ class RSubject:
     c2: sp.Expr
     assumption: tuple[tuple[sp.Symbol, sp.Expr], ...]
     cases: tuple[Case, ...]
+    statement: Any = lemma3_V_bounds
+    """The conclusion Proposition 1 uses (:func:`._statements.lemma3_V_bounds`)."""
 
 
 def region_R(g: _symbolic.Gains) -> sp.Expr:
@@ -218,6 +221,9 @@ class LemmaR(Obligation):
         )
 
     def verify(self, subject: RSubject) -> Outcome:
+        problem = statement_failure(subject.statement, lambda c1, c2, dist2, V: (V - c1 * dist2, c2 * dist2 - V))
+        if problem:
+            return Outcome.fail(f"eq. (VandR) as Proposition 1 uses it: {problem}")
         s = subject
         failures: list[str] = []
         rows: list[str] = []
@@ -325,6 +331,8 @@ class HatVBoundsSubject:
     c1_hat_eig: sp.Expr
     c2_hat: sp.Expr
     cases: tuple[Case, ...]
+    statement: Any = lemma3_hatV_bounds
+    """The conclusion Proposition 1 uses (:func:`._statements.lemma3_hatV_bounds`)."""
 
 
 class HatVBounds(Obligation):
@@ -367,6 +375,9 @@ class HatVBounds(Obligation):
         )
 
     def verify(self, subject: HatVBoundsSubject) -> Outcome:
+        problem = statement_failure(subject.statement, lambda c1, c2, dist2, Vh: (Vh - c1 * dist2, c2 * dist2 - Vh))
+        if problem:
+            return Outcome.fail(f"eq. (hatVandHatR) as Proposition 1 uses it: {problem}")
         s = subject
         failures: list[str] = []
         half = sp.Rational(1, 2)
@@ -502,6 +513,8 @@ class HatVDerivativeSubject:
     f_v_bound: sp.Expr
     zeta_claim: sp.Expr
     cases: tuple[Case, ...]
+    statement: Any = lemma3_hatV_nonincreasing
+    """The conclusion Proposition 1 uses (:func:`._statements.lemma3_hatV_nonincreasing`)."""
 
 
 @dataclass(frozen=True)
@@ -683,6 +696,10 @@ class HatVDerivative(Obligation):
         )
 
     def verify(self, subject: HatVDerivativeSubject) -> Outcome:
+        # V̂° ≤ 0 on R̂ gives, by Fact 2 (Dini derivative bound), V̂(t₂) ≤ V̂(t₁) while in R̂
+        problem = statement_failure(subject.statement, lambda later, earlier: earlier - later)
+        if problem:
+            return Outcome.fail(f"eq. (hatVdot) as Proposition 1 uses it: {problem}")
         s = subject
         # ½dz(φ)² must be C¹ for its piecewise derivative to be the gradient
         failures = _c1_failures(s)

@@ -9,7 +9,9 @@ from Lemma 2 and Lemma 3, by the paper's two cases: (i) ``x(t) ∉ R`` for
 all ``t``; (ii) a first time ``t₁`` with ``x(t₁) ∈ R``.
 
 The analytic facts (Lemma 2, Lemma 3 at the relevant points, monotonicity of
-``V`` and ``V̂`` along solutions) are *premises*; every inequality the paper
+``V`` and ``V̂`` along solutions) are *premises*, each built by the function
+of :mod:`._statements` that the lemma's own obligation checks is what it
+proves; every inequality the paper
 chains from them is a *step* ``lhs ≤ rhs`` with an explicit certificate
 
 .. math::
@@ -32,6 +34,7 @@ from typing import Any
 import sympy as sp
 
 from ._base import Obligation, Outcome
+from ._statements import lemma2_decrease, lemma2_lower_bound, lemma3_hatV_bounds, lemma3_hatV_nonincreasing, lemma3_V_bounds
 from ._decide import G, Undecided, decide, is_zero, latex, resolve_piecewise
 from ._inequalities import Case, case_grid, is_nonneg, phi_cases, sign_cases
 from .lemma3 import in_R, region_R
@@ -152,26 +155,29 @@ def _subject() -> StabilitySubject:
     v0, vt, vt1 = sp.symbols("V_0 V_t V_{t_1}", **nonneg)
     v_star, vh_star = sp.symbols("V_* \\hat{V}_*", **nonneg)
     P = Premise
+    # every premise is a conclusion of Lemma 2 or Lemma 3, from the function its obligation checks
+    V_at = lambda c_lo, c_hi, D, V: tuple(Ineq(*pair) for pair in lemma3_V_bounds(c_lo, c_hi, D, V))  # noqa: E731
+    H_at = lambda c_lo, c_hi, D, W: tuple(Ineq(*pair) for pair in lemma3_hatV_bounds(c_lo, c_hi, D, W))  # noqa: E731
     premises = (
-        P("VandR at x*", Ineq(c1, v_star), "eq. (VandR) at x* = (1, 0, 0) ∈ R, |x*|²_𝒜 = 1 (lower)"),
-        P("VandR at x* (upper)", Ineq(v_star, c2), "eq. (VandR) at x* (upper)"),
-        P("hatVandHatR at x̂*", Ineq(ch1, vh_star), "eq. (hatVandHatR) at x̂* = (0, 0, 1) ∈ R̂, |x̂*|²_𝒜 = 1 (lower)"),
-        P("hatVandHatR at x̂* (upper)", Ineq(vh_star, ch2), "eq. (hatVandHatR) at x̂* (upper)"),
+        P("VandR at x*", V_at(c1, c2, 1, v_star)[0], "eq. (VandR) at x* = (1, 0, 0) ∈ R, |x*|²_𝒜 = 1 (lower)"),
+        P("VandR at x* (upper)", V_at(c1, c2, 1, v_star)[1], "eq. (VandR) at x* (upper)"),
+        P("hatVandHatR at x̂*", H_at(ch1, ch2, 1, vh_star)[0], "eq. (hatVandHatR) at x̂* = (0, 0, 1) ∈ R̂, |x̂*|²_𝒜 = 1 (lower)"),
+        P("hatVandHatR at x̂* (upper)", H_at(ch1, ch2, 1, vh_star)[1], "eq. (hatVandHatR) at x̂* (upper)"),
         # case (i): x(t) ∈ R̂ for all t ≥ 0
-        P("(i) lower at t", Ineq(ch1 * dt, vht), "eq. (hatVandHatR) at x(t) ∈ R̂"),
-        P("(i) decrease", Ineq(vht, vh0), "eq. (hatVdot): V̂° ≤ 0 on R̂, so V̂ does not increase while x ∈ R̂"),
-        P("upper at 0", Ineq(vh0, ch2 * d0), "eq. (hatVandHatR) at x(0) ∈ R̂ (cases (i) and (ii) with t₁ > 0)"),
+        P("(i) lower at t", H_at(ch1, ch2, dt, vht)[0], "eq. (hatVandHatR) at x(t) ∈ R̂"),
+        P("(i) decrease", Ineq(*lemma3_hatV_nonincreasing(vht, vh0)), "eq. (hatVdot): V̂° ≤ 0 on R̂, so V̂ does not increase while x ∈ R̂"),
+        P("upper at 0", H_at(ch1, ch2, d0, vh0)[1], "eq. (hatVandHatR) at x(0) ∈ R̂ (cases (i) and (ii) with t₁ > 0)"),
         # case (ii), t₁ > 0: x(s) ∈ R̂ on [0, t₁), x(t₁) ∈ R
-        P("(ii) lower at s", Ineq(ch1 * ds, vhs), "eq. (hatVandHatR) at x(s) ∈ R̂, s ∈ [0, t₁)"),
-        P("(ii) decrease to s", Ineq(vhs, vh0), "eq. (hatVdot) on [0, s] ⊂ [0, t₁)"),
-        P("(ii) lower at t₁", Ineq(ch1 * dt1, vht1), "eq. (hatVandHatR) as s → t₁ (continuity of x and V̂)"),
-        P("(ii) decrease to t₁", Ineq(vht1, vh0), "eq. (hatVdot) on [0, t₁), then continuity at t₁"),
-        P("(ii) VandR at t₁", Ineq(vt1, c2 * dt1), "eq. (VandR) at x(t₁) ∈ R (upper)"),
-        P("(ii) Lemma 2.1 at t", Ineq(c1 * dt, vt), "Lemma 2 item 1 at x(t), t ≥ t₁"),
-        P("(ii) Lemma 2.2", Ineq(vt, vt1), "Lemma 2 item 2 (eq. Vdecrease) from t₁ to t ≥ t₁"),
+        P("(ii) lower at s", H_at(ch1, ch2, ds, vhs)[0], "eq. (hatVandHatR) at x(s) ∈ R̂, s ∈ [0, t₁)"),
+        P("(ii) decrease to s", Ineq(*lemma3_hatV_nonincreasing(vhs, vh0)), "eq. (hatVdot) on [0, s] ⊂ [0, t₁)"),
+        P("(ii) lower at t₁", H_at(ch1, ch2, dt1, vht1)[0], "eq. (hatVandHatR) as s → t₁ (continuity of x and V̂)"),
+        P("(ii) decrease to t₁", Ineq(*lemma3_hatV_nonincreasing(vht1, vh0)), "eq. (hatVdot) on [0, t₁), then continuity at t₁"),
+        P("(ii) VandR at t₁", V_at(c1, c2, dt1, vt1)[1], "eq. (VandR) at x(t₁) ∈ R (upper)"),
+        P("(ii) Lemma 2.1 at t", Ineq(*lemma2_lower_bound(c1, dt, vt)), "Lemma 2 item 1 at x(t), t ≥ t₁"),
+        P("(ii) Lemma 2.2", Ineq(*lemma2_decrease(vt, vt1)), "Lemma 2 item 2 (eq. Vdecrease) from t₁ to t ≥ t₁"),
         # case (ii), t₁ = 0: x(0) ∈ R
-        P("(ii₀) VandR at 0", Ineq(v0, c2 * d0), "eq. (VandR) at x(0) ∈ R (upper)"),
-        P("(ii₀) Lemma 2.2", Ineq(vt, v0), "Lemma 2 item 2 from 0 to t"),
+        P("(ii₀) VandR at 0", V_at(c1, c2, d0, v0)[1], "eq. (VandR) at x(0) ∈ R (upper)"),
+        P("(ii₀) Lemma 2.2", Ineq(*lemma2_decrease(vt, v0)), "Lemma 2 item 2 from 0 to t"),
     )
     S = Step
     steps = (

@@ -6,6 +6,8 @@ cross-check evaluate the *same* functions on exact rationals and on float
 arrays, and the simulators read the mode table of Claim 1 through their own
 fast code.  The obligations here bind those instantiations to the paper:
 
+* ``model.kinds_runtime`` — the three kinds' ``where``, ``clip``, ``sign``
+  and ``abs`` are the paper's (``sign(0) = 0``, ``sat``) at and off boundaries.
 * ``model.V_runtime`` — ``V`` of eq. (lyapLike): the package's closed form
   equals the paper's ``min_{f ∈ f_c SGN(v)} |(σ, φ - f, v)|²_P`` on all 45
   sign/φ classes, symbolically; and the exact and float evaluations equal
@@ -74,6 +76,7 @@ __all__ = [
     "MatricesRuntime",
     "ModesRuntime",
     "PNormRuntime",
+    "KindsRuntime",
     "OBLIGATIONS",
 ]
 
@@ -573,4 +576,48 @@ class PNormRuntime(Obligation):
         return Outcome(True, f"scalar and vectorised |y|_P agree with the package's P at {len(subject.points)} points")
 
 
-OBLIGATIONS = (VRuntime, HatVRuntime, HatVRateRuntime, RRuntime, DistanceRuntime, DistanceZRuntime, MatricesRuntime, ModesRuntime, PNormRuntime)
+@dataclass(frozen=True)
+class KindsSubject:
+    """The three kinds' non-arithmetic operations (:mod:`symbolic_friction._kinds`)."""
+
+    kinds: tuple[Any, ...]
+
+
+class KindsRuntime(Obligation):
+    id = "model.kinds_runtime"
+    paper = "Notation (sign, sat, dz); eq. (frictionforceSetValued)"
+    statement = "where, clip (c·sat), sign and abs agree with the paper's definitions in the exact, float and sympy kinds, boundaries included"
+    method = "each operation at -2, -1, -1/2, 0, 1/2, 1, 2 against the definition, compared with =="
+
+    def derive(self) -> KindsSubject:
+        from .._kinds import EXACT, FLOAT, SYMPY
+
+        return KindsSubject((EXACT, FLOAT, SYMPY))
+
+    def verify(self, subject: KindsSubject) -> Outcome:
+        points = [Fraction(n, 2) for n in (-4, -2, -1, 0, 1, 2, 4)]
+        one = Fraction(1)
+        for kind in subject.kinds:
+            cast = {"exact": lambda q: q, "float": float, "sympy": sp.Rational}.get(kind.name, lambda q: q)
+            for y in points:
+                yk = cast(y)
+                # the paper's Notation: sign(0) = 0, sat(y) = y on [-1, 1], ±1 outside
+                want = {
+                    "sign": (y > 0) - (y < 0),
+                    "clip": -one if y < -1 else one if y > 1 else y,
+                    "abs": abs(y),
+                    "where": 1 if y > 0 else 2,
+                }
+                got = {
+                    "sign": kind.sign(yk),
+                    "clip": kind.clip(yk, cast(-one), cast(one)),
+                    "abs": kind.abs(yk),
+                    "where": kind.where(yk > 0, 1, 2),
+                }
+                for name, value in got.items():
+                    if Fraction(str(value if kind.name != "float" else float(value))) != want[name]:
+                        return Outcome.fail(f"the {kind.name} kind's {name}({y}) is {value!r}; the definition gives {want[name]}")
+        return Outcome(True, f"{len(subject.kinds)} kinds × 4 operations agree at {len(points)} points")
+
+
+OBLIGATIONS = (KindsRuntime, VRuntime, HatVRuntime, HatVRateRuntime, RRuntime, DistanceRuntime, DistanceZRuntime, MatricesRuntime, ModesRuntime, PNormRuntime)

@@ -19,6 +19,7 @@ from symbolic_friction._obligations.runtime import (
     DistanceRuntime,
     DistanceZRuntime,
     HatVRateRuntime,
+    KindsRuntime,
     HatVRuntime,
     MatricesRuntime,
     ModesRuntime,
@@ -284,3 +285,33 @@ def test_hatV_rate_wrong_flow_fails(hatv_rate_runtime):
     ob, s = hatv_rate_runtime
     k4 = sp.Symbol("k_4", positive=True)
     assert_fails(ob, dataclasses.replace(s, symbolic=s.symbolic + k4 * g.v * g.f_c * sp.sign(g.v)), "differs from the paper")
+
+
+kinds_runtime = obligation_fixture(KindsRuntime)
+
+
+def test_kinds_hold(kinds_runtime):
+    assert_holds(*kinds_runtime)
+
+
+@pytest.mark.parametrize("op", ["sign", "clip", "abs", "where"])
+def test_each_broken_kind_operation_fails(kinds_runtime, op):
+    ob, s = kinds_runtime
+    from symbolic_friction._kinds import EXACT
+
+    class Broken(type(EXACT)):
+        name = "exact"
+
+        def sign(self, y):
+            return super().sign(y) if op != "sign" else (y > 0) - (y <= 0)
+
+        def clip(self, y, lo, hi):
+            return super().clip(y, lo, hi) if op != "clip" else super().clip(y, lo, 2 * hi)
+
+        def abs(self, y):
+            return super().abs(y) if op != "abs" else y
+
+        def where(self, cond, a, b):
+            return super().where(cond, a, b) if op != "where" else super().where(not cond, a, b)
+
+    assert_fails(ob, dataclasses.replace(s, kinds=(Broken(),)), f"exact kind's {op}(")
