@@ -30,11 +30,12 @@ from symbolic_friction._crosscheck import (
     write_counterexamples,
 )
 from symbolic_friction._crosscheck._adversarial import hat_V_rate
-from symbolic_friction._crosscheck._batch import TrajectoryBatch
+from symbolic_friction._simulation import Trajectories
 from symbolic_friction._crosscheck._initial import grid_states, special_states, sphere_states
 from symbolic_friction._crosscheck._properties import BatchChecker, observability_gramian
 from symbolic_friction._crosscheck._run import default_horizon, sample_times, search_mode
-from symbolic_friction._crosscheck._simulate import simulate_trajectories, x0_to_z0
+from symbolic_friction._coordinates import x_to_z
+from symbolic_friction._simulation.batch import simulate_batch
 from symbolic_friction._lyapunov import lyapunov_matrix
 from tests.tolerance import assert_close
 
@@ -244,9 +245,16 @@ def _synthetic(params, t, x, mode, ev_t=None, ev_x=None, before=None, after=None
     else:
         ev_t, ev_x = np.asarray(ev_t, float)[None], np.asarray(ev_x, float)[None]
         before, after = np.asarray(before)[None], np.asarray(after)[None]
-    return TrajectoryBatch(
-        params=params, t=np.asarray(t, float), x=x, mode=mode, event_t=ev_t, event_x=ev_x,
-        event_before=before, event_after=after, x0=x[:, 0], z0=x0_to_z0(params, x[:, 0]),
+    return _trajectories(params, t, x, mode, ev_t, ev_x, before, after)
+
+
+def _trajectories(params, t, x, mode, ev_t, ev_x, before, after):
+    N, E = ev_t.shape
+    return Trajectories(
+        params=params, method="synthetic", t=np.asarray(t, float), z=x_to_z(params, x), x=x, mode=mode,
+        event_t=ev_t, event_x=ev_x, event_before=before, event_after=after, event_residual=np.zeros((N, E)),
+        n_events=np.isfinite(ev_t).sum(axis=1), status=np.full(N, "t_end reached", dtype=object),
+        t_stop=np.full(N, float(np.asarray(t)[-1])), z0=x_to_z(params, x[:, 0]), x0=x[:, 0],
     )
 
 
@@ -324,7 +332,7 @@ def test_attractivity_is_resolved_on_a_longer_horizon():
     p = Parameters.table_i("a")
     cl = Claims.from_certificate(_cert("a"))
     t = sample_times(20.0, 41)
-    b = simulate_trajectories(p, x0_to_z0(p, np.array([[0.01, 0.0, 0.0]])), t)
+    b = simulate_batch(p, x_to_z(p, np.array([[0.01, 0.0, 0.0]])), float(t[-1]), t_eval=t)
     chk = BatchChecker(p, [cl])
     chk.add(b)
     assert len(chk._pending) == 1
@@ -356,7 +364,7 @@ def test_hat_V_rate_matches_a_finite_difference_along_the_flow():
     cl = Claims.from_certificate(_cert("a"))
     x0 = np.array([0.3, -2.0, 0.7])  # v > 0, φ < f_c: in R̂, σ ≠ 0, |φ| ≠ f_c
     t = np.array([0.0, 1e-6])
-    b = simulate_trajectories(p, x0_to_z0(p, x0[None]), t)
+    b = simulate_batch(p, x_to_z(p, x0[None]), float(t[-1]), t_eval=t)
     from symbolic_friction._lyapunov import V_hat
 
     vh = V_hat(p, b.x[0], cl.k)
@@ -451,14 +459,21 @@ def test_checker_rejects_other_gains():
 
 def test_malformed_batch():
     p = Parameters.table_i("a")
-    with pytest.raises(SimulationError, match="malformed trajectory batch: t has shape"):
-        TrajectoryBatch(params=p, t=np.zeros(3), x=np.zeros((1, 2, 3)), mode=np.zeros((1, 2)),
-                        event_t=np.zeros((1, 0)), event_x=np.zeros((1, 0, 3)), event_before=np.zeros((1, 0)),
-                        event_after=np.zeros((1, 0)), x0=np.zeros((1, 3)), z0=np.zeros((1, 3)))
+    z = np.zeros((1, 2, 3))
+    ok = dict(
+        params=p, method="synthetic", t=np.array([0.0, 1.0]), z=z, x=z, mode=np.zeros((1, 2)),
+        event_t=np.zeros((1, 0)), event_x=np.zeros((1, 0, 3)), event_before=np.zeros((1, 0)),
+        event_after=np.zeros((1, 0)), event_residual=np.zeros((1, 0)), n_events=np.zeros(1, int),
+        status=np.array(["t_end reached"], dtype=object), t_stop=np.ones(1), z0=np.zeros((1, 3)), x0=np.zeros((1, 3)),
+    )
+    Trajectories(**ok)
+    with pytest.raises(SimulationError, match="malformed trajectories: t has shape"):
+        Trajectories(**{**ok, "t": np.zeros(3)})
+    with pytest.raises(SimulationError, match="nondecreasing"):
+        Trajectories(**{**ok, "t": np.array([1.0, 0.0])})
+    chk = BatchChecker(p, [Claims.from_certificate(_cert("a"))])
     with pytest.raises(SimulationError, match="strictly increasing"):
-        TrajectoryBatch(params=p, t=np.array([0.0, 0.0]), x=np.zeros((1, 2, 3)), mode=np.zeros((1, 2)),
-                        event_t=np.zeros((1, 0)), event_x=np.zeros((1, 0, 3)), event_before=np.zeros((1, 0)),
-                        event_after=np.zeros((1, 0)), x0=np.zeros((1, 3)), z0=np.zeros((1, 3)))
+        chk.add(Trajectories(**{**ok, "t": np.array([0.0, 0.0])}))
 
 
 @pytest.mark.parametrize(
@@ -524,7 +539,7 @@ def test_V_read_through_the_modes_is_the_papers_V():
     cl = Claims.from_certificate(_cert("a"))
     rng = np.random.default_rng(5)
     X0 = rng.normal(size=(40, 3)) * 2
-    b = simulate_trajectories(p, x0_to_z0(p, X0), sample_times(30.0, 121))
+    b = simulate_batch(p, x_to_z(p, X0), 30.0, t_eval=sample_times(30.0, 121))
     chk = BatchChecker(p, [cl])
     ch = _build_chain(b)
     got = chk._V_piece(ch.x, ch.piece)
@@ -560,9 +575,8 @@ def test_incomplete_trajectories_are_counted_and_never_hold():
 
 
 def test_incomplete_batch_keeps_nan_after_the_stop():
-    from symbolic_friction._crosscheck._simulate import simulate_trajectories
 
     p = Parameters.table_i("a")
-    batch = simulate_trajectories(p, np.array([[0.0, 3.0, 0.0]]), np.linspace(0, 30, 31), max_events=2)
+    batch = simulate_batch(p, np.array([[0.0, 3.0, 0.0]]), 30.0, t_eval=np.linspace(0, 30, 31), max_events=2)
     assert not batch.complete[0]
     assert np.isnan(batch.x[0, -1]).all()  # never held at the last state

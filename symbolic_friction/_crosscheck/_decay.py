@@ -81,13 +81,14 @@ def decay_fit(params: Parameters, *, trajectories: int = 12, horizon: float = 20
     geometric in ``t`` on ``[1, horizon]``; the tail is ``[horizon/100, horizon]``.
     """
     from .._attractor import distance_x
-    from ._simulate import simulate_trajectories, x0_to_z0
+    from .._coordinates import x_to_z
+    from .._simulation.batch import simulate_batch
 
     rng = np.random.default_rng(seed)
     g = rng.standard_normal((trajectories, 3))
     X0 = 3.0 * float(params.f_c) * g / np.linalg.norm(g, axis=1)[:, None]
     t = np.concatenate([[0.0], np.geomspace(1.0, horizon, 400)])
-    batch = simulate_trajectories(params, x0_to_z0(params, X0), t)
+    batch = simulate_batch(params, x_to_z(params, X0), float(t[-1]), t_eval=t)
     d = distance_x(params, batch.x)
     env = np.maximum.accumulate(d[:, ::-1], axis=1)[:, ::-1]
     tail = t >= horizon / 100.0

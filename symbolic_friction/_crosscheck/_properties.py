@@ -77,9 +77,9 @@ from typing import Any, Callable
 
 import numpy as np
 
-from .._errors import ParameterError
+from .._errors import ParameterError, SimulationError
 from .._parameters import Parameters
-from ._batch import TrajectoryBatch
+from .._simulation._trajectories import Trajectories
 from ._claims import Claims
 
 __all__ = [
@@ -331,7 +331,7 @@ class _Chain:
     valid: np.ndarray  # (N, L)
 
 
-def _build_chain(batch: TrajectoryBatch) -> _Chain:
+def _build_chain(batch: Trajectories) -> _Chain:
     N, n = batch.mode.shape
     E = batch.event_t.shape[1]
     t = batch.t
@@ -450,13 +450,16 @@ class BatchChecker:
         return np.einsum("...i,ij,...j->...", y, self.W, y)
 
     # -- main entry ----------------------------------------------------------------------
-    def add(self, batch: TrajectoryBatch, *, attractivity: bool = True) -> None:
+    def add(self, batch: Trajectories, *, attractivity: bool = True) -> None:
         """Check every certificate on the trajectories of ``batch``.
 
         ``attractivity=False`` skips the horizon test (for short adversarial runs).
         """
         if batch.params != self.params:
             raise ParameterError(f"the batch was simulated with {batch.params}; this checker is for {self.params}")
+        if batch.t.size > 1 and not np.all(batch.t[1:] > batch.t[:-1]):
+            # the chain of samples and events below divides by the time between samples
+            raise SimulationError("the cross-check needs strictly increasing sample times")
         N = batch.size
         if N == 0:
             return
@@ -636,7 +639,7 @@ class BatchChecker:
         pos = np.where(ch.valid & (ch.kind == 3), np.arange(ch.t.shape[1])[None, :], -1)
         return pos.max(axis=1)
 
-    def _rhat_pairs(self, batch: TrajectoryBatch, ch: _Chain, in_Rhat: np.ndarray, dt_pos: np.ndarray,
+    def _rhat_pairs(self, batch: Trajectories, ch: _Chain, in_Rhat: np.ndarray, dt_pos: np.ndarray,
                     k_int: np.ndarray) -> np.ndarray:
         """Consecutive points whose open interval lies in R̂ (so V̂ must not increase)."""
         f_c = self.f_c
@@ -663,7 +666,7 @@ class BatchChecker:
             run[rows, cols] = inside.all(axis=1)
         return run
 
-    def _stick_pairs(self, batch: TrajectoryBatch):
+    def _stick_pairs(self, batch: Trajectories):
         """``(σ_n, σ_{n+1}, t_n, t_{n+1}, mask)`` for consecutive stick phases of positive length."""
         N = batch.size
         E = batch.event_t.shape[1]
@@ -689,7 +692,7 @@ class BatchChecker:
 
     # -- counterexamples ------------------------------------------------------------------------
     def _base(self, prop: str, cl: Claims, h: dict, i: int) -> dict[str, Any]:
-        b: TrajectoryBatch = h["batch"]
+        b: Trajectories = h["batch"]
         return dict(
             property=prop,
             certificate=cl.label,
@@ -787,7 +790,7 @@ class BatchChecker:
         return slack, first
 
     def _cx_final(self, cl, h, idx, d_final, rel) -> Counterexample:
-        b: TrajectoryBatch = h["batch"]
+        b: Trajectories = h["batch"]
         (i,) = idx
         vals = {"dist_T": float(d_final[i]), "dist0": float(h["d0"][i]), "theta": self.theta,
                 "tolerance_relative": self.rtol}
@@ -797,7 +800,7 @@ class BatchChecker:
         )
 
     def _cx_stick(self, cl, h, idx, sig_prev, sig_next, t_prev, t_next, rel) -> Counterexample:
-        b: TrajectoryBatch = h["batch"]
+        b: Trajectories = h["batch"]
         i, p = idx
         vals = {"sigma_previous_stick": float(sig_prev[i, p]), "sigma_next_stick": float(sig_next[i, p]),
                 "tolerance_relative": self.rtol}
@@ -843,7 +846,7 @@ class BatchChecker:
         """
         from .._attractor import distance_x
         from .._coordinates import x_to_z
-        from ._simulate import simulate_trajectories
+        from .._simulation.batch import simulate_batch
 
         n = len(self._pending)
         if n == 0:
@@ -868,7 +871,7 @@ class BatchChecker:
             if active.size == 0:
                 break
             t = np.concatenate([[0.0], np.geomspace(window / samples, window, samples)])
-            b = simulate_trajectories(self.params, z[active], t, max_events=self.max_events)
+            b = simulate_batch(self.params, z[active], float(t[-1]), t_eval=t, max_events=self.max_events)
             d = distance_x(self.params, b.x)
             still = []
             for row, k in enumerate(active):

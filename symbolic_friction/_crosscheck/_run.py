@@ -419,14 +419,16 @@ class _GroupRun:
         self, X0: np.ndarray, label: str, *, t: np.ndarray | None = None, attractivity: bool = True
     ) -> np.ndarray:
         """Simulate and check the states ``X0`` (rows, in ``x``); return their overshoots."""
-        from ._simulate import simulate_trajectories, x0_to_z0
+        from .._coordinates import x_to_z
+        from .._simulation.batch import simulate_batch
 
         X0 = np.atleast_2d(np.asarray(X0, dtype=float))
         out = []
         for lo in range(0, X0.shape[0], self.chunk):
             part = X0[lo : lo + self.chunk]
-            batch = simulate_trajectories(
-                self.params, x0_to_z0(self.params, part), self.t if t is None else t,
+            times = self.t if t is None else t
+            batch = simulate_batch(
+                self.params, x_to_z(self.params, part), float(times[-1]), t_eval=times,
                 source=np.full(part.shape[0], label, dtype=object), max_events=self.max_events,
             )
             # the simulator starts from z(0); use the x(0) it actually simulated

@@ -27,7 +27,7 @@ fast code.  The obligations here bind those instantiations to the paper:
   ``T⁻¹`` the simulators use equal the symbolic ones.
 * ``model.modes_runtime`` — the simulators' mode selection (exact
   ``table_row``/``select_mode``, vectorised ``select_modes``, and the
-  ``mode_at_rest``/``modes_at_rest`` the event-driven simulators call, with
+  ``mode_at_rest``/``mode_after_slip`` the event-driven kernel calls, with
   ``φ`` kept as a boundary plus an offset) equals the appendix table that
   ``claim1.cases`` proves, at a point of every one of its 45 classes.
 * ``model.P_norm_runtime`` — the ``|y|_P`` written out for speed in the
@@ -55,7 +55,8 @@ from .._attractor import dz, squared_distance_x, squared_distance_z
 from .._coordinates import input_vector, system_matrix, x_to_z, z_to_x
 from .._lyapunov import V, V_hat, V_hat_rate, in_R, lyapunov_matrix, quadratic_form
 from .._parameters import Parameters
-from .._simulation.modes import mode_at_rest, modes_at_rest, select_mode, select_modes, table_row
+from .._simulation._kernel import mode_after_slip
+from .._simulation.modes import mode_at_rest, select_mode, select_modes, table_row
 from ._base import Obligation, Outcome
 from ._decide import G, Undecided, decide, is_zero, latex, minimum_on, resolve_piecewise, sign_of
 from ._inequalities import Case, case_grid, line_cases, phi_cases, sign_cases
@@ -454,7 +455,7 @@ class ModesSubject:
     select_mode: Callable[..., int]
     select_modes: Callable[..., Any]
     mode_at_rest: Callable[..., Any]
-    modes_at_rest: Callable[..., Any]
+    mode_after_slip: Callable[..., Any]
     f_c: Fraction
     points: tuple[tuple[Fraction, Fraction, Fraction], ...]
 
@@ -475,7 +476,7 @@ def _classes(point: tuple[Fraction, Fraction, Fraction], f_c: Fraction) -> tuple
 class ModesRuntime(Obligation):
     id = "model.modes_runtime"
     paper = "Claim 1; Appendix (table of cases (i)-(xi))"
-    statement = "the simulators' mode selection (table_row/select_mode, select_modes, and mode_at_rest/modes_at_rest at tolerance 0 from every boundary base) gives the row and k of the table that claim1.cases proves, in every class"
+    statement = "the simulators' mode selection (table_row/select_mode, select_modes, mode_at_rest at tolerance 0 from every boundary base, and mode_after_slip at the end of a slip in either direction) gives the row and k of the table that claim1.cases proves, in every class"
     method = "a dyadic point in each of the 45 sign/φ classes (every boundary included), compared with =="
 
     def derive(self) -> ModesSubject:
@@ -486,7 +487,7 @@ class ModesRuntime(Obligation):
             select_mode=select_mode,
             select_modes=select_modes,
             mode_at_rest=mode_at_rest,
-            modes_at_rest=modes_at_rest,
+            mode_after_slip=mode_after_slip,
             f_c=f_c,
             points=instance_points(f_c),
         )
@@ -520,13 +521,19 @@ class ModesRuntime(Obligation):
             for base in (-1, 0, 1):
                 offset = float(point[1] - base * subject.f_c)
                 _, _, k_rest = subject.mode_at_rest(float(point[0]), base, offset, float(subject.f_c), 0.0)
-                _, _, k_vec = subject.modes_at_rest(
-                    np.array([float(point[0])]), np.array([base]), np.array([offset]), float(subject.f_c), np.zeros(1)
-                )
-                if int(k_rest) != row.k or int(k_vec[0]) != row.k:
+                if int(k_rest) != row.k:
                     return Outcome.fail(
-                        f"{where}, φ = {base}·f_c + {offset}: mode_at_rest gives k = {int(k_rest)}, "
-                        f"modes_at_rest k = {int(k_vec[0])}, row ({row.label}) has k = {row.k}"
+                        f"{where}, φ = {base}·f_c + {offset}: mode_at_rest gives k = {int(k_rest)}, row ({row.label}) has k = {row.k}"
+                    )
+            # where a slip in direction d can end (d·(φ - d f_c) ≤ 0), the kernel's rule gives the row's k
+            for d in (1, -1):
+                offset = float(point[1] - d * subject.f_c)
+                if d * offset > 0:
+                    continue
+                _, _, k_slip = subject.mode_after_slip(float(point[0]), offset, d, float(subject.f_c), 0.0)
+                if int(k_slip) != row.k:
+                    return Outcome.fail(
+                        f"{where}, after a slip d = {d}: mode_after_slip gives k = {int(k_slip)}, row ({row.label}) has k = {row.k}"
                     )
         missing = [r.label for r in subject.rows if r.label not in seen]
         if missing:

@@ -15,12 +15,14 @@ import numpy as np
 
 from .._errors import SimulationError
 from .._parameters import Parameters
-from ._base import SimulationMethod, Solution, Status
+from ._base import SimulationMethod, Solution
+from ._trajectories import Status, Trajectories
 
 __all__ = [
     "simulate",
     "simulate_batch",
-    "BatchSolution",
+    "iter_batches",
+    "Trajectories",
     "METHODS",
     "get_method",
     "Solution",
@@ -132,7 +134,7 @@ def simulate(
 
 def __getattr__(name: str) -> Any:
     # simulate_batch lives with the event method; import it only when asked for
-    if name in ("simulate_batch", "BatchSolution"):
+    if name in ("simulate_batch", "iter_batches"):
         from . import batch
 
         return getattr(batch, name)

@@ -10,62 +10,143 @@ slip ``v < 0``: ``x' = Ax + b``).  Every method below approximates (or, for
 from __future__ import annotations
 
 import abc
-from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Any, ClassVar
 
 import numpy as np
 
 from .._parameters import Parameters
+from ._trajectories import Status, Trajectories
 
 __all__ = ["Solution", "SimulationMethod", "Status"]
 
 
-class Status:
-    """Why a simulation stopped."""
-
-    T_END = "t_end reached"
-    MAX_EVENTS = "max_events reached"
-    EQUILIBRIUM = "at an equilibrium"
-
-
-@dataclass(frozen=True, eq=False)
 class Solution:
-    """A simulated solution.
+    """One simulated solution: a view of one row of a :class:`.Trajectories`.
 
     Attributes
     ----------
     params : Parameters
     method : str
     t : ndarray, shape (n,)
+        Sample times (those after an incomplete trajectory's stop dropped).
     z : ndarray, shape (n, 3)
         ``(e_i, s, v)``.
+    x : ndarray, shape (n, 3)
+        ``(σ, φ, v)``.
     mode : ndarray of int, shape (n,)
         ``+1`` slip with ``v > 0``, ``0`` stick, ``-1`` slip with ``v < 0``.
     events : tuple of (float, int, int)
         ``(t, mode_before, mode_after)`` for every mode change.
+    event_x : ndarray, shape (n_events, 3)
+        The state at each event (NaN where the method does not compute it).
     status : str
         One of :class:`Status`.
+    complete : bool
     options : dict
         The accuracy knobs used.
+    trajectories, index
+        The batch this is a view of, and the row.
     """
 
-    params: Parameters
-    method: str
-    t: np.ndarray
-    z: np.ndarray
-    mode: np.ndarray
-    events: tuple[tuple[float, int, int], ...]
-    status: str
-    options: dict[str, Any] = field(default_factory=dict)
+    def __init__(self, trajectories: "Trajectories", index: int) -> None:
+        self.trajectories = trajectories
+        self.index = index
+        complete = trajectories.status[index] in Status.COMPLETE
+        self._keep = slice(None) if complete else trajectories.t <= trajectories.t_stop[index]
+
+    @classmethod
+    def from_samples(
+        cls,
+        *,
+        params: Parameters,
+        method: str,
+        t: np.ndarray,
+        z: np.ndarray,
+        mode: np.ndarray,
+        events: tuple[tuple[float, int, int], ...],
+        status: str,
+        options: dict[str, Any],
+    ) -> "Solution":
+        """A solution from samples of one trajectory (the time-stepping methods), states at events unknown (NaN)."""
+        from .._coordinates import z_to_x
+
+        t = np.asarray(t, dtype=float)
+        z = np.asarray(z, dtype=float).reshape(-1, 3)
+        n = len(events)
+        ev = np.array(events, dtype=float).reshape(n, 3)
+        batch = Trajectories(
+            params=params,
+            method=method,
+            t=t,
+            z=z[None],
+            x=z_to_x(params, z)[None],
+            mode=np.asarray(mode, dtype=np.int8)[None],
+            event_t=ev[None, :, 0],
+            event_x=np.full((1, n, 3), np.nan),
+            event_before=ev[None, :, 1].astype(np.int8),
+            event_after=ev[None, :, 2].astype(np.int8),
+            event_residual=np.zeros((1, n)),
+            n_events=np.array([n]),
+            status=np.array([status], dtype=object),
+            t_stop=np.array([t[-1] if t.size else 0.0]),
+            z0=z[:1].copy() if z.size else np.zeros((1, 3)),
+            x0=z_to_x(params, z[:1]) if z.size else np.zeros((1, 3)),
+            options=dict(options),
+        )
+        return cls(batch, 0)
+
+    # -- what the row holds ----------------------------------------------------------
+    @property
+    def params(self) -> Parameters:
+        return self.trajectories.params
+
+    @property
+    def method(self) -> str:
+        return self.trajectories.method
+
+    @property
+    def options(self) -> dict[str, Any]:
+        return self.trajectories.options
+
+    @property
+    def status(self) -> str:
+        return str(self.trajectories.status[self.index])
+
+    @property
+    def complete(self) -> bool:
+        return self.status in Status.COMPLETE
+
+    @cached_property
+    def t(self) -> np.ndarray:
+        return self.trajectories.t[self._keep]
+
+    @cached_property
+    def z(self) -> np.ndarray:
+        return self.trajectories.z[self.index][self._keep]
 
     @cached_property
     def x(self) -> np.ndarray:
-        """States in ``(sigma, phi, v)``, shape (n, 3)."""
-        from .._coordinates import z_to_x
+        """States in ``(σ, φ, v)``, shape (n, 3)."""
+        return self.trajectories.x[self.index][self._keep]
 
-        return z_to_x(self.params, self.z)
+    @cached_property
+    def mode(self) -> np.ndarray:
+        return self.trajectories.mode[self.index][self._keep]
 
+    @cached_property
+    def events(self) -> tuple[tuple[float, int, int], ...]:
+        return self.trajectories.events(self.index)
+
+    @property
+    def event_x(self) -> np.ndarray:
+        return self.trajectories.event_x[self.index, : int(self.trajectories.n_events[self.index])]
+
+    @property
+    def t_stop(self) -> float:
+        return float(self.trajectories.t_stop[self.index])
+
+    # -- the paper's functions along the solution ------------------------------------
     @cached_property
     def V(self) -> np.ndarray:
         """``V(x(t))`` of eq. (lyapLike), shape (n,)."""
@@ -85,6 +166,9 @@ class Solution:
         from .._lyapunov import V_hat
 
         return V_hat(self.params, self.x, k)
+
+    def __repr__(self) -> str:
+        return f"Solution(method={self.method!r}, samples={self.t.size}, events={len(self.events)}, status={self.status!r})"
 
 
 class SimulationMethod(abc.ABC):

@@ -52,14 +52,14 @@ cancels at most by a small constant factor.  All exponents are
 ``≤ max Re λ · t < 0`` (Assumption 1 makes ``A`` Hurwitz), so nothing
 overflows for large ``t``.
 
-The same formulas are written twice: vectorised with numpy
-(:meth:`MatrixExponential.w`) for dense output and batches, and with plain
-floats (:meth:`MatrixExponential.w_scalar`) for the event search of a single
-trajectory, where numpy's per-call overhead would dominate.
+The formulas are written once, in the simulation kernel
+(:func:`._kernel.w3`, compiled by numba when available);
+:meth:`MatrixExponential.w` evaluates them at many times.
 """
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 from fractions import Fraction
@@ -81,10 +81,6 @@ __all__ = [
     "stick_flow",
 ]
 
-# 1/(2n)! and 1/(2n+1)! for the series; 12 terms reach 1/24! ≈ 1.6e-24.
-_N_SERIES = 12
-_INV_EVEN_FACT = tuple(1.0 / math.factorial(2 * n) for n in range(_N_SERIES + 1))
-_INV_ODD_FACT = tuple(1.0 / math.factorial(2 * n + 1) for n in range(_N_SERIES + 1))
 
 
 def _polish_root(r: float, k_p: float, k_i: float, k_v: float) -> float:
@@ -181,108 +177,33 @@ class MatrixExponential:
         return cls(k_p, k_i, k_v)
 
     # -- the scalar functions w, w', w'' ------------------------------------
+    # Written once, in the simulation kernel (._kernel.w3): these evaluate it.
+    @functools.cached_property
+    def _constants(self) -> np.ndarray:
+        from . import _kernel as k
+
+        K = np.zeros(k.K_SIZE)
+        K[k.I_R], K[k.I_ALPHA], K[k.I_BETA2] = self.r, self.alpha, self.beta2
+        K[k.I_DELTA] = self.r - self.alpha
+        K[k.I_DEN] = K[k.I_DELTA] ** 2 - self.beta2
+        K[k.I_BW] = math.sqrt(abs(self.beta2))
+        return K
+
     def w(self, t: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """``(w, w', w'')`` at times ``t ≥ 0`` (array_like, any shape), vectorised."""
+        """``(w, w', w'')`` at times ``t ≥ 0`` (array_like, any shape)."""
+        from ._jit import kernel
+
         t_in = np.asarray(t, dtype=float)
-        t = t_in.reshape(-1)
-        r, alpha, beta2 = self.r, self.alpha, self.beta2
-        delta = r - alpha
-        y = beta2 * t * t
-        ea = np.exp(alpha * t)
-
-        # C = e^{αt} Ch(y), D = e^{αt} t S(y): series (Horner) where |y| ≤ 1
-        small = np.flatnonzero(np.abs(y) <= 1.0)
-        C = np.empty_like(t)
-        D = np.empty_like(t)
-        if small.size:
-            ys = y[small]
-            ch = np.full(small.size, _INV_EVEN_FACT[_N_SERIES])
-            sh = np.full(small.size, _INV_ODD_FACT[_N_SERIES])
-            for n in range(_N_SERIES - 1, -1, -1):
-                ch = ch * ys + _INV_EVEN_FACT[n]
-                sh = sh * ys + _INV_ODD_FACT[n]
-            C[small] = ea[small] * ch
-            D[small] = ea[small] * t[small] * sh
-        if small.size < t.size:
-            big = np.flatnonzero(np.abs(y) > 1.0)
-            tb = t[big]
-            if beta2 > 0.0:
-                beta = math.sqrt(beta2)
-                e1 = np.exp((alpha + beta) * tb)
-                e2 = np.exp((alpha - beta) * tb)
-                C[big] = 0.5 * (e1 + e2)
-                D[big] = (e1 - e2) / (2.0 * beta)
-            else:
-                omega = math.sqrt(-beta2)
-                C[big] = ea[big] * np.cos(omega * tb)
-                D[big] = ea[big] * np.sin(omega * tb) / omega
-
-        # w: the series where the three roots are close at this time scale
-        x = delta * t
-        series = x * x + np.abs(y) <= 1.0
-        w0 = np.empty_like(t)
-        inner = np.flatnonzero(series)
-        if inner.size:
-            xs, ys = x[inner], y[inner]
-            x2 = xs * xs
-            h = np.ones(inner.size)
-            ypow = np.ones(inner.size)
-            acc = np.zeros(inner.size)
-            for n in range(1, _N_SERIES + 1):
-                acc += h * (_INV_EVEN_FACT[n] + xs * _INV_ODD_FACT[n])
-                ypow *= ys
-                h = x2 * h + ypow
-            ti = t[inner]
-            w0[inner] = ti * ti * ea[inner] * acc
-        if inner.size < t.size:
-            outer = np.flatnonzero(~series)
-            w0[outer] = (np.exp(r * t[outer]) - C[outer] - delta * D[outer]) / (delta * delta - beta2)
-        w1 = r * w0 + D
-        w2 = r * w1 + alpha * D + C
-        shape = t_in.shape
-        return w0.reshape(shape), w1.reshape(shape), w2.reshape(shape)
+        flat = np.ascontiguousarray(t_in.reshape(-1))
+        out = np.empty((3, flat.size))
+        kernel().w_many(self._constants, flat, out)
+        return out[0].reshape(t_in.shape), out[1].reshape(t_in.shape), out[2].reshape(t_in.shape)
 
     def w_scalar(self, t: float) -> tuple[float, float, float]:
-        """Same as :meth:`w` for one float ``t ≥ 0``, in plain Python (fast for one time)."""
-        r, alpha, beta2 = self.r, self.alpha, self.beta2
-        delta = r - alpha
-        x = delta * t
-        y = beta2 * t * t
-        ea = math.exp(alpha * t)
-        if abs(y) <= 1.0:
-            ch = sh = 0.0
-            power = 1.0
-            for n in range(_N_SERIES + 1):
-                ch += power * _INV_EVEN_FACT[n]
-                sh += power * _INV_ODD_FACT[n]
-                power *= y
-            C = ea * ch
-            D = ea * t * sh
-        elif beta2 > 0.0:
-            beta = math.sqrt(beta2)
-            e1 = math.exp((alpha + beta) * t)
-            e2 = math.exp((alpha - beta) * t)
-            C = 0.5 * (e1 + e2)
-            D = (e1 - e2) / (2.0 * beta)
-        else:
-            omega = math.sqrt(-beta2)
-            C = ea * math.cos(omega * t)
-            D = ea * math.sin(omega * t) / omega
-        if x * x + abs(y) <= 1.0:
-            x2 = x * x
-            h = 1.0
-            ypow = 1.0
-            acc = 0.0
-            for n in range(1, _N_SERIES + 1):
-                acc += h * (_INV_EVEN_FACT[n] + x * _INV_ODD_FACT[n])
-                ypow *= y
-                h = x2 * h + ypow
-            w0 = t * t * ea * acc
-        else:
-            w0 = (math.exp(r * t) - C - delta * D) / (delta * delta - beta2)
-        w1 = r * w0 + D
-        w2 = r * w1 + alpha * D + C
-        return w0, w1, w2
+        """Same as :meth:`w` for one float ``t ≥ 0``."""
+        from . import _kernel
+
+        return _kernel.w3(self._constants, float(t))
 
     # -- the matrix and its action ------------------------------------------
     def __call__(self, t: Any) -> np.ndarray:

@@ -14,17 +14,21 @@ The solution is a concatenation of the three affine flows of Claim 1
   (:mod:`.search`: a certified scan plus a certified Taylor march, both
   resting on ``|x - x*_k|_P`` being nonincreasing with the paper's ``P``).
 * After a slip, ``v`` is set to exactly 0 and the next mode is selected with
-  :func:`.modes.mode_after_slip`: a tolerance-free clamp (a slip in direction
-  ``k`` can only end with ``k·φ ≤ f_c``), then ``φ`` within a few ulps of
-  ``±f_c`` counts as on it, so that ``σ`` decides as rows (iii)/(v)/(vii)/(ix)
-  do.  ``φ`` is carried as an exact boundary plus an offset, so a stick after
-  a tiny slip gets its exact duration ``-offset/σ``.
+  :func:`._kernel.mode_after_slip`: a tolerance-free clamp (a slip in
+  direction ``k`` can only end with ``k·φ ≤ f_c``), then ``φ`` within a few
+  ulps of ``±f_c`` counts as on it, so that ``σ`` decides as rows
+  (iii)/(v)/(vii)/(ix) do.  ``φ`` is carried as an exact boundary plus an
+  offset, so a stick after a tiny slip gets its exact duration ``-offset/σ``.
   A grazing contact (row (iii)/(ix) again) continues the slip without an
   event.  A slip that decays to within 1e-280 of its equilibrium
   ``(0, ±f_c, 0) ∈ 𝒜`` (where double precision underflows) is put on it:
   an equilibrium.  ``max_events`` caps the number of mode changes
-  (:attr:`Status.MAX_EVENTS`; later samples are omitted), so rounding at a
-  switching surface can never make the method spin forever.
+  (:attr:`Status.MAX_EVENTS`; later samples are NaN, never made up), so
+  rounding at a switching surface can never make the method spin forever.
+
+All of this is one kernel for one trajectory (:mod:`._kernel`), compiled by
+numba when it is installed; :func:`run` applies it to one or many initial
+states and returns the one result type, :class:`.Trajectories`.
 
 Only numpy and the standard library are imported (no scipy, no sympy).
 """
@@ -32,22 +36,23 @@ Only numpy and the standard library are imported (no scipy, no sympy).
 from __future__ import annotations
 
 from types import MappingProxyType
-from typing import Any, NamedTuple
+from typing import Any
 
 import numpy as np
 
-from .._coordinates import x_to_z, z_to_x
+from .._coordinates import x_to_z
 from .._errors import SimulationError
 from .._parameters import Parameters
-from ._base import SimulationMethod, Solution, Status
-from .modes import mode_after_slip, mode_at_rest
-from .search import UNDERFLOW, first_zero, slip_model
+from ._base import SimulationMethod, Solution
+from ._trajectories import Status, Trajectories
 
-__all__ = ["EventDriven", "Segment", "integrate_events", "sample_segments", "initial_state"]
+__all__ = ["EventDriven", "run"]
 
-_EPS = 2.220446049250313e-16
-# ulps allowed between a computed φ and ±f_c before σ decides (rows iii/v/vii/ix)
-_SNAP_ULPS = 8.0
+# Room for this many events per trajectory on the first pass; a trajectory
+# with more is run again with room for max_events (its kernel call says so).
+_FIRST_ROOM = 32
+# the kernel's status codes (T_END, MAX_EVENTS, EQUILIBRIUM, NONFINITE) as names
+_STATUS_NAMES = np.array([Status.T_END, Status.MAX_EVENTS, Status.EQUILIBRIUM, Status.NONFINITE], dtype=object)
 
 
 def _check_positive_int(name: str, value: Any, minimum: int) -> None:
@@ -55,141 +60,96 @@ def _check_positive_int(name: str, value: Any, minimum: int) -> None:
         raise SimulationError(f"{name} must be an integer ≥ {minimum}; got {value!r}")
 
 
-# ---------------------------------------------------------------------------
-# The event loop and dense output
-# ---------------------------------------------------------------------------
-class Segment(NamedTuple):
-    """One closed-form piece: mode ``k`` on ``[t0, t1]`` from ``(σ, φ, v)``.
-
-    ``φ = base·f_c + offset`` with ``base ∈ {-1, 0, 1}``: keeping the exact
-    boundary apart from the offset preserves ``φ ∓ f_c`` exactly (see
-    :func:`.modes.mode_at_rest`).
-    """
-
-    t0: float
-    t1: float
-    mode: int
-    sigma: float
-    base: int
-    offset: float
-    v: float
-
-
-def initial_state(params: Parameters, z0: np.ndarray) -> tuple[float, int, float, float, int]:
-    """``(σ, base, offset, v, mode)`` at ``t = 0``; ``φ(0)`` within its rounding of ``±f_c`` counts as on it."""
-    k_p, k_i, _, f_c = params.as_floats()
-    sigma, phi, v = (float(c) for c in z_to_x(params, z0))
-    if v != 0.0:
-        return sigma, 0, phi, v, 1 if v > 0 else -1
-    # φ = -k_i e_i - k_p s is rounded: a few ulps of its terms
-    tol = _SNAP_ULPS * _EPS * (k_i * abs(float(z0[0])) + k_p * abs(float(z0[1])))
-    base, offset, mode = mode_at_rest(sigma, 0, phi, f_c, tol)
-    return sigma, base, offset, 0.0, mode
-
-
-def integrate_events(
-    params: Parameters, z0: np.ndarray, t_end: float, *, max_events: int
-) -> tuple[list[Segment], list[tuple[float, int, int]], str]:
-    """Run the event loop from ``z0`` on ``[0, t_end]``.
-
-    Returns the closed-form segments (contiguous, the last one ends at the
-    stopping time), the events ``(t, mode_before, mode_after)`` and the status.
-    """
-    model = slip_model(params)
-    f_c = model.f_c
-    sigma, base, offset, v, mode = initial_state(params, z0)
-    t = 0.0
-    segments: list[Segment] = []
-    events: list[tuple[float, int, int]] = []
-    status = Status.T_END
-    # grazing contacts continue a slip without an event; bound the loop anyway
-    for _ in range(4 * max_events + 16):
-        if mode == 0:
-            if sigma == 0.0:
-                segments.append(Segment(t, t_end, 0, sigma, base, offset, v))
-                status = Status.EQUILIBRIUM
-                break
-            d = 1 if sigma > 0.0 else -1
-            # distance to the exit d·f_c: exactly -offset when leaving where the last slip ended
-            gap = -offset if base == d else (d - base) * f_c - offset
-            t_next = t + gap / sigma
-            segments.append(Segment(t, min(t_next, t_end), 0, sigma, base, offset, v))
-            if t_next >= t_end:
-                break
-            t, base, offset, mode = t_next, d, 0.0, d  # rows (iii)/(ix): slip d
-            events.append((t, 0, d))
-        else:
-            d = mode
-            y0 = (sigma, offset if base == d else (base - d) * f_c + offset, v)
-            tau, y = first_zero(model, y0, d, t_end - t)
-            if tau is None:
-                segments.append(Segment(t, t_end, d, sigma, base, offset, v))
-                break
-            t_next = t + tau
-            segments.append(Segment(t, t_next, d, sigma, base, offset, v))
-            if max(abs(c) for c in y) <= UNDERFLOW:  # decayed onto x*_k ∈ 𝒜 (see search.UNDERFLOW)
-                y = (0.0, 0.0, 0.0)
-            tol = _SNAP_ULPS * _EPS * max(abs(c) for c in y0)
-            base, offset, new_mode = mode_after_slip(y[0], y[1], d, f_c, tol)
-            t, sigma, v = t_next, y[0], 0.0
-            if new_mode != d:
-                events.append((t, d, new_mode))
-                mode = new_mode
-            if t >= t_end:
-                segments.append(Segment(t, t_end, mode, sigma, base, offset, v))
-                break
-        if len(events) >= max_events:
-            segments.append(Segment(t, t, mode, sigma, base, offset, v))
-            status = Status.MAX_EVENTS
-            break
+def _kernel_pass(model, k, Z0, X0, t_end, max_events, ts, room):
+    """One call of the kernel on every row; the buffers it fills (padding included)."""
+    n, m = Z0.shape[0], ts.size
+    out_x = np.empty((n, m, 3))
+    out_z = np.empty((n, m, 3))
+    out_mode = np.empty((n, m), dtype=np.int8)
+    ev_t = np.empty((n, room))
+    ev_x = np.empty((n, room, 3))
+    ev_m = np.empty((n, room, 2), dtype=np.int8)
+    ev_res = np.empty((n, room))
+    if n == 1:  # no parallel region for one trajectory
+        code, n_ev, t_stop = k.trajectory(
+            model.K, model.W, model.N, Z0[0], X0[0], t_end, max_events, ts,
+            out_x[0], out_z[0], out_mode[0], ev_t[0], ev_x[0], ev_m[0], ev_res[0],
+        )
+        status, n_ev, t_stop = np.array([code]), np.array([n_ev]), np.array([t_stop])
     else:
-        segments.append(Segment(t, t, mode, sigma, base, offset, v))
-        status = Status.MAX_EVENTS
-    return segments, events, status
+        status = np.empty(n, dtype=np.int64)
+        n_ev = np.empty(n, dtype=np.int64)
+        t_stop = np.empty(n)
+        k.trajectories(
+            model.K, model.W, model.N, Z0, X0, t_end, max_events, ts,
+            out_x, out_z, out_mode, ev_t, ev_x, ev_m, ev_res, status, n_ev, t_stop,
+        )
+    return [out_x, out_z, out_mode, ev_t, ev_x, ev_m, ev_res, status, n_ev, t_stop]
 
 
-def sample_segments(
-    params: Parameters, segments: list[Segment], t: np.ndarray
-) -> tuple[np.ndarray, np.ndarray]:
-    """States ``x`` (shape (n, 3)) and modes at sorted times ``t`` within the segments.
+def run(
+    params: Parameters,
+    Z0: np.ndarray,
+    t_end: float,
+    ts: np.ndarray,
+    *,
+    max_events: int,
+    source: np.ndarray | None = None,
+    options: dict[str, Any] | None = None,
+) -> Trajectories:
+    """The kernel from every row of ``Z0`` (validated, finite, shape (N, 3)), sampled at sorted ``ts``."""
+    from ._jit import kernel
+    from .search import slip_model
 
-    A time equal to an event time belongs to the segment that starts there.
-    All slip samples share one evaluation of ``w, w', w''`` (the closed form
-    of :mod:`.affine`), whatever segment they fall in.
-    """
     model = slip_model(params)
-    expm, f_c = model.expm, model.f_c
-    seg = np.array([s[:1] + s[3:] for s in segments], dtype=float)  # t0, σ, base, offset, v
-    modes = np.array([s.mode for s in segments], dtype=np.int8)
-    which = np.clip(np.searchsorted(seg[:, 0], t, side="right") - 1, 0, len(segments) - 1)
-    tau = t - seg[which, 0]
-    mode = modes[which]
-    x = np.empty((t.size, 3))
-    stick = mode == 0
-    rows = seg[which[stick]]
-    x[stick, 0] = rows[:, 1]
-    x[stick, 1] = rows[:, 2] * f_c + (rows[:, 3] + rows[:, 1] * tau[stick])
-    x[stick, 2] = 0.0
-    slip = ~stick
-    if slip.any():
-        rows = seg[which[slip]]
-        d = modes[which[slip]].astype(float)
-        # offsets from the slip equilibrium (0, d f_c, 0); exact when base = d
-        p_off = np.where(rows[:, 2] == d, rows[:, 3], (rows[:, 2] - d) * f_c + rows[:, 3])
-        y0 = np.column_stack([rows[:, 1], p_off, rows[:, 4]])
-        w0, w1, w2 = expm.w(tau[slip])
-        b1, b2 = expm.B1, expm.B2
-        for k in range(3):
-            comp = w2 * y0[:, k]
-            comp += w1 * (b1[k, 0] * y0[:, 0] + b1[k, 1] * y0[:, 1] + b1[k, 2] * y0[:, 2])
-            comp += w0 * (b2[k, 0] * y0[:, 0] + b2[k, 1] * y0[:, 1] + b2[k, 2] * y0[:, 2])
-            if k == 1:
-                comp += d * f_c
-            elif k == 2:
-                # the closed form keeps v's sign up to rounding; the mode fixes it
-                comp = d * np.maximum(d * comp, 0.0)
-            x[slip, k] = comp
-    return x, mode
+    k = kernel()
+    Z0 = np.ascontiguousarray(Z0, dtype=float)
+    X0 = np.empty_like(Z0)  # filled by the kernel: T z0
+    ts = np.ascontiguousarray(ts, dtype=float)
+    room = int(min(max_events, _FIRST_ROOM))
+    out = _kernel_pass(model, k, Z0, X0, t_end, max_events, ts, room)
+    status, n_ev = out[7], out[8]
+    again = np.flatnonzero(status == 4)  # BUFFER_FULL: more events than the first pass had room for
+    if again.size:
+        more = _kernel_pass(model, k, Z0[again], np.empty((again.size, 3)), t_end, max_events, ts, int(max_events))
+        n_ev[again] = more[8]
+    width = int(n_ev.max())
+    for j in (3, 4, 5, 6):  # the event axis, cut or padded to the most events of any row
+        a = out[j]
+        if a.shape[1] > width:
+            out[j] = a[:, :width]
+        elif a.shape[1] < width:
+            pad = [(0, 0)] * a.ndim
+            pad[1] = (0, width - a.shape[1])
+            out[j] = np.pad(a, pad, constant_values=np.nan if j in (3, 4) else 0)
+    if again.size:
+        for j in range(10):
+            out[j][again] = more[j][:, :width] if j in (3, 4, 5, 6) else more[j]
+    x, z, mode, ev_t, ev_x, ev_m, ev_res, status, n_ev, t_stop = out
+    # a complete trajectory whose z overflows left the range of float64 too
+    done = (status == 0) | (status == 2)
+    if not np.isfinite(z[done]).all():
+        status = np.where(done & ~np.isfinite(z).all(axis=(1, 2)), 3, status)
+    return Trajectories(
+        params=params,
+        method="event",
+        t=ts,
+        z=z,
+        x=x,
+        mode=mode,
+        event_t=ev_t,
+        event_x=ev_x,
+        event_before=ev_m[..., 0],
+        event_after=ev_m[..., 1],
+        event_residual=ev_res,
+        n_events=n_ev,
+        status=_STATUS_NAMES[status],
+        t_stop=t_stop,
+        z0=Z0,
+        x0=X0,
+        source=source,
+        options=dict(options or {}),
+    )
 
 
 class EventDriven(SimulationMethod):
@@ -214,23 +174,61 @@ class EventDriven(SimulationMethod):
     def _solve(
         self, params: Parameters, z0: np.ndarray, t_end: float, t_eval: np.ndarray | None, options: dict[str, Any]
     ) -> Solution:
-        segments, events, status = integrate_events(params, z0, t_end, max_events=int(options["max_events"]))
-        t_stop = segments[-1][1]
-        if t_eval is None:
-            grid = np.linspace(0.0, t_stop, int(options["grid_points"]))
-            t = np.unique(np.concatenate([grid, [e[0] for e in events]]))
-        else:
-            t = t_eval[t_eval <= t_stop] if status == Status.MAX_EVENTS else t_eval
-        x, mode = sample_segments(params, segments, t)
-        z = x_to_z(params, x)
-        z[t == 0.0] = z0  # the given state, not its round trip through x
-        return Solution(
-            params=params,
-            method=self.name,
-            t=t,
-            z=z,
-            mode=mode,
-            events=tuple(events),
-            status=status,
-            options=dict(options),
+        max_events = int(options["max_events"])
+        Z0 = z0.reshape(1, 3)
+        if t_eval is not None:
+            return _single(run(params, Z0, t_end, t_eval, max_events=max_events, options=options))
+        grid = np.linspace(0.0, t_end, int(options["grid_points"]))
+        batch = run(params, Z0, t_end, grid, max_events=max_events, options=options)
+        if not batch.complete[0] and batch.status[0] == Status.MAX_EVENTS:
+            # the grid covers what was computed: [0, t_stop]
+            grid = np.linspace(0.0, float(batch.t_stop[0]), int(options["grid_points"]))
+            batch = run(params, Z0, t_end, grid, max_events=max_events, options=options)
+        return _single(_with_events(batch))
+
+
+def _with_events(batch: Trajectories) -> Trajectories:
+    """One trajectory with its event times added to the samples (the state there is the event's)."""
+    n = int(batch.n_events[0])
+    if n == 0:
+        return batch
+    t = np.concatenate([batch.t, batch.event_t[0, :n]])
+    order = np.argsort(t, kind="stable")  # a grid time equal to an event time comes first
+    t = t[order]
+    keep = np.concatenate([[True], t[1:] != t[:-1]])
+    pick = order[keep]
+
+    def merged(samples: np.ndarray, at_events: np.ndarray) -> np.ndarray:
+        return np.concatenate([samples[0], at_events[0, :n]])[pick][None]
+
+    ev_z = x_to_z(batch.params, batch.event_x[:, :n])
+    return Trajectories(
+        params=batch.params,
+        method=batch.method,
+        t=t[keep],
+        z=merged(batch.z, ev_z),
+        x=merged(batch.x, batch.event_x),
+        mode=merged(batch.mode, batch.event_after),
+        event_t=batch.event_t,
+        event_x=batch.event_x,
+        event_before=batch.event_before,
+        event_after=batch.event_after,
+        event_residual=batch.event_residual,
+        n_events=batch.n_events,
+        status=batch.status,
+        t_stop=batch.t_stop,
+        z0=batch.z0,
+        x0=batch.x0,
+        source=batch.source,
+        options=batch.options,
+    )
+
+
+def _single(batch: Trajectories) -> Solution:
+    if batch.status[0] == Status.NONFINITE:
+        z0 = ", ".join(f"{c:g}" for c in batch.z0[0])
+        raise SimulationError(
+            f"the solution from z0 = ({z0}) leaves the range of float64 (about ±1.8e308) at t = {batch.t_stop[0]:g}: "
+            "scale the initial state down"
         )
+    return batch.solution(0)

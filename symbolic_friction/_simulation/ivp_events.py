@@ -211,7 +211,7 @@ class IvpEvents(SimulationMethod):
         t = np.concatenate(t_parts) if t_parts else np.zeros(0)
         zz = np.concatenate(z_parts) if z_parts else np.zeros((0, 3))
         mm = np.concatenate(m_parts) if m_parts else np.zeros(0, dtype=int)
-        return Solution(
+        return Solution.from_samples(
             params=params,
             method=self.name,
             t=t,

@@ -25,7 +25,7 @@ The comparisons in :func:`select_mode` are exact: with
 :class:`~fractions.Fraction` input the boundaries ``φ = ±f_c`` and the edge
 ``σ = 0`` (rows (iv), (viii): points of the attractor 𝒜, i.e. equilibria) are
 decided exactly.  Floating-point callers that reach ``v = 0`` by computation
-use :func:`mode_at_rest` / :func:`mode_after_slip`, which keep ``φ`` as an
+use :func:`mode_at_rest` (and the simulation kernel's ``mode_after_slip``), which keep ``φ`` as an
 exact boundary plus an offset and decide a ``φ`` within rounding of ``±f_c``
 by ``σ``, as rows (iii)/(v)/(vii)/(ix) do, instead of by the sign of a
 rounding error.
@@ -43,9 +43,6 @@ __all__ = [
     "select_mode",
     "select_modes",
     "mode_at_rest",
-    "modes_at_rest",
-    "mode_after_slip",
-    "modes_after_slip",
 ]
 
 _EPS = 2.220446049250313e-16
@@ -118,11 +115,6 @@ def select_modes(sigma: Any, phi: Any, v: Any, f_c: float) -> np.ndarray:
     return plus.astype(np.int8) - minus.astype(np.int8)
 
 
-def _gap_tol(k: Any, f_c: float, tol: Any) -> Any:
-    """Uncertainty of ``k·f_c + offset`` when ``offset`` is known within ``tol``."""
-    return tol + 4.0 * _EPS * abs(k) * f_c  # abs: fine for floats and arrays alike
-
-
 def mode_at_rest(sigma: float, base: int, offset: float, f_c: float, tol: float) -> tuple[int, float, int]:
     """The table's mode at ``v = 0`` for ``φ = base·f_c + offset``, with rounding decided by ``σ``.
 
@@ -142,58 +134,17 @@ def mode_at_rest(sigma: float, base: int, offset: float, f_c: float, tol: float)
         ``(±1, 0)`` if ``φ`` was put on ``±f_c``, else unchanged.
     mode : int
     """
+    # Written without calls to other Python functions: the simulation kernel
+    # compiles this very function (see ._kernel).
     gap_plus = offset if base == 1 else (base - 1) * f_c + offset  # φ - f_c
     gap_minus = offset if base == -1 else (base + 1) * f_c + offset  # φ + f_c
-    if abs(gap_plus) <= _gap_tol(base - 1, f_c, tol):
+    # the uncertainty of k·f_c + offset when offset is known within tol, plus the rounding of ±f_c
+    if abs(gap_plus) <= tol + 4.0 * _EPS * abs(base - 1) * f_c:
         return 1, 0.0 * offset, 1 if sigma > 0 else 0  # rows (iii), (iv), (v)
-    if abs(gap_minus) <= _gap_tol(base + 1, f_c, tol):
+    if abs(gap_minus) <= tol + 4.0 * _EPS * abs(base + 1) * f_c:
         return -1, 0.0 * offset, -1 if sigma < 0 else 0  # rows (vii), (viii), (ix)
     if gap_plus > 0:
         return base, offset, 1  # row (ii)
     if gap_minus < 0:
         return base, offset, -1  # row (x)
     return base, offset, 0  # row (vi)
-
-
-def modes_at_rest(
-    sigma: np.ndarray, base: np.ndarray, offset: np.ndarray, f_c: float, tol: np.ndarray
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Vectorised :func:`mode_at_rest`: arrays ``(base, offset, mode)`` (int8, float, int8)."""
-    sigma = np.asarray(sigma, dtype=float)
-    base = np.asarray(base, dtype=np.int8)
-    offset = np.asarray(offset, dtype=float)
-    b = base.astype(float)
-    gap_plus = np.where(base == 1, offset, (b - 1.0) * f_c + offset)
-    gap_minus = np.where(base == -1, offset, (b + 1.0) * f_c + offset)
-    on_plus = np.abs(gap_plus) <= _gap_tol(b - 1.0, f_c, tol)
-    on_minus = ~on_plus & (np.abs(gap_minus) <= _gap_tol(b + 1.0, f_c, tol))
-    mode = np.where(gap_plus > 0, 1, np.where(gap_minus < 0, -1, 0))
-    mode = np.where(on_plus, np.where(sigma > 0, 1, 0), mode)
-    mode = np.where(on_minus, np.where(sigma < 0, -1, 0), mode)
-    new_base = np.where(on_plus, 1, np.where(on_minus, -1, base)).astype(np.int8)
-    new_offset = np.where(on_plus | on_minus, 0.0, offset)
-    return new_base, new_offset, mode.astype(np.int8)
-
-
-def mode_after_slip(sigma: float, offset: float, direction: int, f_c: float, tol: float) -> tuple[int, float, int]:
-    """:func:`mode_at_rest` at the end of a slip in ``direction`` (``v`` has just reached 0).
-
-    ``offset = φ - direction·f_c`` as the closed form gives it.  A solution
-    can only leave the slip through ``v = 0`` with ``direction·v' =
-    direction·offset ≤ 0``; a computed offset of the other sign is a
-    rounding error and is set to 0 (a tolerance-free rule).  The mode may
-    equal ``direction`` (a grazing contact, row (iii) or (ix)): the slip then
-    simply goes on.
-    """
-    if direction * offset > 0:
-        offset = 0.0 * offset
-    return mode_at_rest(sigma, direction, offset, f_c, tol)
-
-
-def modes_after_slip(
-    sigma: np.ndarray, offset: np.ndarray, direction: np.ndarray, f_c: float, tol: np.ndarray
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Vectorised :func:`mode_after_slip`."""
-    d = np.asarray(direction, dtype=float)
-    offset = np.where(d * offset > 0, 0.0, offset)
-    return modes_at_rest(sigma, np.asarray(direction, dtype=np.int8), offset, f_c, tol)

@@ -214,7 +214,7 @@ class Moreau(SimulationMethod):
             prev_mode = mode
             e, s, v = e1, s1, w
         t, z, modes = rec.arrays()
-        return Solution(
+        return Solution.from_samples(
             params=params,
             method=self.name,
             t=t,

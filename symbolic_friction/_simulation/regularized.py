@@ -168,7 +168,7 @@ class Regularized(SimulationMethod):
             if after != current:
                 events.append((te, current, after))
                 current = after
-        return Solution(
+        return Solution.from_samples(
             params=params,
             method=self.name,
             t=t,

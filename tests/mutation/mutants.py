@@ -41,7 +41,8 @@ _V = "symbolic_friction/_certify/verify.py"
 _CE = "symbolic_friction/_certify/certificate.py"
 _P = "symbolic_friction/_crosscheck/_properties.py"
 _R = "symbolic_friction/_crosscheck/_run.py"
-_SI = "symbolic_friction/_crosscheck/_simulate.py"
+_SI = "symbolic_friction/_simulation/_trajectories.py"
+_KER = "symbolic_friction/_simulation/_kernel.py"
 
 MUTANTS: tuple[Mutant, ...] = (
     # ------------------------------------------------------------------ the runtime model
@@ -103,6 +104,8 @@ MUTANTS: tuple[Mutant, ...] = (
            "return -1, 0.0 * offset, -1 if sigma <= 0 else 0  # rows (vii), (viii), (ix)", "mode_at_rest sends row (viii) to slip"),
     Mutant("modes.table_row", "model", _M, 'return "iii" if sigma > 0 else "iv" if sigma == 0 else "v"',
            'return "iii" if sigma >= 0 else "iv" if sigma == 0 else "v"', "table_row puts σ = 0 in row (iii)"),
+    Mutant("kernel.after_slip_clamp", "model", _KER, "    if direction * offset > 0.0:", "    if direction * offset < 0.0:",
+           "the simulator's end-of-slip rule clamps the reachable side of the boundary"),
     Mutant("search.p_norm", "model", _S, "return m * math.sqrt(max(kv_ki * s * s - 2.0 * s * v + k_p * v * v + p * p, 0.0))",
            "return m * math.sqrt(max(kv_ki * s * s + 2.0 * s * v + k_p * v * v + p * p, 0.0))",
            "the root search's |y|_P with +2σv (its bracket bound would be wrong)"),
@@ -161,8 +164,8 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant("cc.tolerance", "cross-check", _P, "DEFAULT_RTOL = 1e-8", "DEFAULT_RTOL = 1e3", "tolerance made huge"),
     Mutant("cc.accepts_unproved", "cross-check", _R, "            if not report.proved:", "            if False:",
            "unproved certificates are cross-checked instead of refused"),
-    Mutant("cc.hides_event_limit", "cross-check", _SI, "    complete = np.asarray(sol.status) != Status.MAX_EVENTS",
-           "    complete = np.ones(len(sol.status), dtype=bool)", "trajectories that hit the event limit count as complete"),
+    Mutant("cc.hides_event_limit", "cross-check", _SI, "    COMPLETE = (T_END, EQUILIBRIUM)",
+           "    COMPLETE = (T_END, EQUILIBRIUM, MAX_EVENTS)", "trajectories that hit the event limit count as complete"),
 )
 
 FAST: tuple[str, ...] = ("V.at_rest", "verify.drop_c2")

@@ -249,14 +249,13 @@ def test_modes_at_rest_strict_boundary_fails(modes_runtime):
     assert_fails(ob, dataclasses.replace(s, mode_at_rest=mode_at_rest), "mode_at_rest gives k = 0", "row (iii)")
 
 
-def test_modes_at_rest_vectorised_fails(modes_runtime):
+def test_mode_after_slip_without_the_clamp_rule_fails(modes_runtime):
     ob, s = modes_runtime
 
-    def modes_at_rest(sigma, base, offset, f_c, tol):
-        b, o, k = s.modes_at_rest(sigma, base, offset, f_c, tol)
-        return b, o, -k
+    def mode_after_slip(sigma, offset, direction, f_c, tol):  # clamps the side a slip can end on
+        return s.mode_at_rest(sigma, direction, 0.0 if direction * offset < 0 else offset, f_c, tol)
 
-    assert_fails(ob, dataclasses.replace(s, modes_at_rest=modes_at_rest), "modes_at_rest k =")
+    assert_fails(ob, dataclasses.replace(s, mode_after_slip=mode_after_slip), "after a slip d = ", "mode_after_slip gives")
 
 
 hatv_rate_runtime = obligation_fixture(HatVRateRuntime)

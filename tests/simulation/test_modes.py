@@ -8,12 +8,10 @@ from fractions import Fraction as F
 import numpy as np
 import pytest
 
+from symbolic_friction._simulation._kernel import mode_after_slip
 from symbolic_friction._simulation.modes import (
     TABLE,
-    mode_after_slip,
     mode_at_rest,
-    modes_after_slip,
-    modes_at_rest,
     select_mode,
     select_modes,
     table_row,
@@ -141,21 +139,3 @@ def test_mode_after_slip_clamps_the_wrong_side_then_decides_by_sigma():
     assert mode_after_slip(-1.0, -0.5, 1, 1.0, 1e-15) == (1, -0.5, 0)
     assert mode_after_slip(-1.0, -2.5, 1, 1.0, 1e-15) == (1, -2.5, -1)
     assert mode_after_slip(1.0, 2.5, -1, 1.0, 1e-15) == (-1, 2.5, 1)
-
-
-def test_vectorised_rest_and_after_slip_match_the_scalar_versions():
-    rng = np.random.default_rng(1)
-    n = 400
-    sigma = rng.choice([-1.0, 0.0, 1.0], size=n) * rng.uniform(0.1, 2, size=n)
-    base = rng.choice([-1, 0, 1], size=n).astype(np.int8)
-    offset = rng.choice([0.0, 1e-16, -1e-16, 0.5, -0.5, 2.5, -2.5, -2.0], size=n)
-    tol = rng.choice([0.0, 2e-16], size=n)
-    got = modes_at_rest(sigma, base, offset, 1.0, tol)
-    for i in range(n):
-        want = mode_at_rest(sigma[i], int(base[i]), offset[i], 1.0, tol[i])
-        assert (int(got[0][i]), float(got[1][i]), int(got[2][i])) == want
-    d = rng.choice([-1, 1], size=n).astype(np.int8)
-    got = modes_after_slip(sigma, offset, d, 1.0, tol)
-    for i in range(n):
-        want = mode_after_slip(sigma[i], offset[i], int(d[i]), 1.0, tol[i])
-        assert (int(got[0][i]), float(got[1][i]), int(got[2][i])) == want

@@ -9,7 +9,7 @@ import pytest
 from symbolic_friction import Parameters
 from symbolic_friction._coordinates import x_to_z
 from symbolic_friction._simulation import simulate
-from symbolic_friction._simulation.search import first_zero, first_zeros, slip_model
+from symbolic_friction._simulation.search import first_zero, slip_model
 
 from .reference import Reference
 
@@ -74,35 +74,6 @@ def test_the_double_crossing_agrees_with_the_independent_reference():
     assert abs(sol.events[0][0] - ref.event_list()[0][0]) <= 1e-10
 
 
-@pytest.mark.parametrize("name", ["a", "b"])
-def test_vectorised_search_matches_the_scalar_one(name):
-    params = Parameters.table_i(name)
-    model = slip_model(params)
-    rng = np.random.default_rng(7)
-    y0 = rng.normal(size=(300, 3)) * rng.choice([1e-3, 1.0, 1e3], size=(300, 1))
-    d = np.where(y0[:, 2] >= 0, 1, -1).astype(np.int8)
-    y0[:40, 2] = 0.0  # starts on v = 0 with the slip's direction increasing (rows ii / x)
-    y0[:40, 1] = d[:40] * np.abs(y0[:40, 1])
-    dips = [(1.0 + 0.1 * k, 10.0 ** -(k % 3 + 2)) for k in range(10)]  # gaps 1e-2 … 1e-4
-    y0[40:50] = [double_dip(params, tau_a, gap) for tau_a, gap in dips]
-    d[40:50] = 1
-    horizon = rng.uniform(0.5, 40.0, size=300)
-    tau, y = first_zeros(model, y0, d, horizon)
-    for i in range(300):
-        t_s, y_s = first_zero(model, tuple(y0[i]), int(d[i]), float(horizon[i]))
-        if t_s is None:
-            assert np.isnan(tau[i]), i
-            continue
-        if 40 <= i < 50:
-            # a dip's zeros have slopes ~ gap, so an ulp of v moves them by ~ulp/gap:
-            # both searches must stop at the dip's left end, not beyond it
-            tau_a, gap = dips[i - 40]
-            assert abs(tau[i] - tau_a) < gap / 4 and abs(t_s - tau_a) < gap / 4, i
-            continue
-        assert tau[i] == pytest.approx(t_s, rel=1e-13, abs=1e-15), i
-        np.testing.assert_allclose(y[i], y_s, rtol=1e-13, atol=1e-13 * np.abs(y0[i]).max())
-
-
 def tangent_start(params: Parameters, tau0: float, size: float = 10.0) -> np.ndarray:
     """An offset y0 whose v touches zero at tau0 (v = v' = 0 there) from above."""
     E = slip_model(params).expm
@@ -127,4 +98,12 @@ def test_a_tangency_ends_promptly_and_agrees_with_the_reference(tau0):
     ref = Reference(CASE_A, tuple(z0), 6.0)
     z_ref, _ = ref.sample(t)
     assert np.max(np.abs(sol.z - np.array(z_ref))) / max(1.0, np.linalg.norm(z0)) <= 1e-10
-    assert [e[1:] for e in sol.events] == [e[1:] for e in ref.event_list()]
+    # At a tangency the event list is ill-conditioned: v dips to about -1e-15 or stays
+    # above 0 depending on the last bit of x(0) = T z(0), so a rounding-level crossing
+    # may add a stick of a few nanoseconds at the contact (seen at tau0 = 0.8, where a
+    # correctly rounded x(0) dips too).  Every event of the reference must be found, at
+    # its time; any other event must come in such a pair, within 1e-6 of the contact.
+    want = ref.event_list()
+    extra = [e for e in sol.events if not any(abs(e[0] - w[0]) <= 1e-10 and e[1:] == w[1:] for w in want)]
+    assert all(abs(e[0] - tau0) <= 1e-6 for e in extra) and len(extra) % 2 == 0
+    assert len(sol.events) - len(extra) == len(want)

@@ -1,0 +1,527 @@
+"""The exact event-driven solution of one trajectory, written once.
+
+This module is the whole closed-form simulator of the inclusion
+``x' ∈ A x - b SGN(v)`` (eq. xDot; unique solution by Lemma 1):
+
+* :func:`w3`: ``(w, w', w'')``, the scalar functions of ``e^{At}`` (see
+  :mod:`.affine` for the formulas and their robustness at repeated roots);
+* :func:`first_zero`: the certified search for the end of a slip (see
+  :mod:`.search`: a certified scan of a precomputed table, a certified Taylor
+  march on the first cell the scan cannot clear, Newton's method inside a
+  proved bracket);
+* :func:`trajectory`: the event loop over the modes of Claim 1 (the
+  appendix's table, :func:`.modes.mode_at_rest`), with the dense output at the
+  requested sample times and every event's time, modes and state;
+* :func:`trajectories`: that loop over many initial states, in parallel.
+
+It is plain Python on scalars and preallocated arrays, so that it runs as it
+is (the pure-Python fallback) and, unchanged, compiled by numba
+(:mod:`._jit` loads this same file a second time with ``_JIT = True``).  The
+two give the same results bit for bit (``tests/simulation/test_kernel.py``).
+
+Every constant the kernel needs for one gain set sits in three arrays built
+by :func:`.constants.kernel_constants` from the package's model (``A``, ``P``,
+the coordinate change): ``K`` (scalars, indexed by the ``I_*`` names below),
+``W`` (the scan table ``w … w⁗``) and ``N`` (its rounding bounds).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+try:  # set by ._jit when it loads this file as the compiled variant
+    _JIT  # type: ignore[used-before-def]  # noqa: B018
+except NameError:
+    _JIT = False
+
+if _JIT:  # pragma: no cover - exercised in the compiled variant only
+    import numba
+
+    kernel = numba.njit(cache=True, nogil=True)
+    parallel = numba.njit(cache=True, nogil=True, parallel=True)
+    prange = numba.prange
+else:
+
+    def kernel(f):
+        return f
+
+    parallel = kernel
+    prange = range
+
+from .modes import mode_at_rest as _mode_at_rest_py
+from .search import UNDERFLOW
+from .search import p_norm as _p_norm_py
+
+mode_at_rest = kernel(_mode_at_rest_py)
+p_norm = kernel(_p_norm_py)
+
+@kernel
+def mode_after_slip(sigma, offset, direction, f_c, tol):
+    """:func:`.modes.mode_at_rest` at the end of a slip in ``direction`` (``v`` has just reached 0).
+
+    ``offset = φ - direction·f_c`` as the closed form gives it.  A solution
+    can only leave the slip through ``v = 0`` with ``direction·v' =
+    direction·offset ≤ 0``; a computed offset of the other sign is a
+    rounding error and is set to 0 (a tolerance-free rule).  The mode may
+    equal ``direction`` (a grazing contact, row (iii) or (ix)): the slip then
+    simply goes on.  ``model.modes_runtime`` binds it to the table.
+    """
+    if direction * offset > 0.0:
+        offset = 0.0 * offset
+    return mode_at_rest(sigma, direction, offset, f_c, tol)
+
+
+# -- layout of K ---------------------------------------------------------------
+I_R, I_ALPHA, I_BETA2, I_DELTA, I_DEN, I_BW = 0, 1, 2, 3, 4, 5
+I_B1, I_B2 = 6, 15  # 3×3, row-major
+I_M2, I_M3, I_M4 = 24, 25, 26
+I_KVKI, I_KP = 27, 28  # P₁₁ = k_v/k_i and P₃₃ = k_p (|y|_P)
+I_A11, I_A12, I_A20, I_A21, I_A22 = 29, 30, 31, 32, 33  # v' and v'' rows
+I_FC = 34
+I_DT, I_CELLS, I_WINDOW = 35, 36, 37
+I_GAIN_KP, I_GAIN_KI = 38, 39  # φ = -k_i e_i - k_p s, for the rounding of φ(0)
+I_TINV = 40  # T⁻¹ of eq. (CoC), 3×3 row-major: z = T⁻¹ x
+I_T = 49  # T of eq. (CoC), 3×3 row-major: x = T z
+K_SIZE = 58
+
+# -- statuses --------------------------------------------------------------------
+T_END, MAX_EVENTS, EQUILIBRIUM, NONFINITE, BUFFER_FULL = 0, 1, 2, 3, 4
+
+EPS = 2.220446049250313e-16
+# ulps allowed between a computed φ and ±f_c before σ decides (rows iii/v/vii/ix)
+SNAP_ULPS = 8.0
+# The Taylor march runs on one grid cell at a time; this cap is reached only
+# at an exact tangency, where the steps shrink geometrically.
+MAX_STEPS = 2000
+N_SERIES = 12
+# 1/(2n)! and 1/(2n+1)! for n = 0 … N_SERIES (12 terms reach 1/24! ≈ 1.6e-24)
+INV_EVEN_FACT = tuple(1.0 / math.factorial(2 * n) for n in range(N_SERIES + 1))
+INV_ODD_FACT = tuple(1.0 / math.factorial(2 * n + 1) for n in range(N_SERIES + 1))
+
+
+@kernel
+def w3(K, t):
+    """``(w, w', w'')`` at ``t ≥ 0`` (module doc of :mod:`.affine`)."""
+    r, alpha, beta2, delta = K[I_R], K[I_ALPHA], K[I_BETA2], K[I_DELTA]
+    x = delta * t
+    y = beta2 * t * t
+    ea = math.exp(alpha * t)
+    if abs(y) <= 1.0:
+        # C = e^{αt} Ch(y), D = e^{αt} t S(y), Horner
+        ch = INV_EVEN_FACT[N_SERIES]
+        sh = INV_ODD_FACT[N_SERIES]
+        for n in range(N_SERIES - 1, -1, -1):
+            ch = ch * y + INV_EVEN_FACT[n]
+            sh = sh * y + INV_ODD_FACT[n]
+        C = ea * ch
+        D = ea * t * sh
+    elif beta2 > 0.0:
+        beta = K[I_BW]
+        e1 = math.exp((alpha + beta) * t)
+        e2 = math.exp((alpha - beta) * t)
+        C = 0.5 * (e1 + e2)
+        D = (e1 - e2) / (2.0 * beta)
+    else:
+        omega = K[I_BW]
+        C = ea * math.cos(omega * t)
+        D = ea * math.sin(omega * t) / omega
+    if x * x + abs(y) <= 1.0:
+        # the three roots are close at this time scale: the cancellation-free series
+        x2 = x * x
+        h = 1.0
+        ypow = 1.0
+        acc = 0.0
+        for n in range(1, N_SERIES + 1):
+            acc += h * (INV_EVEN_FACT[n] + x * INV_ODD_FACT[n])
+            ypow *= y
+            h = x2 * h + ypow
+        w0 = t * t * ea * acc
+    else:
+        w0 = (math.exp(r * t) - C - delta * D) / K[I_DEN]
+    w1 = r * w0 + D
+    w2 = r * w1 + alpha * D + C
+    return w0, w1, w2
+
+
+@kernel
+def w_many(K, t, out):
+    """:func:`w3` at every ``t[j]``, into rows ``out[0:3, j]``."""
+    for j in range(t.size):
+        w0, w1, w2 = w3(K, t[j])
+        out[0, j] = w0
+        out[1, j] = w1
+        out[2, j] = w2
+
+
+@kernel
+def cofactors(K, s, p, v):
+    """``(B1 y, B2 y)`` for ``y = (s, p, v)``: ``e^{Aτ} y = w'' y + w' B1 y + w B2 y``."""
+    b, c = I_B1, I_B2
+    return (
+        K[b] * s + K[b + 1] * p + K[b + 2] * v,
+        K[b + 3] * s + K[b + 4] * p + K[b + 5] * v,
+        K[b + 6] * s + K[b + 7] * p + K[b + 8] * v,
+        K[c] * s + K[c + 1] * p + K[c + 2] * v,
+        K[c + 3] * s + K[c + 4] * p + K[c + 5] * v,
+        K[c + 6] * s + K[c + 7] * p + K[c + 8] * v,
+    )
+
+
+@kernel
+def flow(K, q, tau):
+    """``e^{Aτ} y0`` from ``q = (y0, B1 y0, B2 y0)`` (nine floats)."""
+    w0, w1, w2 = w3(K, tau)
+    return (
+        w2 * q[0] + w1 * q[3] + w0 * q[6],
+        w2 * q[1] + w1 * q[4] + w0 * q[7],
+        w2 * q[2] + w1 * q[5] + w0 * q[8],
+    )
+
+
+@kernel
+def _newton(K, q, d, lo, hi):
+    """Zero of ``u = d·v`` in ``[lo, hi]`` where ``u`` decreases strictly from ``u(lo) ≥ 0`` to ``u(hi) ≤ 0``.
+
+    Newton's method on the closed form, kept inside the bracket (bisection
+    when a step leaves it), until the step is below two ulps or ``|u|`` is
+    below the rounding error of its own evaluation.
+    """
+    a11, a12 = K[I_A11], K[I_A12]
+    x = 0.5 * (lo + hi)
+    for _ in range(100):
+        w0, w1, w2 = w3(K, x)
+        v = w2 * q[2] + w1 * q[5] + w0 * q[8]
+        u = d * v
+        if abs(u) <= 8.0 * EPS * (abs(w2 * q[2]) + abs(w1 * q[5]) + abs(w0 * q[8])):
+            return x  # a zero to the precision u can be computed with
+        if u > 0.0:
+            lo = x
+        else:
+            hi = x
+        du = d * (a11 * (w2 * q[1] + w1 * q[4] + w0 * q[7]) + a12 * v)
+        x_new = x - u / du if du < 0.0 else 0.5 * (lo + hi)
+        if not lo <= x_new <= hi:
+            x_new = 0.5 * (lo + hi)
+        if abs(x_new - x) <= 2.0 * EPS * abs(x) or hi - lo <= 2.0 * EPS * abs(hi):
+            return x_new
+        x = x_new
+    return x
+
+
+@kernel
+def _march(K, q, d, a, s, p, v, stop):
+    """Certified Taylor march from ``a`` (offset ``(s, p, v)``) to ``stop``.
+
+    Returns ``(found, τ, y)``: the first zero of ``u = d·v`` in ``(a, stop]``
+    and the offset there, or ``found = False``.  See :mod:`.search`.
+    """
+    kv_ki, k_p = K[I_KVKI], K[I_KP]
+    a11, a12, a20, a21, a22 = K[I_A11], K[I_A12], K[I_A20], K[I_A21], K[I_A22]
+    m2, m3 = K[I_M2], K[I_M3]
+    fresh = a == 0.0
+    for _ in range(MAX_STEPS):
+        u = d * v
+        if u <= 0.0 and not fresh:
+            return True, a, s, p, v  # reached by a certified step: a zero up to rounding
+        if max(abs(s), abs(p), abs(v)) <= UNDERFLOW:
+            return True, a, s, p, v  # at the slip's equilibrium to double precision
+        fresh = False
+        r_p = p_norm(s, p, v, kv_ki, k_p)
+        if r_p == 0.0:  # y = 0: the slip's equilibrium
+            return a > 0.0, a, s, p, v
+        # everything below is homogeneous in y: work with y/|y|_P (no overflow)
+        u = u / r_p
+        du = d * (a11 * p + a12 * v) / r_p
+        dd = d * (a20 * s + a21 * p + a22 * v) / r_p
+        # |u''| on [a, stop]: globally ≤ m2|y|_P, and ≤ |u''(a)| + m3|y|_P (stop - a)
+        big_m2 = max(min(m2, abs(dd) + m3 * (stop - a)), 1e-300)
+        root = math.sqrt(du * du + 2.0 * big_m2 * u)
+        # u > 0 on [a, a + step): the first root of u + du τ - M2 τ²/2
+        if du > 0.0:
+            step = (du + root) / big_m2
+        else:
+            step = 2.0 * u / (root - du) if root - du > 0.0 else 0.0
+        if du < 0.0 and 2.0 * big_m2 * u <= du * du:
+            # u + du τ + M2 τ²/2 vanishes too: one strictly decreasing crossing in [lo, hi]
+            lo = a + step
+            hi = a + 2.0 * u / (math.sqrt(du * du - 2.0 * big_m2 * u) - du)
+            if lo >= stop:
+                return False, a, s, p, v
+            if hi > stop:
+                if d * flow(K, q, stop)[2] > 0.0:
+                    return False, a, s, p, v
+                hi = stop
+            tau = _newton(K, q, d, lo, hi)
+            ys, yp, yv = flow(K, q, tau)
+            return True, tau, ys, yp, yv
+        if du >= 0.0 and dd > 0.0:
+            # u + du τ + dd τ²/2 - M3 τ³/6 ≥ τ² (dd/2 - M3 τ/6) > 0 below 3 dd/M3
+            step = max(step, 2.9 * dd / m3)
+        a_next = a + step
+        if a_next >= stop:
+            return False, a, s, p, v
+        if a_next == a:
+            return True, a, s, p, v  # no certified progress: a tangential contact
+        a = a_next
+        s, p, v = flow(K, q, a)
+    return True, a, s, p, v
+
+
+@kernel
+def first_zero(K, W, N, s0, p0, v0, d, horizon):
+    """First ``τ ∈ (0, horizon]`` with ``v(τ) = 0`` along the slip ``d`` from offset ``y0 = (s0, p0, v0)``.
+
+    Returns ``(found, τ, y)``; without a zero, ``τ = horizon`` and ``y = y(horizon)``.
+    The scan runs window by window (each anchored at the exact state at its
+    start, so that the bound ``m₄|y(a)|_P`` follows the decay), cell by cell,
+    and marches the first cells it cannot clear.
+    """
+    b1s, b1p, b1v, b2s, b2p, b2v = cofactors(K, s0, p0, v0)
+    q = (s0, p0, v0, b1s, b1p, b1v, b2s, b2p, b2v)
+    dt, n_cells, window = K[I_DT], int(K[I_CELLS]), K[I_WINDOW]
+    kv_ki, k_p, m4 = K[I_KVKI], K[I_KP], K[I_M4]
+    grow = 0.125 * dt * dt
+    a_w = 0.0
+    s, p, v = s0, p0, v0
+    while a_w < horizon:
+        r_p = p_norm(s, p, v, kv_ki, k_p)
+        last = min(n_cells, int(math.ceil((horizon - a_w) / dt)))
+        extra = grow * m4 * r_p
+        abs_s, abs_p, abs_v = abs(s), abs(p), abs(v)
+        u_prev = d * (s * W[0, 0] + p * W[1, 0] + v * W[2, 0])
+        u2_prev = abs(s * W[2, 0] + p * W[3, 0] + v * W[4, 0])
+        for j in range(last):
+            u_next = d * (s * W[0, j + 1] + p * W[1, j + 1] + v * W[2, j + 1])
+            u2_next = abs(s * W[2, j + 1] + p * W[3, j + 1] + v * W[4, j + 1])
+            # |u''| on the cell ≤ max of its ends + Δ² max|u⁗|/8; u is within Δ² max|u''|/8
+            # of its chord; plus the rounding of the products that gave u and u''
+            slack = grow * (max(u2_prev, u2_next) + extra)
+            noise = abs_s * N[0, j] + abs_p * N[1, j] + abs_v * N[2, j]
+            if not min(u_prev, u_next) > slack + noise:
+                a0 = a_w + float(j) * dt
+                if j == 0:
+                    ys, yp, yv = s, p, v
+                else:
+                    ys, yp, yv = flow(K, q, a0)
+                found, tau, ys, yp, yv = _march(K, q, d, a0, ys, yp, yv, min(a0 + dt, horizon))
+                if found:
+                    return True, tau, ys, yp, yv
+            u_prev, u2_prev = u_next, u2_next
+        a_w += window
+        if a_w < horizon:
+            s, p, v = flow(K, q, a_w)
+    s, p, v = flow(K, q, horizon)
+    return False, horizon, s, p, v
+
+
+@kernel
+def to_z(K, x, z):
+    """``z = T⁻¹ x`` (eq. CoC) for one state, written into ``z``."""
+    c = I_TINV
+    z[0] = K[c] * x[0] + K[c + 1] * x[1] + K[c + 2] * x[2]
+    z[1] = K[c + 3] * x[0] + K[c + 4] * x[1] + K[c + 5] * x[2]
+    z[2] = K[c + 6] * x[0] + K[c + 7] * x[1] + K[c + 8] * x[2]
+
+
+@kernel
+def to_x(K, z, x):
+    """``x = T z`` (eq. CoC) for one state, written into ``x``."""
+    c = I_T
+    x[0] = K[c] * z[0] + K[c + 1] * z[1] + K[c + 2] * z[2]
+    x[1] = K[c + 3] * z[0] + K[c + 4] * z[1] + K[c + 5] * z[2]
+    x[2] = K[c + 6] * z[0] + K[c + 7] * z[1] + K[c + 8] * z[2]
+
+
+@kernel
+def _emit(K, q, t0, t1, final, mode, sigma, base, offset, ts, i, out_x, out_z, out_mode):
+    """Dense output of one segment: the samples ``t0 ≤ ts[i] < t1`` (``≤ t1`` when ``final``).
+
+    A sample at an event time belongs to the segment that starts there.
+    Returns the index of the first sample not written.
+    """
+    f_c = K[I_FC]
+    m = ts.size
+    while i < m and (ts[i] < t1 or (final and ts[i] <= t1)):
+        tau = ts[i] - t0
+        if mode == 0:
+            out_x[i, 0] = sigma
+            out_x[i, 1] = base * f_c + (offset + sigma * tau)
+            out_x[i, 2] = 0.0
+        else:
+            ys, yp, yv = flow(K, q, tau)
+            out_x[i, 0] = ys
+            out_x[i, 1] = yp + mode * f_c
+            # the closed form keeps v's sign up to rounding; the mode fixes it
+            out_x[i, 2] = mode * max(mode * yv, 0.0)
+        to_z(K, out_x[i], out_z[i])
+        out_mode[i] = mode
+        i += 1
+    return i
+
+
+@kernel
+def _finite(a, b, c):
+    return abs(a) <= 1.7976931348623157e308 and abs(b) <= 1.7976931348623157e308 and abs(c) <= 1.7976931348623157e308
+
+
+@kernel
+def trajectory(K, W, N, z0, x0, t_end, max_events, ts, out_x, out_z, out_mode, ev_t, ev_x, ev_m, ev_res):
+    """The solution from ``x0 = T z0`` on ``[0, t_end]``: samples at ``ts`` and every event.
+
+    Parameters
+    ----------
+    K, W, N : ndarray
+        Constants of one gain set (module doc).
+    z0 : ndarray, shape (3,)
+        The initial state in ``z = (e_i, s, v)``.
+    x0 : ndarray, shape (3,)
+        Filled with the initial state in ``x = (σ, φ, v)``, ``T z0``.
+    t_end : float
+    max_events : int
+        Stop (status ``MAX_EVENTS``) after this many mode changes.
+    ts : ndarray, shape (m,)
+        Sorted sample times in ``[0, t_end]``.
+    out_x, out_z : ndarray, shape (m, 3); out_mode : ndarray of int8, shape (m,)
+        Filled with the states in ``x`` and in ``z``, and the modes; NaN and
+        0 after the stop.  A sample at ``t = 0`` holds ``z0`` itself.
+    ev_t, ev_x, ev_m, ev_res : ndarray, shapes (E,), (E, 3), (E, 2), (E,)
+        Filled with each event's time, state (``v = 0``), modes before and
+        after, and ``|v|`` that the closed form gave at the event before it
+        was set to 0; padded with NaN, NaN, 0, 0.  If more than
+        ``E < max_events`` events occur, the status is ``BUFFER_FULL`` (call
+        again with room for more).
+
+    Returns
+    -------
+    status, n_events, t_stop
+    """
+    f_c = K[I_FC]
+    cap = ev_t.size
+    m = ts.size
+    i = 0
+    n_ev = 0
+    status = T_END
+    t = 0.0
+    q = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    to_x(K, z0, x0)
+    sigma, phi, v = x0[0], x0[1], x0[2]
+    if not _finite(sigma, phi, v):
+        status = NONFINITE
+        base, offset, mode = 0, 0.0, 0
+    elif v != 0.0:
+        base, offset, mode = 0, phi, (1 if v > 0.0 else -1)
+    else:
+        # φ = -k_i e_i - k_p s is rounded: a few ulps of its terms
+        tol = SNAP_ULPS * EPS * (K[I_GAIN_KI] * abs(z0[0]) + K[I_GAIN_KP] * abs(z0[1]))
+        base, offset, mode = mode_at_rest(sigma, 0, phi, f_c, tol)
+    if status == T_END:
+        # grazing contacts continue a slip without an event; bound the loop anyway
+        for _ in range(4 * max_events + 16):
+            if mode == 0:
+                if sigma == 0.0:
+                    i = _emit(K, q, t, t_end, True, 0, sigma, base, offset, ts, i, out_x, out_z, out_mode)
+                    status = EQUILIBRIUM
+                    t = t_end
+                    break
+                d = 1 if sigma > 0.0 else -1
+                # distance to the exit d·f_c: exactly -offset when leaving where the last slip ended
+                gap = -offset if base == d else (d - base) * f_c - offset
+                t_next = t + gap / sigma
+                if t_next >= t_end:
+                    i = _emit(K, q, t, t_end, True, 0, sigma, base, offset, ts, i, out_x, out_z, out_mode)
+                    t = t_end
+                    break
+                i = _emit(K, q, t, t_next, False, 0, sigma, base, offset, ts, i, out_x, out_z, out_mode)
+                t, base, offset, mode = t_next, d, 0.0, d  # rows (iii)/(ix): slip d
+                if n_ev >= cap:
+                    status = BUFFER_FULL
+                    break
+                ev_t[n_ev] = t
+                ev_x[n_ev, 0] = sigma
+                ev_x[n_ev, 1] = d * f_c
+                ev_x[n_ev, 2] = 0.0
+                ev_m[n_ev, 0] = 0
+                ev_m[n_ev, 1] = d
+                ev_res[n_ev] = 0.0
+                n_ev += 1
+            else:
+                d = mode
+                s0, p0, v0 = sigma, (offset if base == d else (base - d) * f_c + offset), v
+                b1s, b1p, b1v, b2s, b2p, b2v = cofactors(K, s0, p0, v0)
+                q = (s0, p0, v0, b1s, b1p, b1v, b2s, b2p, b2v)
+                if not (_finite(s0, p0, v0) and _finite(b1s, b1p, b1v) and _finite(b2s, b2p, b2v)):
+                    status = NONFINITE
+                    break
+                found, tau, ys, yp, yv = first_zero(K, W, N, s0, p0, v0, d, t_end - t)
+                if not found:
+                    i = _emit(K, q, t, t_end, True, d, sigma, base, offset, ts, i, out_x, out_z, out_mode)
+                    t = t_end
+                    break
+                t_next = t + tau
+                i = _emit(K, q, t, t_next, False, d, sigma, base, offset, ts, i, out_x, out_z, out_mode)
+                residual = abs(yv)
+                if max(abs(ys), abs(yp), abs(yv)) <= UNDERFLOW:  # decayed onto x*_k ∈ 𝒜
+                    ys, yp = 0.0, 0.0
+                tol = SNAP_ULPS * EPS * max(abs(s0), abs(p0), abs(v0))
+                base, offset, new_mode = mode_after_slip(ys, yp, d, f_c, tol)
+                t, sigma, v = t_next, ys, 0.0
+                if new_mode != d:  # else a grazing contact: the slip goes on
+                    if n_ev >= cap:
+                        status = BUFFER_FULL
+                        break
+                    ev_t[n_ev] = t
+                    ev_x[n_ev, 0] = sigma
+                    ev_x[n_ev, 1] = base * f_c + offset
+                    ev_x[n_ev, 2] = 0.0
+                    ev_m[n_ev, 0] = d
+                    ev_m[n_ev, 1] = new_mode
+                    ev_res[n_ev] = residual
+                    n_ev += 1
+                    mode = new_mode
+                if t >= t_end:
+                    i = _emit(K, q, t, t_end, True, mode, sigma, base, offset, ts, i, out_x, out_z, out_mode)
+                    t = t_end
+                    break
+            if n_ev >= max_events:
+                i = _emit(K, q, t, t, True, mode, sigma, base, offset, ts, i, out_x, out_z, out_mode)
+                status = MAX_EVENTS
+                break
+        else:
+            i = _emit(K, q, t, t, True, mode, sigma, base, offset, ts, i, out_x, out_z, out_mode)
+            status = MAX_EVENTS
+    for j in range(i, m):  # after a stop: never made up
+        for c in range(3):
+            out_x[j, c] = np.nan
+            out_z[j, c] = np.nan
+        out_mode[j] = 0
+    for j in range(m):  # the given state, not its round trip through x
+        if ts[j] != 0.0:
+            break
+        if status != NONFINITE:
+            for c in range(3):
+                out_z[j, c] = z0[c]
+    for j in range(n_ev, cap):
+        ev_t[j] = np.nan
+        for c in range(3):
+            ev_x[j, c] = np.nan
+        ev_m[j, 0] = 0
+        ev_m[j, 1] = 0
+        ev_res[j] = 0.0
+    return status, n_ev, t
+
+
+@parallel
+def trajectories(
+    K, W, N, Z0, X0, t_end, max_events, ts, out_x, out_z, out_mode, ev_t, ev_x, ev_m, ev_res, status, n_ev, t_stop
+):
+    """:func:`trajectory` for every row of ``Z0``/``X0`` (in parallel when compiled)."""
+    for j in prange(Z0.shape[0]):
+        st, ne, ts_ = trajectory(
+            K, W, N, Z0[j], X0[j], t_end, max_events, ts,
+            out_x[j], out_z[j], out_mode[j], ev_t[j], ev_x[j], ev_m[j], ev_res[j],
+        )
+        status[j] = st
+        n_ev[j] = ne
+        t_stop[j] = ts_

@@ -1,0 +1,232 @@
+"""The one result type of a simulation: ``N`` solutions of eq. (xDot) on common
+sample times, with every event (mode change of Claim 1) and its state.
+
+Every consumer (the :class:`~._base.Solution` of a single simulation, the
+cross-check, the figures and the scenes) reads a :class:`Trajectories`;
+nothing rebuilds what the simulator knew.  ``V`` (eq. lyapLike) is
+discontinuous exactly at the events, so their states and the modes on either
+side are kept: the one-sided limits of ``V`` are read off them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import Any
+
+import numpy as np
+
+from .._errors import SimulationError
+from .._parameters import Parameters
+
+__all__ = ["Trajectories", "Status"]
+
+
+class Status:
+    """Why the simulation of one trajectory stopped.
+
+    ``T_END`` and ``EQUILIBRIUM`` are *complete*: every sample was computed.
+    The others are *incomplete*: samples after the stop are NaN, never made up.
+    """
+
+    T_END = "t_end reached"
+    EQUILIBRIUM = "at an equilibrium"
+    MAX_EVENTS = "max_events reached"
+    NONFINITE = "left the range of float64"
+
+    COMPLETE = (T_END, EQUILIBRIUM)
+
+
+@dataclass(frozen=True, eq=False)
+class Trajectories:
+    """``N`` simulated solutions on common sample times ``t``.
+
+    Attributes
+    ----------
+    params : Parameters
+    method : str
+        The method's name (``"event"``, ``"moreau"``, …).
+    t : ndarray, shape (m,)
+        Nondecreasing sample times.
+    z : ndarray, shape (N, m, 3)
+        ``(e_i, s, v)`` at the samples; NaN after an incomplete trajectory's stop.
+    x : ndarray, shape (N, m, 3)
+        The same states in ``(σ, φ, v)`` (eq. CoC).
+    mode : ndarray of int8, shape (N, m)
+        ``+1`` slip with ``v > 0``, ``0`` stick, ``-1`` slip with ``v < 0``;
+        right-continuous (a sample at an event has the mode after it).
+    event_t : ndarray, shape (N, E)
+        Event times in order, NaN-padded.
+    event_x : ndarray, shape (N, E, 3)
+        States at the events (``v = 0`` there), NaN-padded.
+    event_before, event_after : ndarray of int8, shape (N, E)
+        Modes before and after each event, 0-padded.
+    event_residual : ndarray, shape (N, E)
+        ``|v|`` that the closed form gave at each event time before ``v`` was
+        set to 0 (a check of the event times; 0 where not applicable).
+    n_events : ndarray of int, shape (N,)
+    status : ndarray of str, shape (N,)
+        One of :class:`Status` per trajectory.
+    t_stop : ndarray, shape (N,)
+        Where each computation stopped (``t_end`` when complete).
+    z0 : ndarray, shape (N, 3)
+        Initial states as given.
+    x0 : ndarray, shape (N, 3)
+        The initial states in ``x`` that were simulated (``T z0``).
+    source : ndarray of object, shape (N,)
+        A label per initial state (``"sphere r=1"``, …), ``""`` by default.
+    options : dict
+        The method's accuracy knobs.
+    """
+
+    params: Parameters
+    method: str
+    t: np.ndarray
+    z: np.ndarray
+    x: np.ndarray
+    mode: np.ndarray
+    event_t: np.ndarray
+    event_x: np.ndarray
+    event_before: np.ndarray
+    event_after: np.ndarray
+    event_residual: np.ndarray
+    n_events: np.ndarray
+    status: np.ndarray
+    t_stop: np.ndarray
+    z0: np.ndarray
+    x0: np.ndarray
+    source: np.ndarray = field(default=None)  # type: ignore[assignment]
+    options: dict[str, Any] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        N, m = self.mode.shape
+        E = self.event_t.shape[1] if self.event_t.ndim == 2 else -1
+        problems = []
+        if self.t.shape != (m,):
+            problems.append(f"t has shape {self.t.shape}, expected ({m},)")
+        for name in ("z", "x"):
+            if getattr(self, name).shape != (N, m, 3):
+                problems.append(f"{name} has shape {getattr(self, name).shape}, expected ({N}, {m}, 3)")
+        if self.event_t.shape != (N, E) or self.event_x.shape != (N, E, 3):
+            problems.append(f"events have shapes {self.event_t.shape} and {self.event_x.shape}, expected ({N}, E)")
+        for name in ("event_before", "event_after", "event_residual"):
+            if getattr(self, name).shape != (N, E):
+                problems.append(f"{name} must have the shape of event_t")
+        for name in ("n_events", "status", "t_stop"):
+            if getattr(self, name).shape != (N,):
+                problems.append(f"{name} must have shape ({N},)")
+        if self.z0.shape != (N, 3) or self.x0.shape != (N, 3):
+            problems.append(f"z0 and x0 must have shape ({N}, 3)")
+        if m and np.any(np.diff(self.t) < 0):
+            problems.append("sample times must be nondecreasing")
+        if problems:
+            raise SimulationError("malformed trajectories: " + "; ".join(problems))
+        if self.source is None:
+            object.__setattr__(self, "source", np.full(N, "", dtype=object))
+
+    # -- size and selection --------------------------------------------------------
+    @property
+    def size(self) -> int:
+        """Number of trajectories ``N``."""
+        return int(self.mode.shape[0])
+
+    def __len__(self) -> int:
+        return self.size
+
+    @property
+    def complete(self) -> np.ndarray:
+        """Per trajectory: every sample was computed (status ``T_END`` or ``EQUILIBRIUM``)."""
+        return np.isin(self.status, Status.COMPLETE)
+
+    @property
+    def event_modes(self) -> np.ndarray:
+        """``(mode_before, mode_after)`` of each event, shape (N, E, 2)."""
+        return np.stack([self.event_before, self.event_after], axis=-1)
+
+    def subset(self, index: Any) -> "Trajectories":
+        """The trajectories ``index`` (a slice, a boolean mask or an index array)."""
+        rows = {
+            name: getattr(self, name)[index]
+            for name in (
+                "z", "x", "mode", "event_t", "event_x", "event_before", "event_after",
+                "event_residual", "n_events", "status", "t_stop", "z0", "x0", "source",
+            )
+        }
+        return Trajectories(params=self.params, method=self.method, t=self.t, options=self.options, **rows)
+
+    @classmethod
+    def concatenate(cls, parts: "list[Trajectories]") -> "Trajectories":
+        """Join batches of the same parameters, method and sample times (events padded to the longest)."""
+        if not parts:
+            raise SimulationError("nothing to concatenate")
+        first = parts[0]
+        for p in parts[1:]:
+            if p.params != first.params or p.method != first.method or not np.array_equal(p.t, first.t):
+                raise SimulationError("only trajectories of the same parameters, method and sample times can be joined")
+        E = max(p.event_t.shape[1] for p in parts)
+
+        def pad(a: np.ndarray, fill: Any) -> np.ndarray:
+            width = [(0, 0)] * a.ndim
+            width[1] = (0, E - a.shape[1])
+            return np.pad(a, width, constant_values=fill)
+
+        return cls(
+            params=first.params,
+            method=first.method,
+            t=first.t,
+            options=first.options,
+            z=np.concatenate([p.z for p in parts]),
+            x=np.concatenate([p.x for p in parts]),
+            mode=np.concatenate([p.mode for p in parts]),
+            event_t=np.concatenate([pad(p.event_t, np.nan) for p in parts]),
+            event_x=np.concatenate([pad(p.event_x, np.nan) for p in parts]),
+            event_before=np.concatenate([pad(p.event_before, 0) for p in parts]),
+            event_after=np.concatenate([pad(p.event_after, 0) for p in parts]),
+            event_residual=np.concatenate([pad(p.event_residual, 0.0) for p in parts]),
+            n_events=np.concatenate([p.n_events for p in parts]),
+            status=np.concatenate([p.status for p in parts]),
+            t_stop=np.concatenate([p.t_stop for p in parts]),
+            z0=np.concatenate([p.z0 for p in parts]),
+            x0=np.concatenate([p.x0 for p in parts]),
+            source=np.concatenate([p.source for p in parts]),
+        )
+
+    # -- the paper's functions along the trajectories ---------------------------
+    @cached_property
+    def V(self) -> np.ndarray:
+        """``V(x(t))`` of eq. (lyapLike), shape (N, m)."""
+        from .._lyapunov import V
+
+        return V(self.params, self.x)
+
+    @cached_property
+    def distance(self) -> np.ndarray:
+        """``|x(t)|_𝒜``, shape (N, m)."""
+        from .._attractor import distance_x
+
+        return distance_x(self.params, self.x)
+
+    def V_hat(self, k: tuple[Any, Any, Any, Any]) -> np.ndarray:
+        """``V̂(x(t))`` of eq. (Vhat) for constants ``k = (k1, k2, k3, k4)``, shape (N, m)."""
+        from .._lyapunov import V_hat
+
+        return V_hat(self.params, self.x, k)
+
+    # -- one trajectory ----------------------------------------------------------
+    def events(self, i: int) -> tuple[tuple[float, int, int], ...]:
+        """The events ``(t, mode_before, mode_after)`` of trajectory ``i``."""
+        k = int(self.n_events[i])
+        return tuple(
+            (float(self.event_t[i, j]), int(self.event_before[i, j]), int(self.event_after[i, j])) for j in range(k)
+        )
+
+    def solution(self, i: int = 0) -> "Solution":
+        """Trajectory ``i`` as a :class:`~._base.Solution` (a view; samples after an incomplete stop dropped)."""
+        from ._base import Solution
+
+        if not -self.size <= i < self.size:
+            raise IndexError(f"trajectory {i} out of range for {self.size} trajectories")
+        return Solution(self, i % self.size)
+
+    def __iter__(self):
+        return (self.solution(i) for i in range(self.size))
