@@ -81,6 +81,14 @@ class Parameters:
         if not f_c > 0:
             raise AssumptionError(f"the Coulomb level needs f_c > 0; got f_c = {_fmt(f_c)}")
 
+    def __hash__(self) -> int:
+        # hashing four Fractions costs microseconds, and every simulation looks its gains up
+        cached = self.__dict__.get("_hash")
+        if cached is None:
+            cached = hash((self.k_p, self.k_i, self.k_v, self.f_c))
+            object.__setattr__(self, "_hash", cached)
+        return cached
+
     @classmethod
     def from_physical(
         cls,

@@ -512,6 +512,8 @@ class SceneResult:
         return written
 
     def _write_csv(self, out: Path) -> list[Path]:
+        import numpy as np
+
         name = self.scene.name
         files = []
         if self.wants_samples:
@@ -522,12 +524,13 @@ class SceneResult:
                 if header is None:
                     header = ["trajectory", *cols]
                     lines.append(",".join(header))
-                arrays = list(cols.values())
-                for j in range(len(cols["t"])):
-                    row = [str(i)] + [
-                        str(int(a[j])) if key == "mode" else repr(float(a[j])) for key, a in zip(cols, arrays)
-                    ]
-                    lines.append(",".join(row))
+                # columns as Python lists: repr of a float is its shortest round-trip decimal
+                columns = [
+                    [str(int(m)) for m in a.tolist()] if key == "mode" else list(map(repr, np.asarray(a, dtype=float).tolist()))
+                    for key, a in cols.items()
+                ]
+                prefix = f"{i},"
+                lines += [prefix + ",".join(row) for row in zip(*columns)]
             files.append(atomic_write_text(out / f"{name}.csv", "\n".join(lines) + "\n"))
         if "events" in self.scene.outputs:
             lines = ["trajectory,t,mode_before,mode_after"]

@@ -7,30 +7,64 @@ fallback), or the same file loaded a second time, under the name
 (``numba.njit(cache=True)``: machine code is cached on disk beside the
 sources, or in numba's user cache when that directory is read-only).
 
-The compiled variant is used when numba is installed, unless the environment
-variable ``SYMBOLIC_FRICTION_JIT`` is ``0`` (or ``false``/``no``/``off``).
-Both variants give the same results bit for bit; the tests run both and
-compare.  numba is imported only when a simulation first needs the kernel,
-so ``--help`` and the symbolic commands never pay for it.
+Which one runs is set by the environment variable ``SYMBOLIC_FRICTION_JIT``:
+
+* ``0`` (or ``false``/``no``/``off``): always plain Python;
+* ``1`` (or ``true``/``yes``/``on``): compiled whenever numba is installed;
+* ``auto`` (the default): numba costs about 0.9 s to start in a fresh
+  process (its import, its code generator, loading the cached machine code),
+  which is more than a few single trajectories take in plain Python.  So the
+  plain kernel runs until a single call is large (:data:`LARGE_WORK` samples
+  and events) or the process has spent :data:`PLAIN_BUDGET` seconds in it, or
+  numba is already imported; from then on the compiled kernel runs.
+
+Both variants give the same results bit for bit (the tests run both and
+compare), so the choice changes the speed only.  numba is imported only when
+the compiled kernel is first chosen, so ``--help``, the symbolic commands and
+a small simulation scene never pay for it.
 """
 
 from __future__ import annotations
 
 import functools
 import importlib.util
+import math
 import os
 import sys
 from types import ModuleType
 
-__all__ = ["ENV", "jit_enabled", "compiled", "plain", "kernel", "variant"]
+__all__ = ["ENV", "setting", "jit_enabled", "compiled", "plain", "kernel", "variant", "spent_in_plain"]
 
 ENV = "SYMBOLIC_FRICTION_JIT"
 _OFF = ("0", "false", "no", "off")
+_ON = ("1", "true", "yes", "on")
+# Seconds the plain kernel may run in a process before the compiled one is loaded.
+PLAIN_BUDGET = 1.0
+# A call with this many samples and events (about 1 s in plain Python) loads the compiled kernel.
+LARGE_WORK = 200_000
+_spent = 0.0
+
+
+def setting() -> str:
+    """``"off"``, ``"on"`` or ``"auto"``, from ``SYMBOLIC_FRICTION_JIT``."""
+    return _parse(os.environ.get(ENV, "auto"))
+
+
+@functools.lru_cache(maxsize=16)
+def _parse(value: str) -> str:
+    value = value.strip().lower()
+    return "off" if value in _OFF else "on" if value in _ON else "auto"
 
 
 def jit_enabled() -> bool:
-    """Whether the environment allows the compiled kernel (``SYMBOLIC_FRICTION_JIT``)."""
-    return os.environ.get(ENV, "1").strip().lower() not in _OFF
+    """Whether the environment allows the compiled kernel at all."""
+    return setting() != "off"
+
+
+def spent_in_plain(seconds: float) -> None:
+    """Record time spent in the plain kernel (the ``auto`` setting compiles once it adds up)."""
+    global _spent
+    _spent += seconds
 
 
 def plain() -> ModuleType:
@@ -62,15 +96,17 @@ def compiled() -> ModuleType | None:
     return module
 
 
-def kernel() -> ModuleType:
-    """The variant to run: compiled when numba is installed and allowed, else plain."""
-    if jit_enabled():
-        module = compiled()
-        if module is not None:
-            return module
-    return plain()
+def kernel(work: float = math.inf) -> ModuleType:
+    """The variant to run for a call of about ``work`` samples and events (module doc)."""
+    mode = setting()
+    if mode == "off":
+        return plain()
+    if mode == "auto" and work < LARGE_WORK and _spent < PLAIN_BUDGET and "numba" not in sys.modules:
+        return plain()
+    module = compiled()
+    return module if module is not None else plain()
 
 
-def variant() -> str:
-    """``"numba"`` or ``"python"``: what :func:`kernel` returns now."""
-    return "numba" if kernel() is not plain() else "python"
+def variant(work: float = math.inf) -> str:
+    """``"numba"`` or ``"python"``: what :func:`kernel` returns now for ``work``."""
+    return "numba" if kernel(work) is not plain() else "python"

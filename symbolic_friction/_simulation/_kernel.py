@@ -15,9 +15,10 @@ This module is the whole closed-form simulator of the inclusion
 * :func:`trajectories`: that loop over many initial states, in parallel.
 
 It is plain Python on scalars and preallocated arrays, so that it runs as it
-is (the pure-Python fallback) and, unchanged, compiled by numba
-(:mod:`._jit` loads this same file a second time with ``_JIT = True``).  The
-two give the same results bit for bit (``tests/simulation/test_kernel.py``).
+is (the pure-Python fallback, which is given the constants as Python lists
+of floats) and, unchanged, compiled by numba (:mod:`._jit` loads this same
+file a second time with ``_JIT = True``).  The two give the same results bit
+for bit (``tests/simulation/test_kernel.py``).
 
 Every constant the kernel needs for one gain set sits in three arrays built
 by :func:`.constants.kernel_constants` from the package's model (``A``, ``P``,
@@ -283,6 +284,9 @@ def first_zero(K, W, N, s0, p0, v0, d, horizon):
     dt, n_cells, window = K[I_DT], int(K[I_CELLS]), K[I_WINDOW]
     kv_ki, k_p, m4 = K[I_KVKI], K[I_KP], K[I_M4]
     grow = 0.125 * dt * dt
+    # rows of the table (views when compiled, lists when plain: no indexing of numpy scalars)
+    W0, W1, W2, W3, W4 = W[0], W[1], W[2], W[3], W[4]
+    N0, N1, N2 = N[0], N[1], N[2]
     a_w = 0.0
     s, p, v = s0, p0, v0
     while a_w < horizon:
@@ -290,15 +294,15 @@ def first_zero(K, W, N, s0, p0, v0, d, horizon):
         last = min(n_cells, int(math.ceil((horizon - a_w) / dt)))
         extra = grow * m4 * r_p
         abs_s, abs_p, abs_v = abs(s), abs(p), abs(v)
-        u_prev = d * (s * W[0, 0] + p * W[1, 0] + v * W[2, 0])
-        u2_prev = abs(s * W[2, 0] + p * W[3, 0] + v * W[4, 0])
+        u_prev = d * (s * W0[0] + p * W1[0] + v * W2[0])
+        u2_prev = abs(s * W2[0] + p * W3[0] + v * W4[0])
         for j in range(last):
-            u_next = d * (s * W[0, j + 1] + p * W[1, j + 1] + v * W[2, j + 1])
-            u2_next = abs(s * W[2, j + 1] + p * W[3, j + 1] + v * W[4, j + 1])
+            u_next = d * (s * W0[j + 1] + p * W1[j + 1] + v * W2[j + 1])
+            u2_next = abs(s * W2[j + 1] + p * W3[j + 1] + v * W4[j + 1])
             # |u''| on the cell ≤ max of its ends + Δ² max|u⁗|/8; u is within Δ² max|u''|/8
             # of its chord; plus the rounding of the products that gave u and u''
             slack = grow * (max(u2_prev, u2_next) + extra)
-            noise = abs_s * N[0, j] + abs_p * N[1, j] + abs_v * N[2, j]
+            noise = abs_s * N0[j] + abs_p * N1[j] + abs_v * N2[j]
             if not min(u_prev, u_next) > slack + noise:
                 a0 = a_w + float(j) * dt
                 if j == 0:
@@ -343,19 +347,22 @@ def _emit(K, q, t0, t1, final, mode, sigma, base, offset, ts, i, out_x, out_z, o
     """
     f_c = K[I_FC]
     m = ts.size
+    c = I_TINV
     while i < m and (ts[i] < t1 or (final and ts[i] <= t1)):
         tau = ts[i] - t0
         if mode == 0:
-            out_x[i, 0] = sigma
-            out_x[i, 1] = base * f_c + (offset + sigma * tau)
-            out_x[i, 2] = 0.0
+            x0, x1, x2 = sigma, base * f_c + (offset + sigma * tau), 0.0
         else:
             ys, yp, yv = flow(K, q, tau)
-            out_x[i, 0] = ys
-            out_x[i, 1] = yp + mode * f_c
             # the closed form keeps v's sign up to rounding; the mode fixes it
-            out_x[i, 2] = mode * max(mode * yv, 0.0)
-        to_z(K, out_x[i], out_z[i])
+            x0, x1, x2 = ys, yp + mode * f_c, mode * max(mode * yv, 0.0)
+        out_x[i, 0] = x0
+        out_x[i, 1] = x1
+        out_x[i, 2] = x2
+        # z = T⁻¹ x (eq. CoC), as to_z
+        out_z[i, 0] = K[c] * x0 + K[c + 1] * x1 + K[c + 2] * x2
+        out_z[i, 1] = K[c + 3] * x0 + K[c + 4] * x1 + K[c + 5] * x2
+        out_z[i, 2] = K[c + 6] * x0 + K[c + 7] * x1 + K[c + 8] * x2
         out_mode[i] = mode
         i += 1
     return i
@@ -491,6 +498,12 @@ def trajectory(K, W, N, z0, x0, t_end, max_events, ts, out_x, out_z, out_mode, e
         else:
             i = _emit(K, q, t, t, True, mode, sigma, base, offset, ts, i, out_x, out_z, out_mode)
             status = MAX_EVENTS
+    if status == T_END or status == EQUILIBRIUM:
+        # x finite but z = T⁻¹ x overflowing is leaving the range of float64 too
+        for j in range(i):
+            if not _finite(out_z[j, 0], out_z[j, 1], out_z[j, 2]):
+                status = NONFINITE
+                break
     for j in range(i, m):  # after a stop: never made up
         for c in range(3):
             out_x[j, c] = np.nan

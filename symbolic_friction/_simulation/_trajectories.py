@@ -21,6 +21,9 @@ from .._parameters import Parameters
 
 __all__ = ["Trajectories", "Status"]
 
+_ONE_EMPTY_LABEL = np.array([""], dtype=object)
+_ONE_EMPTY_LABEL.flags.writeable = False
+
 
 class Status:
     """Why the simulation of one trajectory stopped.
@@ -123,6 +126,17 @@ class Trajectories:
             raise SimulationError("malformed trajectories: " + "; ".join(problems))
         if self.source is None:
             object.__setattr__(self, "source", np.full(N, "", dtype=object))
+
+    @classmethod
+    def _unchecked(cls, **fields: Any) -> "Trajectories":
+        """Construct without the shape checks, for the simulator's own output (shapes known)."""
+        self = object.__new__(cls)
+        fields.setdefault("options", {})
+        if fields.get("source") is None:
+            n = fields["mode"].shape[0]
+            fields["source"] = _ONE_EMPTY_LABEL if n == 1 else np.full(n, "", dtype=object)
+        self.__dict__.update(fields)
+        return self
 
     # -- size and selection --------------------------------------------------------
     @property

@@ -191,19 +191,20 @@ class MatrixExponential:
 
     def w(self, t: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """``(w, w', w'')`` at times ``t ≥ 0`` (array_like, any shape)."""
-        from ._jit import kernel
+        from ._jit import kernel, plain
 
         t_in = np.asarray(t, dtype=float)
         flat = np.ascontiguousarray(t_in.reshape(-1))
         out = np.empty((3, flat.size))
-        kernel().w_many(self._constants, flat, out)
+        k = kernel(work=flat.size)
+        k.w_many(self._constants if k is not plain() else self._constants.tolist(), flat, out)
         return out[0].reshape(t_in.shape), out[1].reshape(t_in.shape), out[2].reshape(t_in.shape)
 
     def w_scalar(self, t: float) -> tuple[float, float, float]:
         """Same as :meth:`w` for one float ``t ≥ 0``."""
         from . import _kernel
 
-        return _kernel.w3(self._constants, float(t))
+        return _kernel.w3(self._constants.tolist(), float(t))
 
     # -- the matrix and its action ------------------------------------------
     def __call__(self, t: Any) -> np.ndarray:

@@ -35,6 +35,8 @@ Only numpy and the standard library are imported (no scipy, no sympy).
 
 from __future__ import annotations
 
+import math
+import time
 from types import MappingProxyType
 from typing import Any
 
@@ -44,7 +46,9 @@ from .._coordinates import x_to_z
 from .._errors import SimulationError
 from .._parameters import Parameters
 from ._base import SimulationMethod, Solution
+from ._jit import kernel, plain, spent_in_plain
 from ._trajectories import Status, Trajectories
+from .search import slip_model
 
 __all__ = ["EventDriven", "run"]
 
@@ -60,11 +64,10 @@ def _check_positive_int(name: str, value: Any, minimum: int) -> None:
         raise SimulationError(f"{name} must be an integer ≥ {minimum}; got {value!r}")
 
 
-def _kernel_pass(model, k, Z0, X0, t_end, max_events, ts, room):
+def _kernel_pass(consts, k, Z0, X0, t_end, max_events, ts, room):
     """One call of the kernel on every row; the buffers it fills (padding included)."""
     n, m = Z0.shape[0], ts.size
-    out_x = np.empty((n, m, 3))
-    out_z = np.empty((n, m, 3))
+    out_x, out_z = np.empty((2, n, m, 3))
     out_mode = np.empty((n, m), dtype=np.int8)
     ev_t = np.empty((n, room))
     ev_x = np.empty((n, room, 3))
@@ -72,7 +75,7 @@ def _kernel_pass(model, k, Z0, X0, t_end, max_events, ts, room):
     ev_res = np.empty((n, room))
     if n == 1:  # no parallel region for one trajectory
         code, n_ev, t_stop = k.trajectory(
-            model.K, model.W, model.N, Z0[0], X0[0], t_end, max_events, ts,
+            *consts, Z0[0], X0[0], t_end, max_events, ts,
             out_x[0], out_z[0], out_mode[0], ev_t[0], ev_x[0], ev_m[0], ev_res[0],
         )
         status, n_ev, t_stop = np.array([code]), np.array([n_ev]), np.array([t_stop])
@@ -81,7 +84,7 @@ def _kernel_pass(model, k, Z0, X0, t_end, max_events, ts, room):
         n_ev = np.empty(n, dtype=np.int64)
         t_stop = np.empty(n)
         k.trajectories(
-            model.K, model.W, model.N, Z0, X0, t_end, max_events, ts,
+            *consts, Z0, X0, t_end, max_events, ts,
             out_x, out_z, out_mode, ev_t, ev_x, ev_m, ev_res, status, n_ev, t_stop,
         )
     return [out_x, out_z, out_mode, ev_t, ev_x, ev_m, ev_res, status, n_ev, t_stop]
@@ -98,21 +101,23 @@ def run(
     options: dict[str, Any] | None = None,
 ) -> Trajectories:
     """The kernel from every row of ``Z0`` (validated, finite, shape (N, 3)), sampled at sorted ``ts``."""
-    from ._jit import kernel
-    from .search import slip_model
-
     model = slip_model(params)
-    k = kernel()
     Z0 = np.ascontiguousarray(Z0, dtype=float)
     X0 = np.empty_like(Z0)  # filled by the kernel: T z0
     ts = np.ascontiguousarray(ts, dtype=float)
+    k = kernel(work=Z0.shape[0] * (ts.size + 2 * _FIRST_ROOM))
+    is_plain = k is plain()
+    consts = model.constants(not is_plain)
+    start = time.perf_counter()
     room = int(min(max_events, _FIRST_ROOM))
-    out = _kernel_pass(model, k, Z0, X0, t_end, max_events, ts, room)
+    out = _kernel_pass(consts, k, Z0, X0, t_end, max_events, ts, room)
     status, n_ev = out[7], out[8]
     again = np.flatnonzero(status == 4)  # BUFFER_FULL: more events than the first pass had room for
     if again.size:
-        more = _kernel_pass(model, k, Z0[again], np.empty((again.size, 3)), t_end, max_events, ts, int(max_events))
+        more = _kernel_pass(consts, k, Z0[again], np.empty((again.size, 3)), t_end, max_events, ts, int(max_events))
         n_ev[again] = more[8]
+    if is_plain:
+        spent_in_plain(time.perf_counter() - start)
     width = int(n_ev.max())
     for j in (3, 4, 5, 6):  # the event axis, cut or padded to the most events of any row
         a = out[j]
@@ -126,11 +131,7 @@ def run(
         for j in range(10):
             out[j][again] = more[j][:, :width] if j in (3, 4, 5, 6) else more[j]
     x, z, mode, ev_t, ev_x, ev_m, ev_res, status, n_ev, t_stop = out
-    # a complete trajectory whose z overflows left the range of float64 too
-    done = (status == 0) | (status == 2)
-    if not np.isfinite(z[done]).all():
-        status = np.where(done & ~np.isfinite(z).all(axis=(1, 2)), 3, status)
-    return Trajectories(
+    return Trajectories._unchecked(
         params=params,
         method="event",
         t=ts,
@@ -149,6 +150,39 @@ def run(
         x0=X0,
         source=source,
         options=dict(options or {}),
+    )
+
+
+def run_one(params: Parameters, z0: np.ndarray, t_end: float, ts: np.ndarray, *, max_events: int, options: dict) -> Trajectories:
+    """:func:`run` for one initial state, with less Python around the same kernel call."""
+    model = slip_model(params)
+    m = ts.size
+    k = kernel(work=m + 2 * _FIRST_ROOM)
+    is_plain = k is plain()
+    consts = model.constants(not is_plain)
+    start = time.perf_counter()
+    Z0 = np.array(z0, dtype=float).reshape(1, 3)
+    X0 = np.empty((1, 3))
+    ts = np.ascontiguousarray(ts, dtype=float)
+    room = int(min(max_events, _FIRST_ROOM))
+    while True:
+        x, z = np.empty((2, 1, m, 3))  # one allocation, two C-contiguous halves
+        mode = np.empty((1, m), dtype=np.int8)
+        ev_t, ev_x = np.empty((1, room)), np.empty((1, room, 3))
+        ev_m, ev_res = np.empty((1, room, 2), dtype=np.int8), np.empty((1, room))
+        code, n, t_stop = k.trajectory(
+            *consts, Z0[0], X0[0], t_end, max_events, ts, x[0], z[0], mode[0], ev_t[0], ev_x[0], ev_m[0], ev_res[0]
+        )
+        if code != 4 or room >= max_events:  # 4: BUFFER_FULL, run again with room for max_events
+            break
+        room = int(max_events)
+    if is_plain:
+        spent_in_plain(time.perf_counter() - start)
+    return Trajectories._unchecked(
+        params=params, method="event", t=ts, z=z, x=x, mode=mode,
+        event_t=ev_t[:, :n], event_x=ev_x[:, :n], event_before=ev_m[:, :n, 0], event_after=ev_m[:, :n, 1],
+        event_residual=ev_res[:, :n], n_events=np.array([n]), status=_STATUS_NAMES[code : code + 1],
+        t_stop=np.array([t_stop]), z0=Z0, x0=X0, options=dict(options),
     )
 
 
@@ -175,15 +209,14 @@ class EventDriven(SimulationMethod):
         self, params: Parameters, z0: np.ndarray, t_end: float, t_eval: np.ndarray | None, options: dict[str, Any]
     ) -> Solution:
         max_events = int(options["max_events"])
-        Z0 = z0.reshape(1, 3)
         if t_eval is not None:
-            return _single(run(params, Z0, t_end, t_eval, max_events=max_events, options=options))
+            return _single(run_one(params, z0, t_end, t_eval, max_events=max_events, options=options))
         grid = np.linspace(0.0, t_end, int(options["grid_points"]))
-        batch = run(params, Z0, t_end, grid, max_events=max_events, options=options)
-        if not batch.complete[0] and batch.status[0] == Status.MAX_EVENTS:
+        batch = run_one(params, z0, t_end, grid, max_events=max_events, options=options)
+        if batch.status[0] == Status.MAX_EVENTS:
             # the grid covers what was computed: [0, t_stop]
             grid = np.linspace(0.0, float(batch.t_stop[0]), int(options["grid_points"]))
-            batch = run(params, Z0, t_end, grid, max_events=max_events, options=options)
+            batch = run_one(params, z0, t_end, grid, max_events=max_events, options=options)
         return _single(_with_events(batch))
 
 
@@ -202,7 +235,7 @@ def _with_events(batch: Trajectories) -> Trajectories:
         return np.concatenate([samples[0], at_events[0, :n]])[pick][None]
 
     ev_z = x_to_z(batch.params, batch.event_x[:, :n])
-    return Trajectories(
+    return Trajectories._unchecked(
         params=batch.params,
         method=batch.method,
         t=t[keep],

@@ -67,6 +67,15 @@ class SlipModel:
     W: np.ndarray = field(repr=False)
     N: np.ndarray = field(repr=False)
 
+    def constants(self, compiled: bool) -> tuple:
+        """``(K, W, N)`` for the kernel: arrays when compiled, lists of floats for plain Python."""
+        if compiled:
+            return self.K, self.W, self.N
+        if "_lists" not in self.__dict__:
+            # plain Python is several times faster on floats than on numpy scalars
+            object.__setattr__(self, "_lists", (self.K.tolist(), self.W.tolist(), self.N.tolist()))
+        return self.__dict__["_lists"]
+
 
 @lru_cache(maxsize=64)
 def slip_model(params: Parameters) -> SlipModel:
@@ -171,8 +180,10 @@ def first_zero(
     y : tuple of float
         The offset ``y(tau)``, or ``y(horizon)`` when ``tau`` is None.
     """
-    from ._jit import kernel
+    from ._jit import kernel, plain
 
+    k = kernel()
+    K, W, N = model.constants(k is not plain())
     s, p, v = (float(c) for c in y0)
-    found, tau, ys, yp, yv = kernel().first_zero(model.K, model.W, model.N, s, p, v, int(direction), float(horizon))
+    found, tau, ys, yp, yv = k.first_zero(K, W, N, s, p, v, int(direction), float(horizon))
     return (float(tau) if found else None), (float(ys), float(yp), float(yv))

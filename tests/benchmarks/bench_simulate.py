@@ -1,120 +1,154 @@
-"""Speed and accuracy of the simulation methods for Table I case (a), t ∈ [0, 30].
+"""Speed of the exact event-driven method, Table I case (a), t ∈ [0, 30], 301 samples.
 
-Prints, for initial states drawn uniformly from [-5, 5]³ (fixed seed):
+Prints, in one run (initial states uniform in [-5, 5]³, fixed seed):
 
-* ``event`` (exact, one trajectory at a time): time per trajectory;
-* ``simulate_batch`` on 10,000 initial states: total time and time per
-  trajectory, and its largest deviation from ``event``;
-* ``ivp-events`` at rtol 1e-10 (scipy ``solve_ivp`` with terminal events):
-  time per trajectory and its error against ``event``;
-* the error of ``event`` itself against the independent 50-digit mpmath
-  reference of the test suite, on a few trajectories.
+* ``event``, one trajectory per ``simulate`` call, in-process, with the
+  compiled kernel (``SYMBOLIC_FRICTION_JIT=1``, after a warm-up) and with the
+  plain-Python kernel: median time per trajectory over repeats;
+* the DOP853 mode-switching baseline (``ivp-events``, rtol 1e-12) on the same
+  states, and the ratio of the two medians taken in this run;
+* ``simulate_batch`` on 10⁴ initial states: median total time over repeats;
+* ``iter_batches`` streaming 10⁶ initial states in a fresh process, each chunk
+  reduced to its largest ``|x|_𝒜``: total time and peak resident memory;
+* ``symbolic-friction simulate paper-a`` from a fresh process: the default
+  (``auto``), the compiled kernel with its cache warm, and with an empty
+  numba cache (cold: every function compiled).
 
-Errors are ``max |z - z_ref| / max(1, |z0|)`` over the 301 sample times.
 Nothing is asserted; run it on a quiet machine::
 
-    python tests/benchmarks/bench_simulate.py [--batch 10000] [--scalar 300] [--ivp 50] [--reference 3]
+    python tests/benchmarks/bench_simulate.py [--scalar 2000] [--ivp 20] [--batch 10000] [--stream 1000000]
 """
 
 from __future__ import annotations
 
 import argparse
+import os
+import statistics
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
-import numpy as np
+os.environ.setdefault("SYMBOLIC_FRICTION_JIT", "1")
+
+import numpy as np  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
-from symbolic_friction import Parameters, SimulationError  # noqa: E402
-from symbolic_friction._simulation import simulate  # noqa: E402
+from symbolic_friction import Parameters  # noqa: E402
+from symbolic_friction._simulation import _jit, simulate  # noqa: E402
 from symbolic_friction._simulation.batch import simulate_batch  # noqa: E402
 
 T_END = 30.0
 T_EVAL = np.linspace(0.0, T_END, 301)
+PARAMS = Parameters.table_i("a")
 
 
-def error(z: np.ndarray, z_ref: np.ndarray, z0: np.ndarray) -> float:
-    return float(np.max(np.abs(z - z_ref)) / max(1.0, float(np.linalg.norm(z0))))
+def per_call(Z0: np.ndarray, repeats: int, **kw) -> tuple[float, float, float]:
+    """Median, min and max over ``repeats`` of the mean time per ``simulate`` call over ``Z0``."""
+    rounds = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        for z0 in Z0:
+            simulate(PARAMS, z0, T_END, t_eval=T_EVAL, **kw)
+        rounds.append((time.perf_counter() - start) / len(Z0))
+    return statistics.median(rounds), min(rounds), max(rounds)
 
 
-def import_time() -> float:
-    code = (
-        "import time; t = time.perf_counter(); import symbolic_friction._simulation.event; "
-        "print(time.perf_counter() - t)"
-    )
-    return float(subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout)
+def fresh(cmd: list[str], env: dict[str, str], repeats: int) -> tuple[float, float]:
+    times = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        subprocess.run(cmd, env=env, check=True, capture_output=True)
+        times.append(time.perf_counter() - start)
+    return statistics.median(times), min(times)
 
 
-def bench_ivp(params: Parameters, Z0: np.ndarray, scalar: list, per_event: float, per_batch: float) -> None:
-    """Time ``ivp-events`` at rtol 1e-10 and measure its error against ``event``."""
-    try:
-        simulate(params, Z0[0], T_END, method="ivp-events", t_eval=T_EVAL, rtol=1e-10)
-    except (ImportError, SimulationError) as exc:  # the method may not be installed yet
-        print(f"\nivp-events: not available ({exc})")
-        return
-    start = time.perf_counter()
-    ivp = [simulate(params, z0, T_END, method="ivp-events", t_eval=T_EVAL, rtol=1e-10) for z0 in Z0]
-    per_ivp = (time.perf_counter() - start) / len(Z0)
-    errs = [error(s.z, scalar[i].z, Z0[i]) for i, s in enumerate(ivp) if s.z.shape == scalar[i].z.shape]
-    print(f"\nivp-events (rtol 1e-10), {len(Z0)} trajectories: {1e3 * per_ivp:.2f} ms per trajectory")
-    print(f"  error vs event: max {max(errs):.1e}, median {np.median(errs):.1e}")
-    print(f"  event is {per_ivp / per_event:.0f}x faster, batch {per_ivp / per_batch:.0f}x faster")
+STREAM = """
+import resource, sys, time
+import numpy as np
+from symbolic_friction import Parameters
+from symbolic_friction._attractor import distance_x
+from symbolic_friction._simulation.batch import iter_batches
+n = int(sys.argv[1])
+rng = np.random.default_rng(1)
+Z0 = rng.uniform(-5.0, 5.0, size=(n, 3))
+t = np.linspace(0.0, 30.0, 301)
+start = time.perf_counter()
+worst, done, incomplete = 0.0, 0, 0
+for b in iter_batches(Parameters.table_i("a"), Z0, 30.0, t_eval=t):
+    worst = max(worst, float(np.nanmax(distance_x(b.params, b.x))))
+    done += len(b)
+    incomplete += int((~b.complete).sum())
+elapsed = time.perf_counter() - start
+print(done, incomplete, elapsed, resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, worst)
+"""
 
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--scalar", type=int, default=2000, help="trajectories timed one simulate call each")
+    parser.add_argument("--ivp", type=int, default=20, help="trajectories timed with the DOP853 baseline")
     parser.add_argument("--batch", type=int, default=10_000, help="initial states in the batch")
-    parser.add_argument("--scalar", type=int, default=300, help="trajectories timed one by one with 'event'")
-    parser.add_argument("--ivp", type=int, default=50, help="trajectories timed with 'ivp-events'")
-    parser.add_argument("--reference", type=int, default=3, help="trajectories checked against mpmath")
+    parser.add_argument("--stream", type=int, default=1_000_000, help="initial states streamed (0: skip)")
+    parser.add_argument("--repeats", type=int, default=5)
     parser.add_argument("--seed", type=int, default=2024)
     args = parser.parse_args()
 
-    params = Parameters.table_i("a")
     rng = np.random.default_rng(args.seed)
-    Z0 = rng.uniform(-5.0, 5.0, size=(max(args.batch, args.scalar, args.ivp, args.reference), 3))
-    print(f"Table I case (a) {params}, t in [0, {T_END:g}], {T_EVAL.size} sample times")
-    print(f"import of the event method: {1e3 * import_time():.0f} ms (numpy only; no scipy, sympy, cvxpy)")
+    Z0 = rng.uniform(-5.0, 5.0, size=(max(args.scalar, args.batch, args.ivp), 3))
+    print(f"Table I case (a) {PARAMS}, t in [0, {T_END:g}], {T_EVAL.size} samples; "
+          f"{os.cpu_count()} cores, kernel: {_jit.variant()}")
 
-    # warm-up: builds and caches the closed form and the scan table
-    simulate(params, Z0[0], T_END, t_eval=T_EVAL)
+    simulate(PARAMS, Z0[0], T_END, t_eval=T_EVAL)  # warm-up: compile or load the cache, build the tables
+    med, lo, hi = per_call(Z0[: args.scalar], args.repeats)
+    events = np.mean([len(simulate(PARAMS, z, T_END, t_eval=T_EVAL).events) for z in Z0[:200]])
+    print(f"\nevent, one simulate() call per trajectory, {args.scalar} trajectories × {args.repeats}:")
+    print(f"  compiled kernel: {1e6 * med:.1f} µs per trajectory (min {1e6 * lo:.1f}, max {1e6 * hi:.1f}); "
+          f"{events:.1f} events per trajectory")
 
-    n = args.scalar
-    start = time.perf_counter()
-    scalar = [simulate(params, z0, T_END, t_eval=T_EVAL) for z0 in Z0[:n]]
-    per_event = (time.perf_counter() - start) / n
-    events = np.array([len(s.events) for s in scalar])
-    print(f"\nevent (one at a time), {n} trajectories: {1e3 * per_event:.3f} ms per trajectory")
-    print(f"  events per trajectory: mean {events.mean():.1f}, max {events.max()}")
+    os.environ["SYMBOLIC_FRICTION_JIT"] = "0"
+    p_med, _, _ = per_call(Z0[:100], 3)
+    os.environ["SYMBOLIC_FRICTION_JIT"] = "1"
+    print(f"  plain-Python kernel (SYMBOLIC_FRICTION_JIT=0): {1e3 * p_med:.2f} ms per trajectory")
+
+    ivp_opts = dict(method="ivp-events", rtol=1e-12, atol=1e-14, integrator="DOP853")
+    simulate(PARAMS, Z0[0], T_END, t_eval=T_EVAL, **ivp_opts)
+    i_med, i_lo, i_hi = per_call(Z0[: args.ivp], 3, **ivp_opts)
+    print(f"\nDOP853 mode switching (ivp-events, rtol 1e-12, atol 1e-14), {args.ivp} trajectories × 3:")
+    print(f"  {1e3 * i_med:.2f} ms per trajectory (min {1e3 * i_lo:.2f}, max {1e3 * i_hi:.2f})")
+    print(f"  event is {i_med / med:.0f}x faster (medians of this run)")
 
     nb = args.batch
-    start = time.perf_counter()
-    batch = simulate_batch(params, Z0[:nb], T_END, t_eval=T_EVAL)
-    total = time.perf_counter() - start
-    dev = max(error(batch.z[i], scalar[i].z, Z0[i]) for i in range(min(n, nb)))
-    print(f"\nsimulate_batch, {nb} trajectories: {total:.2f} s total, {1e3 * total / nb:.3f} ms per trajectory")
-    print(f"  speed-up per trajectory over event: {per_event / (total / nb):.1f}x")
-    print(f"  max deviation from event (first {min(n, nb)}): {dev:.1e}")
+    simulate_batch(PARAMS, Z0[:100], T_END, t_eval=T_EVAL)
+    times = []
+    for _ in range(args.repeats):
+        start = time.perf_counter()
+        batch = simulate_batch(PARAMS, Z0[:nb], T_END, t_eval=T_EVAL)
+        times.append(time.perf_counter() - start)
+    print(f"\nsimulate_batch, {nb} trajectories × {args.repeats}: median {statistics.median(times):.3f} s "
+          f"(min {min(times):.3f}, max {max(times):.3f}); {int((~batch.complete).sum())} incomplete")
 
-    if args.ivp:
-        bench_ivp(params, Z0[: args.ivp], scalar, per_event, total / nb)
+    if args.stream:
+        out = subprocess.run([sys.executable, "-c", STREAM, str(args.stream)], capture_output=True, text=True,
+                             check=True, env=dict(os.environ, PYTHONPATH=str(ROOT)))
+        done, incomplete, elapsed, rss, worst = out.stdout.split()
+        print(f"\niter_batches, {int(done)} trajectories streamed in a fresh process: {float(elapsed):.1f} s, "
+              f"peak RSS {float(rss):.0f} MB, {incomplete} incomplete, largest |x|_A {float(worst):.3f}")
 
-    nr = args.reference
-    if nr:
-        from tests.simulation.reference import Reference
-
-        errs, t_errs = [], []
-        for i in range(nr):
-            ref = Reference(params, tuple(Z0[i]), T_END)
-            z_ref, _ = ref.sample(T_EVAL)
-            errs.append(error(scalar[i].z, np.array(z_ref), Z0[i]))
-            t_errs.extend(abs(a[0] - b[0]) for a, b in zip(scalar[i].events, ref.event_list()))
-        print(f"\nevent vs the 50-digit mpmath reference, {nr} trajectories:")
-        print(f"  state error max {max(errs):.1e}, event-time error max {max(t_errs, default=0.0):.1e}")
+    cmd = [sys.executable, "-m", "symbolic_friction", "simulate", "paper-a", "--out", tempfile.mkdtemp()]
+    base = dict(os.environ, PYTHONPATH=str(ROOT))
+    auto = fresh(cmd, {**base, "SYMBOLIC_FRICTION_JIT": "auto"}, args.repeats)
+    fresh(cmd, {**base, "SYMBOLIC_FRICTION_JIT": "1"}, 1)
+    warm = fresh(cmd, {**base, "SYMBOLIC_FRICTION_JIT": "1"}, args.repeats)
+    with tempfile.TemporaryDirectory() as cache:
+        cold = fresh(cmd, {**base, "SYMBOLIC_FRICTION_JIT": "1", "NUMBA_CACHE_DIR": cache}, 1)
+    print("\nsymbolic-friction simulate paper-a, fresh process (median, min):")
+    print(f"  default (auto: plain kernel for a small scene): {auto[0]:.2f} s, {auto[1]:.2f} s")
+    print(f"  compiled kernel, numba cache warm: {warm[0]:.2f} s, {warm[1]:.2f} s")
+    print(f"  compiled kernel, empty numba cache (first run): {cold[0]:.2f} s")
     return 0
 
 
