@@ -121,6 +121,10 @@ _LAZY: dict[str, str] = {
     "select_mode": "._simulation.modes",
     "table_row": "._simulation.modes",
     "SimulationMethod": "._simulation._base",
+    "EventDriven": "._simulation.event",
+    "Moreau": "._simulation.moreau",
+    "Regularized": "._simulation.regularized",
+    "IvpEvents": "._simulation.ivp_events",
 }
 
 __all__ = [

@@ -7,6 +7,7 @@ event-driven scene never imports scipy.integrate).
 
 from __future__ import annotations
 
+import dataclasses
 import importlib
 import math
 from typing import Any
@@ -25,6 +26,12 @@ __all__ = [
     "Trajectories",
     "METHODS",
     "get_method",
+    "method_class",
+    "configure",
+    "EventDriven",
+    "Moreau",
+    "Regularized",
+    "IvpEvents",
     "Solution",
     "SimulationMethod",
     "Status",
@@ -42,17 +49,51 @@ METHODS: dict[str, str] = {
 _INSTANCES: dict[str, SimulationMethod] = {}
 
 
-def get_method(name: str) -> SimulationMethod:
-    """The method registered as ``name`` (its module imported on first use)."""
-    method = _INSTANCES.get(name) if isinstance(name, str) else None
-    if method is not None:
-        return method
+def method_class(name: str) -> type[SimulationMethod]:
+    """The class registered as ``name`` (its module imported on first use)."""
     if not isinstance(name, str) or name not in METHODS:
         raise SimulationError(f"unknown method {name!r}; expected one of {', '.join(sorted(METHODS))}")
     module_name, cls_name = METHODS[name].split(":")
     module = importlib.import_module(f"{__name__}.{module_name}")
-    method = _INSTANCES[name] = getattr(module, cls_name)()
+    return getattr(module, cls_name)
+
+
+def get_method(name: str) -> SimulationMethod:
+    """The method registered as ``name``, with its default knobs."""
+    method = _INSTANCES.get(name) if isinstance(name, str) else None
+    if method is None:
+        method = _INSTANCES[name] = method_class(name)()
     return method
+
+
+def configure(method: Any, options: dict[str, Any]) -> SimulationMethod:
+    """A configured method from a :class:`SimulationMethod` or a name, with ``options`` applied.
+
+    Raises
+    ------
+    SimulationError
+        For an unknown method, an unknown option or an invalid value.
+    """
+    if isinstance(method, SimulationMethod):
+        base = method
+    elif isinstance(method, str):
+        if not options:
+            return get_method(method)
+        base = get_method(method)
+    else:
+        raise SimulationError(
+            f"method must be a name ({', '.join(sorted(METHODS))}) or a configured method such as Moreau(h=1e-3); "
+            f"got {type(method).__name__}"
+        )
+    if not options:
+        return base
+    unknown = sorted(set(options) - set(base.options))
+    if unknown:
+        raise SimulationError(
+            f"unknown option(s) {', '.join(map(repr, unknown))} for method {base.name!r}; "
+            f"expected some of {', '.join(sorted(base.options)) or '(none)'}"
+        )
+    return dataclasses.replace(base, **options)
 
 
 def _check_state(z0: Any) -> np.ndarray:
@@ -97,7 +138,7 @@ def simulate(
     z0: Any,
     t_end: float,
     *,
-    method: str = "event",
+    method: Any = "event",
     t_eval: Any = None,
     **options: Any,
 ) -> Solution:
@@ -110,12 +151,14 @@ def simulate(
         Initial state ``(e_i, s, v)``; must be finite.
     t_end : float
         Horizon, ``> 0``.
-    method : {"event", "moreau", "regularized", "ivp-events"}, keyword-only
-        ``"event"`` is the exact event-driven reference.
+    method : SimulationMethod or {"event", "moreau", "regularized", "ivp-events"}, keyword-only
+        A configured method (``EventDriven()``, ``Moreau(h=1e-3)``,
+        ``Regularized(epsilon=1e-5, law="sat")``, ``IvpEvents(rtol=1e-10)``),
+        or its name; ``"event"`` is the exact event-driven reference.
     t_eval : array_like, optional, keyword-only
         Sample times in ``[0, t_end]``; the solution is sampled exactly there.
     **options
-        Accuracy knobs of the method (see each method's ``options``).
+        Accuracy knobs of the method (its fields), applied to ``method``.
         Unknown options raise :class:`SimulationError`.
 
     Returns
@@ -124,25 +167,22 @@ def simulate(
     """
     if not isinstance(params, Parameters):
         raise SimulationError(f"params must be a Parameters instance; got {type(params).__name__}")
-    solver = get_method(method)
-    unknown = sorted(set(options) - set(solver.options))
-    if unknown:
-        raise SimulationError(
-            f"unknown option(s) {', '.join(map(repr, unknown))} for method {method!r}; "
-            f"expected some of {', '.join(sorted(solver.options)) or '(none)'}"
-        )
-    merged = {**solver.options, **options}
-    solver._validate(merged)
+    solver = configure(method, options)
     z = _check_state(z0)
     t = _check_horizon(t_end)
     te = _check_t_eval(t_eval, t)
-    return solver._solve(params, z, t, te, merged)
+    return solver._solve(params, z, t, te, solver.options)
+
+
+_CLASSES = {"EventDriven": "event", "Moreau": "moreau", "Regularized": "regularized", "IvpEvents": "ivp-events"}
 
 
 def __getattr__(name: str) -> Any:
-    # simulate_batch lives with the event method; import it only when asked for
+    # simulate_batch lives with the event method; import it (and the method classes) only when asked for
     if name in ("simulate_batch", "iter_batches"):
         from . import batch
 
         return getattr(batch, name)
+    if name in _CLASSES:
+        return method_class(_CLASSES[name])
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

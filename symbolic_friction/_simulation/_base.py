@@ -10,15 +10,41 @@ slip ``v < 0``: ``x' = Ax + b``).  Every method below approximates (or, for
 from __future__ import annotations
 
 import abc
+from dataclasses import dataclass, fields
 from functools import cached_property
 from typing import Any, ClassVar
 
 import numpy as np
 
+from .._errors import SimulationError
 from .._parameters import Parameters
 from ._trajectories import Status, Trajectories
 
-__all__ = ["Solution", "SimulationMethod", "Status"]
+__all__ = ["Solution", "SimulationMethod", "Status", "RTOL_FLOOR", "check_rtol", "finite_or_raise"]
+
+EPS = 2.220446049250313e-16
+# scipy's solve_ivp silently raises a smaller rtol to this; the package refuses instead
+RTOL_FLOOR = 100 * EPS
+
+
+def check_rtol(rtol: Any) -> None:
+    """Refuse an ``rtol`` below what float64 resolves (a knob that would silently not be honoured)."""
+    if float(rtol) < RTOL_FLOOR:
+        raise SimulationError(
+            f"option rtol = {float(rtol):.3g} is below what float64 can resolve (scipy would silently use "
+            f"{RTOL_FLOOR:.3g}); use rtol ≥ {RTOL_FLOOR:.3g}"
+        )
+
+
+def finite_or_raise(method: str, t: np.ndarray, z: np.ndarray) -> None:
+    """Refuse samples that left the range of float64 (inf or NaN), naming where."""
+    bad = ~np.isfinite(z).all(axis=-1)
+    if bad.any():
+        i = int(np.argmax(bad))
+        raise SimulationError(
+            f"the {method} solution leaves the range of float64 (about ±1.8e308) at t = {float(t[i]):g}: "
+            "scale the initial state down"
+        )
 
 
 class Solution:
@@ -171,23 +197,44 @@ class Solution:
         return f"Solution(method={self.method!r}, samples={self.t.size}, events={len(self.events)}, status={self.status!r})"
 
 
+@dataclass(frozen=True, kw_only=True)
 class SimulationMethod(abc.ABC):
-    """Base class of a simulation method.
+    """Base class of a simulation method: a frozen configuration whose fields are its accuracy knobs.
+
+    ``simulate(params, z0, t_end, method=Moreau(h=1e-3))`` runs a configured
+    method; ``method="moreau", h=1e-3`` builds the same object from its name.
 
     Contract for implementers
     -------------------------
-    * Set ``name`` (the ``method=`` string) and ``options``: a mapping from
-      each accepted keyword option to its default.  ``simulate`` rejects any
-      other option with :class:`~symbolic_friction.SimulationError`.
-    * Implement :meth:`_validate` to check option values (raise
-      ``SimulationError`` naming the option and the value).
+    * Subclass as ``@dataclass(frozen=True, kw_only=True)``; every field is
+      a keyword option with its default (an accuracy knob, or a limit).
+    * Set the class variables ``name`` (the ``method=`` string), ``order``
+      (the declared order of accuracy in ``knob``: the error behaves like
+      ``knob**order``; ``math.inf`` for an exact method) and ``knob`` (the
+      field that trades speed for accuracy, or ``None``).
+    * Implement :meth:`_validate`, called on construction with
+      :attr:`options`, which raises
+      :class:`~symbolic_friction.SimulationError` naming the option and the
+      value.
     * Implement :meth:`_solve`, which receives validated float data and
-      returns a :class:`Solution`.  With ``t_eval`` given, the samples must be
-      exactly at those times.
+      returns a :class:`Solution`.  With ``t_eval`` given, the samples must
+      be exactly at those times.  It must never return a silently wrong
+      answer: leaving the valid range (overflow, a knob float64 cannot
+      resolve, a step larger than the horizon) raises ``SimulationError`` or
+      ends with a status that says so.
     """
 
     name: ClassVar[str]
-    options: ClassVar[dict[str, Any]]
+    order: ClassVar[float]
+    knob: ClassVar[str | None]
+
+    def __post_init__(self) -> None:
+        self._validate(self.options)
+
+    @property
+    def options(self) -> dict[str, Any]:
+        """The knobs of this configuration, by name."""
+        return {f.name: getattr(self, f.name) for f in fields(self)}
 
     @abc.abstractmethod
     def _validate(self, options: dict[str, Any]) -> None:

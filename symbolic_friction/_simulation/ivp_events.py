@@ -44,13 +44,14 @@ when a simulation runs.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import Any, ClassVar
 
 import numpy as np
 
 from .._errors import SimulationError
 from .._parameters import Parameters
-from ._base import SimulationMethod, Solution, Status
+from ._base import SimulationMethod, Solution, Status, check_rtol, finite_or_raise
 
 __all__ = ["IvpEvents", "INTEGRATORS", "table_mode"]
 
@@ -82,15 +83,23 @@ def _check_positive(options: dict[str, Any], name: str) -> None:
         raise SimulationError(f"option {name} must be finite and > 0; got {name} = {value!r}")
 
 
+@dataclass(frozen=True, kw_only=True)
 class IvpEvents(SimulationMethod):
     """Mode switching with ``solve_ivp`` terminal events (see the module docstring)."""
 
+    rtol: float = 1e-8
+    atol: float = 1e-10
+    integrator: str = "DOP853"
+    max_events: int = 10_000
+
     name: ClassVar[str] = "ivp-events"
-    options: ClassVar[dict[str, Any]] = {"rtol": 1e-8, "atol": 1e-10, "integrator": "DOP853", "max_events": 10_000}
+    order: ClassVar[float] = 1.0
+    knob: ClassVar[str | None] = "rtol"
 
     def _validate(self, options: dict[str, Any]) -> None:
         _check_positive(options, "rtol")
         _check_positive(options, "atol")
+        check_rtol(options["rtol"])
         if options["integrator"] not in INTEGRATORS:
             raise SimulationError(
                 f"option integrator must be one of {', '.join(map(repr, INTEGRATORS))}; got {options['integrator']!r}"
@@ -210,6 +219,7 @@ class IvpEvents(SimulationMethod):
 
         t = np.concatenate(t_parts) if t_parts else np.zeros(0)
         zz = np.concatenate(z_parts) if z_parts else np.zeros((0, 3))
+        finite_or_raise(self.name, t, zz)
         mm = np.concatenate(m_parts) if m_parts else np.zeros(0, dtype=int)
         return Solution.from_samples(
             params=params,

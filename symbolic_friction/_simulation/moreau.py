@@ -50,13 +50,14 @@ from __future__ import annotations
 
 import math
 from array import array
+from dataclasses import dataclass
 from typing import Any, ClassVar
 
 import numpy as np
 
 from .._errors import SimulationError
 from .._parameters import Parameters
-from ._base import SimulationMethod, Solution, Status
+from ._base import SimulationMethod, Solution, Status, finite_or_raise
 from .friction import FrictionLaw, Step
 
 __all__ = ["Moreau", "step_grid"]
@@ -134,6 +135,7 @@ class _Recorder:
         return t, z, mode
 
 
+@dataclass(frozen=True, kw_only=True)
 class Moreau(SimulationMethod):
     """Implicit (Moreau / catching-up) Euler with the exact set-valued step.
 
@@ -149,8 +151,13 @@ class Moreau(SimulationMethod):
     (5.0, (5001, 3), [(3.615, -1, 0), (4.449, 0, 1)])
     """
 
+    h: float = 1e-3
+    friction: FrictionLaw | None = None
+    max_steps: int = 10_000_000
+
     name: ClassVar[str] = "moreau"
-    options: ClassVar[dict[str, Any]] = {"h": 1e-3, "friction": None, "max_steps": 10_000_000}
+    order: ClassVar[float] = 1.0
+    knob: ClassVar[str | None] = "h"
 
     def _validate(self, options: dict[str, Any]) -> None:
         h = options["h"]
@@ -171,11 +178,17 @@ class Moreau(SimulationMethod):
         self, params: Parameters, z0: np.ndarray, t_end: float, t_eval: np.ndarray | None, options: dict[str, Any]
     ) -> Solution:
         h = float(options["h"])
-        n_steps = step_grid(t_end, h)
-        if n_steps > options["max_steps"]:
+        if h > t_end:
             raise SimulationError(
-                f"h = {h:g} needs {n_steps} steps to reach t_end = {t_end:g}, more than max_steps = {options['max_steps']}"
+                f"option h = {h:g} is larger than the horizon t_end = {t_end:g}: one step would cover it; use h ≤ t_end"
             )
+        if t_end / h > options["max_steps"]:
+            steps = t_end / h  # a count up to 1e12 in full, beyond that in exponent form
+            count = str(step_grid(t_end, h)) if steps < 1e12 else f"{steps:.3g}"
+            raise SimulationError(
+                f"h = {h:g} needs {count} steps to reach t_end = {t_end:g}, more than max_steps = {options['max_steps']}"
+            )
+        n_steps = step_grid(t_end, h)
         k_p, k_i, k_v, f_c = params.as_floats()
         law: FrictionLaw | None = options["friction"]
         if law is not None:
@@ -214,6 +227,7 @@ class Moreau(SimulationMethod):
             prev_mode = mode
             e, s, v = e1, s1, w
         t, z, modes = rec.arrays()
+        finite_or_raise(self.name, t, z)
         return Solution.from_samples(
             params=params,
             method=self.name,

@@ -38,19 +38,22 @@ finder.  scipy is imported only when a simulation runs.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import Any, ClassVar
 
 import numpy as np
 
 from .._errors import SimulationError
 from .._parameters import Parameters
-from ._base import SimulationMethod, Solution, Status
+from ._base import SimulationMethod, Solution, Status, check_rtol, finite_or_raise
 
 __all__ = ["Regularized", "LAWS", "INTEGRATORS", "vector_field"]
 
 LAWS = ("tanh", "sat")
 INTEGRATORS = ("Radau", "BDF", "LSODA")
 _LAYER = {"tanh": 3.0, "sat": 1.0}
+# ε below this multiple of the state's scale is not resolved by float64 (module doc of _solve)
+_RESOLVABLE = 1e3 * 2.220446049250313e-16
 
 
 def _positive_number(options: dict[str, Any], name: str, meaning: str) -> None:
@@ -92,25 +95,28 @@ def vector_field(params: Parameters, epsilon: float, law: str) -> tuple[Any, Any
     return rhs, jac
 
 
+@dataclass(frozen=True, kw_only=True)
 class Regularized(SimulationMethod):
     """``SGN(v) ≈ tanh(v/ε)`` (or ``sat(v/ε)``) integrated by a stiff scipy solver.
 
     See the module docstring for the options and the output conventions.
     """
 
+    epsilon: float = 1e-4
+    law: str = "tanh"
+    rtol: float = 1e-8
+    atol: float = 1e-10
+    integrator: str = "Radau"
+
     name: ClassVar[str] = "regularized"
-    options: ClassVar[dict[str, Any]] = {
-        "epsilon": 1e-4,
-        "law": "tanh",
-        "rtol": 1e-8,
-        "atol": 1e-10,
-        "integrator": "Radau",
-    }
+    order: ClassVar[float] = 1.0
+    knob: ClassVar[str | None] = "epsilon"
 
     def _validate(self, options: dict[str, Any]) -> None:
         _positive_number(options, "epsilon", "the regularization width")
         _positive_number(options, "rtol", "relative tolerance")
         _positive_number(options, "atol", "absolute tolerance")
+        check_rtol(options["rtol"])
         if options["law"] not in LAWS:
             raise SimulationError(f"option law must be one of {', '.join(map(repr, LAWS))}; got {options['law']!r}")
         if options["integrator"] not in INTEGRATORS:
@@ -126,6 +132,15 @@ class Regularized(SimulationMethod):
 
         eps = float(options["epsilon"])
         law = options["law"]
+        # The boundary layer |v| ≤ 3ε must be wider than the rounding of v: below that the
+        # vector field is a discontinuous sign with a zero Jacobian, and the integrator
+        # returns a wrong answer without failing.
+        scale = max(float(np.max(np.abs(z0))), float(params.f_c))
+        if eps < _RESOLVABLE * scale:
+            raise SimulationError(
+                f"option epsilon = {eps:.3g} is below what float64 can resolve for this state "
+                f"(|z0|, f_c up to {scale:.3g}); use epsilon ≥ {_RESOLVABLE * scale:.3g}"
+            )
         layer = _LAYER[law] * eps
         rhs, jac = vector_field(params, eps, law)
 
@@ -135,17 +150,25 @@ class Regularized(SimulationMethod):
         def lower(_t: float, z: np.ndarray) -> float:
             return z[2] + layer
 
-        result = solve_ivp(
-            rhs,
-            (0.0, t_end),
-            np.asarray(z0, dtype=float),
-            method=options["integrator"],
-            t_eval=t_eval,
-            rtol=float(options["rtol"]),
-            atol=float(options["atol"]),
-            jac=jac,
-            events=(upper, lower),
-        )
+        try:
+            with np.errstate(over="raise", invalid="raise"):
+                result = solve_ivp(
+                    rhs,
+                    (0.0, t_end),
+                    np.asarray(z0, dtype=float),
+                    method=options["integrator"],
+                    t_eval=t_eval,
+                    rtol=float(options["rtol"]),
+                    atol=float(options["atol"]),
+                    jac=jac,
+                    events=(upper, lower),
+                )
+        except (FloatingPointError, OverflowError, ValueError):
+            # inf or NaN reached the integrator (scipy raises ValueError on them in its linear algebra)
+            raise SimulationError(
+                "the regularized solution leaves the range of float64 (about ±1.8e308) from z0 = "
+                f"({', '.join(f'{c:g}' for c in z0)}): scale the initial state down"
+            ) from None
         if not result.success:
             raise SimulationError(
                 f"the {options['integrator']} integrator failed at t = {result.t[-1]:g} "
@@ -153,6 +176,7 @@ class Regularized(SimulationMethod):
             )
         t = np.asarray(result.t, dtype=float)
         z = np.asarray(result.y, dtype=float).T
+        finite_or_raise(self.name, t, z)
 
         def mode_of(v: np.ndarray) -> np.ndarray:
             return np.where(v > layer, 1, np.where(v < -layer, -1, 0))
