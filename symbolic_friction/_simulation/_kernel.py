@@ -85,7 +85,11 @@ I_DT, I_CELLS, I_WINDOW = 35, 36, 37
 I_GAIN_KP, I_GAIN_KI = 38, 39  # φ = -k_i e_i - k_p s, for the rounding of φ(0)
 I_TINV = 40  # T⁻¹ of eq. (CoC), 3×3 row-major: z = T⁻¹ x
 I_T = 49  # T of eq. (CoC), 3×3 row-major: x = T z
-K_SIZE = 58
+# A slip that leaves a stick starts at y0 = (σ, 0, 0), so v(τ) = σ w(τ) and its length is
+# the first zero of w, whatever σ: found once per gain set (search.slip_model) within
+# [0, I_STICK_SLIP_H]; +inf if w has no zero there.
+I_STICK_SLIP_T, I_STICK_SLIP_H = 58, 59
+K_SIZE = 60
 
 # -- statuses --------------------------------------------------------------------
 T_END, MAX_EVENTS, EQUILIBRIUM, NONFINITE, BUFFER_FULL = 0, 1, 2, 3, 4
@@ -461,7 +465,17 @@ def trajectory(K, W, N, z0, x0, t_end, max_events, ts, out_x, out_z, out_mode, e
                 if not (_finite(s0, p0, v0) and _finite(b1s, b1p, b1v) and _finite(b2s, b2p, b2v)):
                     status = NONFINITE
                     break
-                found, tau, ys, yp, yv = first_zero(K, W, N, s0, p0, v0, d, t_end - t)
+                horizon = t_end - t
+                if p0 == 0.0 and v0 == 0.0 and K[I_STICK_SLIP_T] <= K[I_STICK_SLIP_H]:
+                    # leaving a stick (rows iii/ix): the slip's length is known for this gain set
+                    tau = K[I_STICK_SLIP_T]
+                    found = tau <= horizon
+                    ys, yp, yv = flow(K, q, min(tau, horizon))
+                elif p0 == 0.0 and v0 == 0.0 and horizon <= K[I_STICK_SLIP_H]:
+                    found, tau = False, horizon  # w has no zero within the cached horizon
+                    ys, yp, yv = flow(K, q, horizon)
+                else:
+                    found, tau, ys, yp, yv = first_zero(K, W, N, s0, p0, v0, d, horizon)
                 if not found:
                     i = _emit(K, q, t, t_end, True, d, sigma, base, offset, ts, i, out_x, out_z, out_mode)
                     t = t_end

@@ -112,6 +112,15 @@ def _pack(expm: MatrixExponential, bounds: SlipBounds, table: ScanTable, f_c: fl
     K[k.I_GAIN_KP], K[k.I_GAIN_KI] = expm.k_p, expm.k_i
     K[k.I_TINV : k.I_TINV + 9] = np.array(coc_inverse_entries(expm.k_p, expm.k_i), dtype=float).reshape(-1)
     K[k.I_T : k.I_T + 9] = np.array(coc_entries(expm.k_p, expm.k_i), dtype=float).reshape(-1)
+    # The length of a slip that leaves a stick: the first zero of w (the slip from y0 = e₁),
+    # searched once, as the kernel would, over 60 time constants of the slowest root (a
+    # later zero would come when the state has decayed by e⁻⁶⁰; past that the kernel searches).
+    beta = math.sqrt(abs(expm.beta2))
+    slowest = min(abs(expm.r), abs(expm.alpha) - beta if expm.beta2 > 0 else abs(expm.alpha))
+    K[k.I_STICK_SLIP_H] = 60.0 / slowest
+    K[k.I_STICK_SLIP_T] = math.inf  # not used while searching for it
+    found, tau, *_ = k.first_zero(K.tolist(), table.values.tolist(), table.noise.tolist(), 1.0, 0.0, 0.0, 1, K[k.I_STICK_SLIP_H])
+    K[k.I_STICK_SLIP_T] = tau if found else math.inf
     return K
 
 

@@ -107,3 +107,21 @@ def test_a_tangency_ends_promptly_and_agrees_with_the_reference(tau0):
     extra = [e for e in sol.events if not any(abs(e[0] - w[0]) <= 1e-10 and e[1:] == w[1:] for w in want)]
     assert all(abs(e[0] - tau0) <= 1e-6 for e in extra) and len(extra) % 2 == 0
     assert len(sol.events) - len(extra) == len(want)
+
+
+@pytest.mark.parametrize("name", ["a", "b", "triple"])
+def test_the_slip_that_leaves_a_stick_has_one_length_per_gain_set(name):
+    """From y0 = (σ, 0, 0) the search gives the cached length, whatever σ (or no zero, for case (b))."""
+    from symbolic_friction._simulation import _kernel as k
+
+    params = Parameters(k_v=3, k_p=3, k_i=1) if name == "triple" else Parameters.table_i(name)
+    model = slip_model(params)
+    cached, valid = model.K[k.I_STICK_SLIP_T], model.K[k.I_STICK_SLIP_H]
+    for sigma in (1e-6, -0.3, 2.0, -7e5):
+        tau, _ = first_zero(model, (sigma, 0.0, 0.0), 1 if sigma > 0 else -1, valid)
+        if np.isinf(cached):
+            assert tau is None
+        else:
+            assert tau == pytest.approx(cached, rel=1e-13)
+    if name == "a":
+        assert 4.0 < cached < 4.3 and valid > 300  # w's first zero; 60 time constants of the slowest root
