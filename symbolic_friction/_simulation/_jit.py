@@ -16,7 +16,9 @@ Which one runs is set by the environment variable ``SYMBOLIC_FRICTION_JIT``:
   which is more than a few single trajectories take in plain Python.  So the
   plain kernel runs until a single call is large (:data:`LARGE_WORK` samples
   and events) or the process has spent :data:`PLAIN_BUDGET` seconds in it, or
-  numba is already imported; from then on the compiled kernel runs.
+  numba is already imported; from then on the compiled kernel runs.  (So
+  ``symbolic-friction check``, whose cross-check self-test is small, never
+  waits for numba to compile on a fresh install.)
 
 Both variants give the same results bit for bit (the tests run both and
 compare), so the choice changes the speed only.  numba is imported only when
@@ -38,8 +40,9 @@ __all__ = ["ENV", "setting", "jit_enabled", "compiled", "plain", "kernel", "vari
 ENV = "SYMBOLIC_FRICTION_JIT"
 _OFF = ("0", "false", "no", "off")
 _ON = ("1", "true", "yes", "on")
-# Seconds the plain kernel may run in a process before the compiled one is loaded.
-PLAIN_BUDGET = 1.0
+# Seconds the plain kernel may run in a process before the compiled one is loaded: a few
+# times numba's warm start (≈ 0.9 s), since its cold start (compiling, ≈ 8 s) may be due.
+PLAIN_BUDGET = 3.0
 # A call with this many samples and events (about 1 s in plain Python) loads the compiled kernel.
 LARGE_WORK = 200_000
 _spent = 0.0
