@@ -353,7 +353,7 @@ def _emit(K, q, t0, t1, final, mode, sigma, base, offset, ts, i, out_x, out_z, o
     m = ts.size
     c = I_TINV
     while i < m and (ts[i] < t1 or (final and ts[i] <= t1)):
-        tau = ts[i] - t0
+        tau = float(ts[i]) - t0  # float(): plain Python on floats, not numpy scalars
         if mode == 0:
             x0, x1, x2 = sigma, base * f_c + (offset + sigma * tau), 0.0
         else:
@@ -417,7 +417,7 @@ def trajectory(K, W, N, z0, x0, t_end, max_events, ts, out_x, out_z, out_mode, e
     t = 0.0
     q = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
     to_x(K, z0, x0)
-    sigma, phi, v = x0[0], x0[1], x0[2]
+    sigma, phi, v = float(x0[0]), float(x0[1]), float(x0[2])
     if not _finite(sigma, phi, v):
         status = NONFINITE
         base, offset, mode = 0, 0.0, 0
@@ -425,7 +425,7 @@ def trajectory(K, W, N, z0, x0, t_end, max_events, ts, out_x, out_z, out_mode, e
         base, offset, mode = 0, phi, (1 if v > 0.0 else -1)
     else:
         # φ = -k_i e_i - k_p s is rounded: a few ulps of its terms
-        tol = SNAP_ULPS * EPS * (K[I_GAIN_KI] * abs(z0[0]) + K[I_GAIN_KP] * abs(z0[1]))
+        tol = SNAP_ULPS * EPS * (K[I_GAIN_KI] * abs(float(z0[0])) + K[I_GAIN_KP] * abs(float(z0[1])))
         base, offset, mode = mode_at_rest(sigma, 0, phi, f_c, tol)
     if status == T_END:
         # grazing contacts continue a slip without an event; bound the loop anyway
