@@ -124,9 +124,10 @@ def _check_t_eval(t_eval: Any, t_end: float) -> np.ndarray | None:
     arr = np.asarray(t_eval, dtype=float)
     if arr.ndim != 1 or arr.size == 0:
         raise SimulationError(f"t_eval must be a non-empty 1-D sequence of times; got shape {arr.shape}")
-    if not np.isfinite(arr.sum()) and not np.isfinite(arr).all():  # the sum is finite for finite times (cheap)
-        raise SimulationError("t_eval must contain only finite times")
-    if arr[0] < 0 or arr[-1] > t_end or (arr[1:] < arr[:-1]).any():
+    # Written so that NaN fails every comparison: nondecreasing within [0, t_end] implies finite.
+    if not (arr[0] >= 0 and arr[-1] <= t_end and (arr[1:] >= arr[:-1]).all()):
+        if not np.isfinite(arr).all():
+            raise SimulationError("t_eval must contain only finite times")
         raise SimulationError(
             f"t_eval must be nondecreasing within [0, t_end] = [0, {t_end:g}]; got range [{arr.min():g}, {arr.max():g}]"
         )

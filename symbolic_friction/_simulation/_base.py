@@ -233,8 +233,12 @@ class SimulationMethod(abc.ABC):
 
     @property
     def options(self) -> dict[str, Any]:
-        """The knobs of this configuration, by name."""
-        return {f.name: getattr(self, f.name) for f in fields(self)}
+        """The knobs of this configuration, by name (a fresh dict)."""
+        names = self.__dict__.get("_names")
+        if names is None:  # the field names, once per instance (frozen: they never change)
+            names = tuple(f.name for f in fields(self))
+            object.__setattr__(self, "_names", names)
+        return {name: getattr(self, name) for name in names}
 
     @abc.abstractmethod
     def _validate(self, options: dict[str, Any]) -> None:
