@@ -26,7 +26,7 @@ fast code.  The obligations here bind those instantiations to the paper:
 * ``model.matrices_runtime`` — the float matrices ``A``, ``b``, ``P``, ``T``,
   ``T⁻¹`` the simulators use equal the symbolic ones.
 * ``model.modes_runtime`` — the simulators' mode selection (exact
-  ``table_row``/``select_mode``, vectorised ``select_modes``, and the
+  ``table_row``/``select_mode``, and the
   ``mode_at_rest``/``mode_after_slip`` the event-driven kernel calls, with
   ``φ`` kept as a boundary plus an offset) equals the appendix table that
   ``claim1.cases`` proves, at a point of every one of its 45 classes.
@@ -56,7 +56,7 @@ from .._coordinates import input_vector, system_matrix, x_to_z, z_to_x
 from .._lyapunov import V, V_hat, V_hat_rate, in_R, lyapunov_matrix, quadratic_form
 from .._parameters import Parameters
 from .._simulation._kernel import mode_after_slip
-from .._simulation.modes import mode_at_rest, select_mode, select_modes, table_row
+from .._simulation.modes import mode_at_rest, select_mode, table_row
 from ._base import Obligation, Outcome
 from ._decide import G, Undecided, decide, is_zero, latex, minimum_on, resolve_piecewise, sign_of
 from ._inequalities import Case, case_grid, line_cases, phi_cases, sign_cases
@@ -453,7 +453,6 @@ class ModesSubject:
     rows: tuple[Any, ...]
     table_row: Callable[..., str]
     select_mode: Callable[..., int]
-    select_modes: Callable[..., Any]
     mode_at_rest: Callable[..., Any]
     mode_after_slip: Callable[..., Any]
     f_c: Fraction
@@ -476,7 +475,7 @@ def _classes(point: tuple[Fraction, Fraction, Fraction], f_c: Fraction) -> tuple
 class ModesRuntime(Obligation):
     id = "model.modes_runtime"
     paper = "Claim 1; Appendix (table of cases (i)-(xi))"
-    statement = "the simulators' mode selection (table_row/select_mode, select_modes, mode_at_rest at tolerance 0 from every boundary base, and mode_after_slip at the end of a slip in either direction) gives the row and k of the table that claim1.cases proves, in every class"
+    statement = "the simulators' mode selection (table_row/select_mode, mode_at_rest at tolerance 0 from every boundary base, and mode_after_slip at the end of a slip in either direction) gives the row and k of the table that claim1.cases proves, in every class"
     method = "a dyadic point in each of the 45 sign/φ classes (every boundary included), compared with =="
 
     def derive(self) -> ModesSubject:
@@ -485,7 +484,6 @@ class ModesRuntime(Obligation):
             rows=table_rows(sp.Rational(f_c)),
             table_row=table_row,
             select_mode=select_mode,
-            select_modes=select_modes,
             mode_at_rest=mode_at_rest,
             mode_after_slip=mode_after_slip,
             f_c=f_c,
@@ -493,10 +491,8 @@ class ModesRuntime(Obligation):
         )
 
     def verify(self, subject: ModesSubject) -> Outcome:
-        arr = np.array([[float(c) for c in p] for p in subject.points])
-        vectorised = np.asarray(subject.select_modes(arr[:, 0], arr[:, 1], arr[:, 2], float(subject.f_c)))
         seen: set[str] = set()
-        for i, point in enumerate(subject.points):
+        for point in subject.points:
             v_class, phi_class, sigma_class = _classes(point, subject.f_c)
             rows = [
                 r for r in subject.rows
@@ -513,8 +509,6 @@ class ModesRuntime(Obligation):
             k = subject.select_mode(*point, subject.f_c)
             if k != row.k:
                 return Outcome.fail(f"{where}: select_mode gives k = {k}, row ({row.label}) has k = {row.k}")
-            if int(vectorised[i]) != row.k:
-                return Outcome.fail(f"{where}: select_modes (floats) gives k = {int(vectorised[i])}, row ({row.label}) has k = {row.k}")
             if point[2] != 0:
                 continue
             # at rest the simulators keep φ = base·f_c + offset; with tol = 0 every base must give the row's k
@@ -543,10 +537,9 @@ class ModesRuntime(Obligation):
 
 @dataclass(frozen=True)
 class PNormSubject:
-    """The simulators' written-out ``|y|_P`` (scalar and vectorised) and the package's quadratic form."""
+    """The simulation kernel's written-out ``|y|_P`` and the package's quadratic form."""
 
     p_norm: Callable[..., float]
-    p_norm_vec: Callable[..., Any]
     weights: tuple[float, float]
     params: Parameters
     points: tuple[tuple[Fraction, Fraction, Fraction], ...]
@@ -555,32 +548,28 @@ class PNormSubject:
 class PNormRuntime(Obligation):
     id = "model.P_norm_runtime"
     paper = "eq. (lyapLikeP); eq. (dVdt) (|y|_P is nonincreasing along a slip)"
-    statement = "the certified root search's written-out |y|_P (scalar and vectorised) squares to the package's (σ, φ, v)P(σ, φ, v)ᵀ"
+    statement = "the certified root search's written-out |y|_P squares to the package's (σ, φ, v)P(σ, φ, v)ᵀ"
     method = "evaluate at a dyadic point of every class (63 points, gains dyadic) against the exact form; a float square root is compared to within 4 ulps"
 
     def derive(self) -> PNormSubject:
         from .._simulation.affine import MatrixExponential
-        from .._simulation.search import p_norm, p_norm_vec, p_weights
+        from .._simulation.search import p_norm, p_weights
 
         return PNormSubject(
             p_norm=p_norm,
-            p_norm_vec=p_norm_vec,
             weights=p_weights(MatrixExponential.from_params(INSTANCE)),
             params=INSTANCE,
             points=instance_points(),
         )
 
     def verify(self, subject: PNormSubject) -> Outcome:
-        arr = np.array([[float(c) for c in p] for p in subject.points])
-        vec = np.asarray(subject.p_norm_vec(arr[:, 0], arr[:, 1], arr[:, 2], *subject.weights))
-        for i, point in enumerate(subject.points):
+        for point in subject.points:
             want = quadratic_form(subject.params, *point)
             where = "(" + ", ".join(str(c) for c in point) + ")"
-            for name, got in (("p_norm", subject.p_norm(*(float(c) for c in point), *subject.weights)), ("p_norm_vec", vec[i])):
-                got2 = Fraction(float(got)) ** 2
-                if abs(got2 - want) > 8 * Fraction(2) ** -52 * want:
-                    return Outcome.fail(f"at {where}: {name}² = {float(got2)!r}, the package's |y|²_P = {want}")
-        return Outcome(True, f"scalar and vectorised |y|_P agree with the package's P at {len(subject.points)} points")
+            got2 = Fraction(float(subject.p_norm(*(float(c) for c in point), *subject.weights))) ** 2
+            if abs(got2 - want) > 8 * Fraction(2) ** -52 * want:
+                return Outcome.fail(f"at {where}: p_norm² = {float(got2)!r}, the package's |y|²_P = {want}")
+        return Outcome(True, f"the kernel's |y|_P agrees with the package's P at {len(subject.points)} points")
 
 
 @dataclass(frozen=True)

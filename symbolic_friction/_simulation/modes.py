@@ -35,13 +35,10 @@ from __future__ import annotations
 
 from typing import Any
 
-import numpy as np
-
 __all__ = [
     "TABLE",
     "table_row",
     "select_mode",
-    "select_modes",
     "mode_at_rest",
 ]
 
@@ -102,17 +99,6 @@ def select_mode(sigma: Any, phi: Any, v: Any, f_c: Any) -> int:
     (1, 0, -1)
     """
     return _MODE_OF_ROW[table_row(sigma, phi, v, f_c)]
-
-
-def select_modes(sigma: Any, phi: Any, v: Any, f_c: float) -> np.ndarray:
-    """Vectorised :func:`select_mode` for float arrays (broadcast), as ``int8``."""
-    sigma, phi, v = np.broadcast_arrays(np.asarray(sigma, float), np.asarray(phi, float), np.asarray(v, float))
-    on_zero = v == 0
-    at_plus = on_zero & (phi == f_c)
-    at_minus = on_zero & (phi == -f_c)
-    plus = (v > 0) | (on_zero & (phi > f_c)) | (at_plus & (sigma > 0))
-    minus = (v < 0) | (on_zero & (phi < -f_c)) | (at_minus & (sigma < 0))
-    return plus.astype(np.int8) - minus.astype(np.int8)
 
 
 def mode_at_rest(sigma: float, base: int, offset: float, f_c: float, tol: float) -> tuple[int, float, int]:

@@ -45,7 +45,7 @@ from .._lyapunov import lyapunov_matrix_entries
 from .._parameters import Parameters
 from .affine import MatrixExponential, ScanTable, SlipBounds  # noqa: F401 (ScanTable in annotations)
 
-__all__ = ["SlipModel", "slip_model", "first_zero", "p_norm", "p_norm_vec", "UNDERFLOW"]
+__all__ = ["SlipModel", "slip_model", "first_zero", "p_norm", "UNDERFLOW"]
 
 # A slip that has decayed to within this (absolute) distance of its equilibrium
 # x*_k = (0, k f_c, 0), a point of 𝒜, cannot be followed further in double
@@ -152,14 +152,6 @@ def p_norm(s: float, p: float, v: float, kv_ki: float, k_p: float) -> float:
         return m
     s, p, v = s / m, p / m, v / m
     return m * math.sqrt(max(kv_ki * s * s - 2.0 * s * v + k_p * v * v + p * p, 0.0))
-
-
-def p_norm_vec(s: np.ndarray, p: np.ndarray, v: np.ndarray, kv_ki: float, k_p: float) -> np.ndarray:
-    """Vectorised :func:`p_norm`."""
-    m = np.maximum(np.maximum(np.abs(s), np.abs(p)), np.abs(v))
-    safe = np.where(m > 0.0, m, 1.0)
-    s, p, v = s / safe, p / safe, v / safe
-    return m * np.sqrt(np.maximum(kv_ki * s * s - 2.0 * s * v + k_p * v * v + p * p, 0.0))
 
 
 def first_zero(

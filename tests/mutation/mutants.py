@@ -98,8 +98,6 @@ MUTANTS: tuple[Mutant, ...] = (
            equivalent="at y = lo both versions return lo (= y): the value is the same for every y"),
     Mutant("kinds.float_sign_zero", "model", _K, "        return np.sign(y)", "        return np.sign(y) * (y != 0)",
            "the float sign multiplied by [y ≠ 0]", equivalent="np.sign(0) = 0 already, so the factor changes no value"),
-    Mutant("modes.vectorised_boundary", "model", _M, "(at_plus & (sigma > 0))", "(at_plus & (sigma >= 0))",
-           "select_modes sends row (iv) (an equilibrium) to slip"),
     Mutant("modes.at_rest", "model", _M, "return -1, 0.0 * offset, -1 if sigma < 0 else 0  # rows (vii), (viii), (ix)",
            "return -1, 0.0 * offset, -1 if sigma <= 0 else 0  # rows (vii), (viii), (ix)", "mode_at_rest sends row (viii) to slip"),
     Mutant("modes.table_row", "model", _M, 'return "iii" if sigma > 0 else "iv" if sigma == 0 else "v"',

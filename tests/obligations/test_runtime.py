@@ -206,17 +206,6 @@ def test_modes_wrong_boundary_fails(modes_runtime):
     assert_fails(ob, dataclasses.replace(s, select_mode=select_mode), "select_mode gives k = -1", "row (v)")
 
 
-def test_modes_vectorised_strict_boundary_fails(modes_runtime):
-    ob, s = modes_runtime
-
-    def select_modes(sigma, phi, v, f_c):
-        k = np.asarray(s.select_modes(sigma, phi, v, f_c)).copy()
-        k[(v == 0) & (phi == f_c) & (sigma > 0)] = 0  # row (iii) as stick
-        return k
-
-    assert_fails(ob, dataclasses.replace(s, select_modes=select_modes), "select_modes", "row (iii)")
-
-
 def test_modes_unreached_row_fails(modes_runtime):
     ob, s = modes_runtime
     few = tuple(p for p in s.points if p[2] != 0)
@@ -230,12 +219,6 @@ def test_pnorm_sign_flip_fails(pnorm_runtime):
         return float(np.sqrt(kv_ki * sv * sv + 2.0 * sv * v + k_p * v * v + p * p))
 
     assert_fails(ob, dataclasses.replace(s, p_norm=wrong), "p_norm²")
-
-
-def test_pnorm_vectorised_swapped_weights_fail(pnorm_runtime):
-    ob, s = pnorm_runtime
-    vec = s.p_norm_vec
-    assert_fails(ob, dataclasses.replace(s, p_norm_vec=lambda sv, p, v, a, b: vec(sv, p, v, b, a)), "p_norm_vec²")
 
 
 def test_modes_at_rest_strict_boundary_fails(modes_runtime):

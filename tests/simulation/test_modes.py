@@ -13,7 +13,6 @@ from symbolic_friction._simulation.modes import (
     TABLE,
     mode_at_rest,
     select_mode,
-    select_modes,
     table_row,
 )
 
@@ -66,18 +65,6 @@ def test_agrees_with_the_independent_reference_table_on_a_grid():
     phis = [F_C * c for c in (F(-2), F(-1), F(-1, 2), F(0), F(1, 2), F(1), F(2))]
     for sigma, phi, v in itertools.product(values, phis, [F(-1), F(0), F(1)]):
         assert select_mode(sigma, phi, v, F_C) == reference_table_mode(sigma, phi, v, F_C), (sigma, phi, v)
-
-
-def test_vectorised_selection_matches_the_scalar_one():
-    rng = np.random.default_rng(0)
-    f_c = 1.5
-    sigma = rng.choice([-1.0, 0.0, 1.0, 1e-300], size=500) * rng.uniform(0.5, 2, size=500)
-    phi = rng.choice([-f_c, f_c, 0.3, -2.0, 2.0, np.nextafter(f_c, 0)], size=500)
-    v = rng.choice([0.0, 0.0, 1e-12, -3.0], size=500)
-    got = select_modes(sigma, phi, v, f_c)
-    want = [select_mode(a, b, c, f_c) for a, b, c in zip(sigma, phi, v)]
-    assert got.dtype == np.int8
-    assert got.tolist() == want
 
 
 def test_mode_at_rest_without_tolerance_is_the_exact_table():
