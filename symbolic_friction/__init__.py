@@ -127,6 +127,12 @@ _LAZY: dict[str, str] = {
     "IvpEvents": "._simulation.ivp_events",
 }
 
+# public submodules (imported lazily): name -> private module
+_MODULES: dict[str, str] = {
+    # the paper's model in sympy, for symbolic gains: gains(), A, A_z, b, P, T, T_inv, K_hat, dz, sat
+    "symbolic": "._symbolic",
+}
+
 __all__ = [
     "__version__",
     "Parameters",
@@ -149,10 +155,15 @@ __all__ = [
     "UnprovedCertificateError",
     "UsageError",
     *_LAZY,
+    *_MODULES,
 ]
 
 
 def __getattr__(name: str) -> Any:
+    if name in _MODULES:
+        value = importlib.import_module(_MODULES[name], __name__)
+        globals()[name] = value
+        return value
     module = _LAZY.get(name)
     if module is None:
         raise AttributeError(f"module 'symbolic_friction' has no attribute {name!r}")

@@ -762,7 +762,7 @@ class HatVDerivative(Obligation):
         details += [
             ("\\text{derived from } \\hat V^\\circ \\le 0 \\text{ (necessary and sufficient)}", rows_latex(deriv_rows)),
             ("\\text{derived from } K \\succ 0", f"{latex(definiteness.expr)} > 0" if definiteness else "-"),
-            ("\\text{stated (\\_kconditions, as in the paper)}", rows_latex([f"{latex(c.lhs)} > {latex(c.rhs)}" for c in s.stated])),
+            ("\\text{stated in the paper}", rows_latex([f"{latex(c.lhs)} > {latex(c.rhs)}" for c in s.stated])),
         ]
         comparison = []
         for key, d in sorted(derived_map.items(), key=lambda kv: sp.default_sort_key(kv[0])):
