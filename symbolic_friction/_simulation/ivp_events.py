@@ -12,7 +12,7 @@ Each mode of Lemma 1 / Claim 1 is an ODE in ``z = (e_i, s, v)``:
 
 At the start and after every terminal event ``v`` is set to 0 exactly (after
 a slip) and the next mode is chosen from the state by the appendix's table
-(Claim 1): ``v = 0`` and ``φ > f_c``, or ``φ = f_c`` with ``σ > 0`` → ``+1``;
+(Claim 1, the package's :func:`.modes.select_mode`, applied to floats): ``v = 0`` and ``φ > f_c``, or ``φ = f_c`` with ``σ > 0`` → ``+1``;
 ``φ < -f_c``, or ``φ = -f_c`` with ``σ < 0`` → ``-1``; otherwise stick.  A
 stick with ``σ = 0`` (``s = 0``) inside ``|φ| ≤ f_c`` is an equilibrium of
 𝒜 and ends the run (status ``"at an equilibrium"``).  Because the table is
@@ -51,28 +51,13 @@ import numpy as np
 
 from .._errors import SimulationError
 from .._parameters import Parameters
+from .._coordinates import coc_entries, input_vector_entries, z_system_matrix_entries
 from ._base import SimulationMethod, Solution, Status, check_rtol, finite_or_raise
+from .modes import select_mode
 
-__all__ = ["IvpEvents", "INTEGRATORS", "table_mode"]
+__all__ = ["IvpEvents", "INTEGRATORS"]
 
 INTEGRATORS = ("DOP853", "RK45", "Radau", "BDF", "LSODA")
-
-
-def table_mode(sigma: float, phi: float, v: float, f_c: float) -> int:
-    """Mode ``k`` selected by the appendix table of Claim 1 (rows i–xi).
-
-    Written here from the table, independently of the ``event`` method's
-    selection, as a do-it-yourself user would.
-    """
-    if v > 0:
-        return 1  # (i)
-    if v < 0:
-        return -1  # (xi)
-    if phi > f_c or (phi == f_c and sigma > 0):
-        return 1  # (ii), (iii)
-    if phi < -f_c or (phi == -f_c and sigma < 0):
-        return -1  # (x), (ix)
-    return 0  # (iv)-(viii)
 
 
 def _check_positive(options: dict[str, Any], name: str) -> None:
@@ -118,10 +103,22 @@ class IvpEvents(SimulationMethod):
         integrator = options["integrator"]
         max_events = int(options["max_events"])
 
+        # The package's one model: A_δ and b of eq. (xPhDot), the rows of T (eq. CoC) that give
+        # σ = t_σ·z and φ = t_φ·z, and the appendix's table (modes.select_mode).
+        a_z = np.array(z_system_matrix_entries(k_p, k_i, k_v), dtype=float)
+        b = np.array(input_vector_entries(f_c), dtype=float)
+        t_sigma, t_phi, _ = (tuple(float(c) for c in row) for row in coc_entries(k_p, k_i))
+
+        def phi_of(z: np.ndarray) -> float:
+            return t_phi[0] * z[0] + t_phi[1] * z[1] + t_phi[2] * z[2]
+
+        def mode_of(z: np.ndarray) -> int:
+            sigma = t_sigma[0] * z[0] + t_sigma[1] * z[1] + t_sigma[2] * z[2]
+            return select_mode(sigma, phi_of(z), z[2], f_c)
+
         def slip_rhs(sign: float):
             def rhs(_t: float, z: np.ndarray) -> np.ndarray:
-                e, s, v = z
-                return np.array([s, v, -k_i * e - k_p * s - k_v * v - sign * f_c])
+                return a_z @ z - sign * b
 
             return rhs
 
@@ -132,10 +129,10 @@ class IvpEvents(SimulationMethod):
             return z[2]
 
         def phi_up(_t: float, z: np.ndarray) -> float:
-            return -k_i * z[0] - k_p * z[1] - f_c
+            return phi_of(z) - f_c
 
         def phi_down(_t: float, z: np.ndarray) -> float:
-            return -k_i * z[0] - k_p * z[1] + f_c
+            return phi_of(z) + f_c
 
         for fn in (v_zero, phi_up, phi_down):
             fn.terminal = True  # type: ignore[attr-defined]
@@ -146,7 +143,7 @@ class IvpEvents(SimulationMethod):
         events: list[tuple[float, int, int]] = []
         t0 = 0.0
         z = np.asarray(z0, dtype=float).copy()
-        mode = table_mode(-k_i * z[1], -k_i * z[0] - k_p * z[1], z[2], f_c)
+        mode = mode_of(z)
         status = Status.T_END
         k_eval = 0  # next t_eval index
         segments = 0
@@ -201,7 +198,7 @@ class IvpEvents(SimulationMethod):
             z = seg.y[:, -1].copy()
             if mode != 0:
                 z[2] = 0.0  # the event found v = 0; make it exact
-            new_mode = table_mode(-k_i * z[1], -k_i * z[0] - k_p * z[1], z[2], f_c)
+            new_mode = mode_of(z)
             if mode == 0 and new_mode == 0:
                 # The event fired on |φ| = f_c but rounding left |φ| a hair inside:
                 # leave stick in the direction the edge was crossed (rows iii / ix).
