@@ -44,6 +44,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from .._errors import SimulationError
+from .._coordinates import input_vector_entries, z_system_matrix_entries
 from .._parameters import Parameters
 from ._base import SimulationMethod, Solution, Status, check_rtol, finite_or_raise
 
@@ -85,12 +86,17 @@ def vector_field(params: Parameters, epsilon: float, law: str) -> tuple[Any, Any
         def dpsi(v: float) -> float:
             return 1.0 / eps if abs(v) < eps else 0.0
 
+    # the package's A_δ and b (eq. xPhDot), with SGN(v) replaced by ψ(v)
+    a_z = np.array(z_system_matrix_entries(k_p, k_i, k_v), dtype=float)
+    b = np.array(input_vector_entries(f_c), dtype=float)
+
     def rhs(_t: float, z: np.ndarray) -> np.ndarray:
-        e, s, v = z
-        return np.array([s, v, -k_i * e - k_p * s - k_v * v - f_c * psi(v)])
+        return a_z @ z - b * psi(z[2])
 
     def jac(_t: float, z: np.ndarray) -> np.ndarray:
-        return np.array([[0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [-k_i, -k_p, -k_v - f_c * dpsi(z[2])]])
+        out = a_z.copy()
+        out[:, 2] -= b * dpsi(z[2])
+        return out
 
     return rhs, jac
 
