@@ -18,7 +18,7 @@ import numpy as np
 
 from .._errors import SimulationError
 from .._parameters import Parameters
-from ._trajectories import Status, Trajectories
+from ._trajectories import AlongStates, Status, Trajectories
 
 __all__ = ["Solution", "SimulationMethod", "Status", "RTOL_FLOOR", "check_rtol", "finite_or_raise"]
 
@@ -47,7 +47,7 @@ def finite_or_raise(method: str, t: np.ndarray, z: np.ndarray) -> None:
         )
 
 
-class Solution:
+class Solution(AlongStates):
     """One simulated solution: a view of one row of a :class:`.Trajectories`.
 
     Attributes
@@ -171,27 +171,6 @@ class Solution:
     @property
     def t_stop(self) -> float:
         return float(self.trajectories.t_stop[self.index])
-
-    # -- the paper's functions along the solution ------------------------------------
-    @cached_property
-    def V(self) -> np.ndarray:
-        """``V(x(t))`` of eq. (lyapLike), shape (n,)."""
-        from .._lyapunov import V
-
-        return V(self.params, self.x)
-
-    @cached_property
-    def distance(self) -> np.ndarray:
-        """``|x(t)|_𝒜``, shape (n,)."""
-        from .._attractor import distance_x
-
-        return distance_x(self.params, self.x)
-
-    def V_hat(self, k: tuple[Any, Any, Any, Any]) -> np.ndarray:
-        """``V̂(x(t))`` of eq. (Vhat) for constants ``k = (k1, k2, k3, k4)``."""
-        from .._lyapunov import V_hat
-
-        return V_hat(self.params, self.x, k)
 
     def __repr__(self) -> str:
         return f"Solution(method={self.method!r}, samples={self.t.size}, events={len(self.events)}, status={self.status!r})"

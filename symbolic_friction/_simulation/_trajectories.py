@@ -19,7 +19,7 @@ import numpy as np
 from .._errors import SimulationError
 from .._parameters import Parameters
 
-__all__ = ["Trajectories", "Status"]
+__all__ = ["Trajectories", "Status", "AlongStates"]
 
 _ONE_EMPTY_LABEL = np.array([""], dtype=object)
 _ONE_EMPTY_LABEL.flags.writeable = False
@@ -40,8 +40,37 @@ class Status:
     COMPLETE = (T_END, EQUILIBRIUM)
 
 
+class AlongStates:
+    """The paper's functions along the states ``self.x`` (shape ``(…, 3)``) of ``self.params``.
+
+    Shared by :class:`Trajectories` (shape ``(N, m)``) and its one-row view
+    :class:`~._base.Solution` (shape ``(n,)``); each evaluates the package's
+    one definition (:mod:`.._lyapunov`, :mod:`.._attractor`).
+    """
+
+    @cached_property
+    def V(self) -> np.ndarray:
+        """``V(x(t))`` of eq. (lyapLike)."""
+        from .._lyapunov import V
+
+        return V(self.params, self.x)
+
+    @cached_property
+    def distance(self) -> np.ndarray:
+        """``|x(t)|_𝒜`` of eq. (distFromA)."""
+        from .._attractor import distance_x
+
+        return distance_x(self.params, self.x)
+
+    def V_hat(self, k: tuple[Any, Any, Any, Any]) -> np.ndarray:
+        """``V̂(x(t))`` of eq. (Vhat) for constants ``k = (k1, k2, k3, k4)``."""
+        from .._lyapunov import V_hat
+
+        return V_hat(self.params, self.x, k)
+
+
 @dataclass(frozen=True, eq=False)
-class Trajectories:
+class Trajectories(AlongStates):
     """``N`` simulated solutions on common sample times ``t``.
 
     Attributes
@@ -204,27 +233,6 @@ class Trajectories:
             x0=np.concatenate([p.x0 for p in parts]),
             source=np.concatenate([p.source for p in parts]),
         )
-
-    # -- the paper's functions along the trajectories ---------------------------
-    @cached_property
-    def V(self) -> np.ndarray:
-        """``V(x(t))`` of eq. (lyapLike), shape (N, m)."""
-        from .._lyapunov import V
-
-        return V(self.params, self.x)
-
-    @cached_property
-    def distance(self) -> np.ndarray:
-        """``|x(t)|_𝒜``, shape (N, m)."""
-        from .._attractor import distance_x
-
-        return distance_x(self.params, self.x)
-
-    def V_hat(self, k: tuple[Any, Any, Any, Any]) -> np.ndarray:
-        """``V̂(x(t))`` of eq. (Vhat) for constants ``k = (k1, k2, k3, k4)``, shape (N, m)."""
-        from .._lyapunov import V_hat
-
-        return V_hat(self.params, self.x, k)
 
     # -- one trajectory ----------------------------------------------------------
     def events(self, i: int) -> tuple[tuple[float, int, int], ...]:

@@ -2,26 +2,20 @@
 
 from __future__ import annotations
 
-from fractions import Fraction as F
 
 import numpy as np
 import pytest
 
-from symbolic_friction import Parameters, SimulationError
+from symbolic_friction import SimulationError
 from symbolic_friction._simulation import Status, simulate
 from symbolic_friction._simulation import Trajectories
 from symbolic_friction._simulation.batch import iter_batches, simulate_batch
 
 from ..tolerance import relative_error
+from .gain_sets import GAIN_SETS
 from .reference import Reference
 
-CASES = {
-    "a": Parameters.table_i("a"),
-    "b": Parameters.table_i("b"),
-    "stiff": Parameters(k_v="51.1", k_p="5.3525", k_i="12.8775"),
-    "triple": Parameters(k_v=3, k_p=3, k_i=1),
-    "creep": Parameters(k_v=17, k_p=336, k_i=1746, f_c=F(3828, 4096)),
-}
+CASES = GAIN_SETS
 
 
 def starts(n: int, seed: int) -> np.ndarray:
