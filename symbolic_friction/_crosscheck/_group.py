@@ -30,6 +30,8 @@ class GroupRun:
         self.checker.max_events = max_events
         self.max_events = max_events
         self.count = 0
+        self.search: Any = None
+        """The :class:`~._overshoot.OvershootSearch` of the run (``None`` without the adversary)."""
         self._x0: list[np.ndarray] = []
 
     @property
@@ -90,13 +92,13 @@ class GroupRun:
                 self.evaluate(X[:room], f"adversarial max V̂'/V̂ on R̂ [{cl.label}]", t=t_short, attractivity=False)
             room = budget - self.count
             if room > 0:
-                from ._adversarial import maximise_overshoot
+                from ._overshoot import search_overshoot
 
-                maximise_overshoot(
-                    self.params,
-                    lambda X, label: self.evaluate(X, label),
-                    budget=max(1, min(room, int(0.1 * budget))),
-                    seed=self.seed,
+                # Proposition 1's adversary: direction and scale of x(0), peak refined on the closed form
+                self.search = search_overshoot(
+                    self.params, lambda X, label: self.evaluate(X, label),
+                    budget=max(1, min(room, int(0.1 * budget))), seed=self.seed, t_eval=self.t,
+                    max_events=self.max_events,
                 )
         room = budget - self.count
         if room > 0:

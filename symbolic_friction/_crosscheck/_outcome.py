@@ -87,6 +87,8 @@ class CertificateCheck:
     modes: np.ndarray = field(default=None, repr=False)  # type: ignore[assignment]
     incomplete: int = 0
     proved: bool | None = None
+    overshoot_search: Any = None
+    """The :class:`~._overshoot.OvershootSearch` of the gain set (worst overshoot found per scale), or ``None``."""
 
     @property
     def label(self) -> str:

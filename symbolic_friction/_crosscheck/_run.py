@@ -182,6 +182,15 @@ def crosscheck(
             finite = np.isfinite(ov)
             max_ov = {m: float(ov[finite & (modes == m)].max()) for m in SEARCH_MODES if np.any(finite & (modes == m))}
             best = int(np.nanargmax(np.where(finite, ov, -np.inf))) if np.any(finite) else 0
+            worst = tuple(float(q) for q in run.x0_all[best]) if run.x0_all.size else (0.0, 0.0, 0.0)
+            search = run.search
+            if search is not None and np.any(np.isfinite(search.ratio)):
+                # the peak refined on the closed form can only raise the sampled maximum
+                found = float(search.ratio[search.best])
+                if found > max_ov.get("adversarial", -np.inf):
+                    max_ov["adversarial"] = found
+                if found >= max(max_ov.values()):
+                    worst = tuple(float(q) for q in search.x0[search.best])
             for (cl, source, proved), results in zip(members, run.checker.results()):
                 checks.append(
                     CertificateCheck(
@@ -191,13 +200,14 @@ def crosscheck(
                         trajectories=run.count,
                         horizon=T,
                         max_overshoot=max_ov,
-                        worst_state=tuple(float(q) for q in run.x0_all[best]) if run.x0_all.size else (0.0, 0.0, 0.0),
+                        worst_state=worst,
                         seconds=seconds,
                         overshoots=ov,
                         initial_distance=run.d0_all,
                         modes=modes,
                         incomplete=run.checker.incomplete,
                         proved=proved,
+                        overshoot_search=search,
                     )
                 )
             key = members[0][0].label
