@@ -115,7 +115,8 @@ class Along:
         if batch.t.size > 1 and not np.all(batch.t[1:] > batch.t[:-1]):
             # the chain divides by the time between samples
             raise SimulationError("the cross-check needs strictly increasing sample times")
-        self.batch = batch
+        # not the batch itself: the cache is keyed weakly by it, and a value holding its key would never be freed
+        self.source, self.z0, self.x0, self.t = batch.source, batch.z0, batch.x0, batch.t
         self.params: Parameters = batch.params
         self.k_p, self.k_i, self.k_v, self.f_c = self.params.as_floats()
         self.N = batch.size
@@ -163,7 +164,7 @@ class Along:
     def d0(self) -> np.ndarray:
         from .._attractor import squared_distance_x
 
-        return np.sqrt(squared_distance_x(self.params, self.batch.x0))
+        return np.sqrt(squared_distance_x(self.params, self.x0))
 
     @cached_property
     def off_A(self) -> np.ndarray:
@@ -239,10 +240,9 @@ class Along:
         """A :class:`~._results.Counterexample` on trajectory ``i`` (certificate filled in by the tally)."""
         from ._results import Counterexample
 
-        b = self.batch
         return Counterexample(
-            property=prop, certificate="", trajectory=int(i), source=str(b.source[i]),
-            z0=tuple(float(q) for q in b.z0[i]), x0=tuple(float(q) for q in b.x0[i]), t=float(t),
+            property=prop, certificate="", trajectory=int(i), source=str(self.source[i]),
+            z0=tuple(float(q) for q in self.z0[i]), x0=tuple(float(q) for q in self.x0[i]), t=float(t),
             t_start=None if t_start is None else float(t_start), x=tuple(float(q) for q in x),
             values={k: (float(v) if np.isscalar(v) else v) for k, v in values.items()},
             relative_slack=float(rel), exact=exact,

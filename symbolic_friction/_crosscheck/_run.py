@@ -82,10 +82,10 @@ def _as_claims(items: Iterable[Any], *, require_proved: bool) -> list[tuple[Clai
 def crosscheck(
     certificates: Sequence[Any],
     *,
-    trajectories: int = 10_000,
+    trajectories: int = 100_000,
     seed: int = 0,
     horizon: float | None = None,
-    samples: int = 301,
+    samples: int = 101,
     rtol: float = DEFAULT_RTOL,
     theta: float = DEFAULT_THETA,
     adversarial: bool = True,
