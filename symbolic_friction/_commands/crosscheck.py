@@ -68,6 +68,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="event limit per trajectory; a trajectory reaching it is incomplete (default 10000)")
     parser.add_argument("--iss", action="store_true",
                         help="also estimate Corollary 1's ISS gain (a few seconds per gain set)")
+    parser.add_argument("--iss-search", action="store_true",
+                        help="with --iss: search the selections of SGN_rho for the worst found ultimate bound "
+                             "at rho = 0.01, 0.1, 1 (about a minute per gain set)")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -110,7 +113,8 @@ def _run_crosscheck(crosscheck, files, args):
         theta=args.theta,
         adversarial=not args.no_adversarial,
         decay=args.decay,
-        iss=args.iss,
+        iss=args.iss or args.iss_search,
+        iss_search=("0.01", "0.1", "1") if args.iss_search else (),
         max_events=args.max_events,
     )
 

@@ -108,6 +108,11 @@ def format_report(report: CrosscheckReport) -> str:
             out.append(f"  {law:11s} {rho:8.3g} {g:10.4g} {ga:10.4g} {gt:10.4g} {ev:12d}")
         for law, slope in est.slope.items():
             out.append(f"  {law}: log-log slope of gamma at small rho = {slope:.3f}")
+        for rho, w in sorted(getattr(est, "worst_found", {}).items()):
+            stribeck = ", ".join(f"v_s={v}: {b:.4g}" for v, b in w.stribeck.items())
+            out.append(f"  rho = {rho:g}: worst found {w.bound:.5g} ({w.law}, z(0) = {w.initial_state}); "
+                       f"Stribeck f_s=(1+rho)f_c {stribeck}"
+                       + ("" if w.covers_stribeck else "  SEARCH NOT DONE: a Stribeck law goes higher"))
     out.append("")
     if report.incomplete:
         out.append(

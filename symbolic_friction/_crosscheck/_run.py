@@ -91,6 +91,7 @@ def crosscheck(
     adversarial: bool = True,
     decay: bool = False,
     iss: bool = False,
+    iss_search: tuple = (),
     chunk: int = 1000,
     progress: bool | None = None,
     require_proved: bool = True,
@@ -119,6 +120,9 @@ def crosscheck(
         Run the optimisers (overshoot, pointwise bounds, growth of ``V̂``).
     decay, iss : bool, keyword-only
         Also fit the decay of ``|x|_𝒜`` and estimate Corollary 1's gain.
+    iss_search : tuple of numbers, keyword-only
+        With ``iss``: inflations ``ρ`` at which to search the selections of
+        ``SGN_ρ`` for the worst found ultimate bound (:mod:`._iss_search`).
     chunk : int, keyword-only
         Trajectories simulated and checked at a time (memory bound).
     progress : bool or None, keyword-only
@@ -218,7 +222,7 @@ def crosscheck(
             if iss:
                 from ._iss import iss_gain
 
-                iss_estimates[key] = iss_gain(params)
+                iss_estimates[key] = iss_gain(params, search_rhos=tuple(iss_search))
     finally:
         bar.close()
     return CrosscheckReport(
