@@ -157,6 +157,38 @@ class BatchChecker:
                 tallies[_ATTRACTIVITY].add(rel, np.array([True]), lambda idx, cx=cx: cx)
         self._pending = []
 
+    def add_peaks(self, x0: np.ndarray, t_peak: np.ndarray, x_peak: np.ndarray, d0: np.ndarray,
+                  source: str = "adversarial overshoot (peak refined on the closed form)") -> None:
+        """Check Proposition 1's bound at peaks located between samples (:func:`~._overshoot.refine_peak`).
+
+        The peak states are re-simulated solutions (not counted as new
+        trajectories); each is one more instance of ``prop1.stability``.
+        """
+        from .._attractor import distance_x
+        from .._coordinates import x_to_z
+
+        ok = np.isfinite(t_peak) & (d0 > 0) & np.isfinite(x_peak).all(axis=1)
+        if not np.any(ok):
+            return
+        xp = np.where(ok[:, None], x_peak, 0.0)
+        d = distance_x(self.params, xp)
+        L = np.maximum(np.linalg.norm(xp, axis=1), np.linalg.norm(x0, axis=1)) + float(self.params.f_c)
+        for ci, cl in enumerate(self.claims):
+            rel = (cl.kappa * d0 - d) / L
+
+            def make(idx: tuple[int, ...], rel: np.ndarray = rel, kappa: float = cl.kappa) -> Counterexample:
+                i = idx[0]
+                return Counterexample(
+                    property="prop1.stability", certificate="", trajectory=-1, source=source,
+                    z0=tuple(float(q) for q in x_to_z(self.params, x0[i])), x0=tuple(float(q) for q in x0[i]),
+                    t=float(t_peak[i]), t_start=None, x=tuple(float(q) for q in x_peak[i]),
+                    values={"dist": float(d[i]), "dist0": float(d0[i]), "kappa": kappa,
+                            "observed_ratio": float(d[i] / d0[i]), "scale": float(L[i])},
+                    relative_slack=float(rel[i]),
+                )
+
+            self._tallies[ci]["prop1.stability"].add(rel[:, None], ok[:, None], make, count_trajectories=False)
+
     # -- results ---------------------------------------------------------------------------------
     def results(self) -> list[list[PropertyResult]]:
         """Per certificate, the results in the order of :data:`~._properties.PROPERTIES`."""

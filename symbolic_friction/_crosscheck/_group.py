@@ -100,6 +100,8 @@ class GroupRun:
                     budget=max(1, min(room, int(0.1 * budget))), seed=self.seed, t_eval=self.t,
                     max_events=self.max_events,
                 )
+                s = self.search
+                self.checker.add_peaks(s.x0, s.t_peak, s.x_peak, s.scales * float(self.params.f_c))
         room = budget - self.count
         if room > 0:
             self.evaluate_states(sphere_states(self.params, room, rng))

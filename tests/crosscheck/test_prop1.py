@@ -52,3 +52,27 @@ def test_attractivity_is_resolved_on_a_longer_horizon():
     chk.resolve_attractivity()
     r = {r.id: r for r in chk.results()[0]}["prop1.attractivity"]
     assert r.failures == 0 and r.details["extended"] == 1 and r.details["latest_time_to_theta"] > 20.0
+
+
+def test_a_kappa_broken_only_between_samples_is_caught_at_the_refined_peak():
+    import dataclasses
+
+    from symbolic_friction._crosscheck._overshoot import refine_peak
+
+    p = Parameters.table_i("a")
+    x0 = np.array([[7.838, 1.741, -5.96]])  # peak ≈ 1.318 |x(0)|_A at t ≈ 0.78, between the samples below
+    coarse = np.linspace(0.0, 20.0, 11)
+    b = simulate_batch(p, x_to_z(p, x0), 20.0, t_eval=coarse)
+    cl = Claims.from_certificate(dataclasses.replace(_cert("a"), overshoot_bound="1.25"), label="kappa 1.25")
+    chk = BatchChecker(p, [cl])
+    chk.add(b, attractivity=False)
+    assert _stability(chk).failures == 0  # the grid alone never sees the peak
+    ratio, t_peak, x_peak, d0 = refine_peak(p, x0, t_eval=coarse)
+    chk.add_peaks(x0, t_peak, x_peak, d0)
+    r = _stability(chk)
+    assert r.failures == 1 and r.counterexample.values["observed_ratio"] > 1.3
+    assert 0.5 < r.counterexample.t < 1.0 and "refined" in r.counterexample.source
+
+
+def _stability(chk):
+    return next(r for r in chk.results()[0] if r.id == "prop1.stability")
