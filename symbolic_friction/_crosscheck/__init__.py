@@ -13,6 +13,10 @@ measures how conservative the bounds are:
   :mod:`._checker` loops over them (:mod:`._results`: tallies, counterexamples);
 * :mod:`._initial`, :mod:`._adversarial` — initial states: random spheres,
   grids, special states, and optimisers that try to break the inequalities;
+* :mod:`._overshoot` — the adversary of Proposition 1: the worst overshoot
+  found per scale of ``|x(0)|_𝒜``, peaks located on the closed form;
+* :mod:`._iss_search` — Corollary 1's worst found ultimate bound over the
+  admissible selections of ``SGN_ρ`` (found, never called a worst case);
 * :mod:`._decay` — how ``|x(t)|_𝒜 → 0`` (power law or exponential);
 * :mod:`._iss` — Corollary 1: an empirical ISS gain ``γ(ρ)``;
 * :mod:`._run`, :mod:`._group`, :mod:`._outcome` — :func:`crosscheck`, the driver;
@@ -24,6 +28,9 @@ from __future__ import annotations
 from ._claims import Claims
 from ._decay import DecayFit, decay_fit
 from ._iss import IssEstimate, iss_gain
+from ._iss_search import WorstFound, worst_found
+from ._overshoot import OvershootSearch
+from ._property import Evaluation, Property
 from ._properties import DEFAULT_RTOL, DEFAULT_THETA, PROPERTIES, Counterexample, PropertyResult
 from ._report import format_report, write_counterexamples
 from ._run import CertificateCheck, CrosscheckReport, crosscheck, default_horizon
@@ -43,6 +50,11 @@ __all__ = [
     "DecayFit",
     "iss_gain",
     "IssEstimate",
+    "worst_found",
+    "WorstFound",
+    "OvershootSearch",
+    "Property",
+    "Evaluation",
     "format_report",
     "write_counterexamples",
 ]
