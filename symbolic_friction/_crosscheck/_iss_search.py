@@ -247,7 +247,7 @@ def worst_found(params: Parameters, rho: object, *, initial_states: Any = None, 
         evaluations += len(Z0)
         where[family] = (f"{family} {np.round(res.x, 4).tolist()}", tuple(float(q) for q in Z0[j]))
     candidates["greedy"], j = ultimate_bound(params, InflatedCoulomb(rq), Z0, horizon=horizon, h=h)
-    where["greedy"] = ("greedy (InflatedCoulomb worst-case selection)", tuple(float(q) for q in Z0[j]))
+    where["greedy"] = ("greedy selection (InflatedCoulomb default)", tuple(float(q) for q in Z0[j]))
     evaluations += len(Z0)
     stribeck: dict[str, float] = {}
     f_s = (1 + rq) * params.f_c
