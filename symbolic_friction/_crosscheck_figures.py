@@ -1,12 +1,14 @@
-"""Figures of the cross-check (issue 5): how tight the certified overshoot
+"""Figures of the cross-check: how tight the certified overshoot
 bound κ of Proposition 1 (eq. stabState) is, and the empirical ISS gain of
 Corollary 1.
 
 * :func:`plot_tightness` — observed ``sup_t |x(t)|_𝒜/|x(0)|_𝒜`` of every
   cross-checked trajectory against ``|x(0)|_𝒜``, by search mode, with the
   certified κ of each certificate of the gain set;
-* :func:`plot_iss` — ``γ̂(ρ)`` against ``ρ`` (log–log) for the worst-case
-  inflated law and for Stribeck laws inside it.
+* :func:`plot_iss` — ``γ̂(ρ)`` against ``ρ`` (log–log) for the greedy
+  selection of the inflated law, Stribeck laws inside it, the worst found by
+  the search over selections (never called a worst case: it is not a proved
+  upper bound) and the exact rest point ``ρ f_c/k_i`` (a proved lower bound).
 
 Both are registered for ``symbolic-friction figures`` (names
 ``crosscheck_tightness`` and ``crosscheck_iss``) once this module is listed
@@ -114,16 +116,26 @@ def plot_iss(estimates: Sequence[Any], path: str | Path, *, labels: Sequence[str
         p = est.params
         name = labels[j] if labels else f"k_p={float(p.k_p):g}, k_i={float(p.k_i):g}, k_v={float(p.k_v):g}"
         rho = np.array(est.rhos)
-        for law, ls, marker in (("worst-case", "-", "o"), ("stribeck", "--", "s")):
+        color = colors[j % len(colors)]
+        for law, ls, marker in (("greedy", "-", "o"), ("stribeck", "--", "s")):
             if law not in est.gamma:
                 continue
             g = np.asarray(est.gamma[law])
             m = rho > 0
-            ax.plot(rho[m], g[m], ls=ls, marker=marker, color=colors[j % len(colors)], ms=4,
-                    label=f"{name}: {'SGN_ρ worst case' if law == 'worst-case' else 'Stribeck f_s=(1+ρ)f_c'}")
+            ax.plot(rho[m], g[m], ls=ls, marker=marker, color=color, ms=4,
+                    label=f"{name}: {'SGN_ρ greedy selection' if law == 'greedy' else 'Stribeck f_s=(1+ρ)f_c'}")
             base = est.gamma[law][list(rho).index(0.0)] if 0.0 in list(rho) else None
-            if base is not None and law == "worst-case":
-                ax.axhline(base, color=colors[j % len(colors)], lw=0.6, ls=":")
+            if base is not None and law == "greedy":
+                ax.axhline(base, color=color, lw=0.6, ls=":")
+        found = getattr(est, "worst_found", {}) or {}
+        if found:
+            rf = np.array(sorted(found))
+            ax.plot(rf, [found[r].bound for r in rf], ls="none", marker="*", ms=10, color=color,
+                    label=f"{name}: SGN_ρ worst found (search over selections)")
+        rr = rho[rho > 0]
+        if rr.size:
+            ax.plot(rr, rr * float(p.f_c / p.k_i), lw=0.8, ls=(0, (5, 2)), color=color, alpha=0.6,
+                    label=f"{name}: rest point ρ f_c/k_i (proved lower bound)")
     rr = np.geomspace(1e-3, 1, 20)
     ax.plot(rr, 0.5 * np.sqrt(rr), color="grey", lw=0.8, ls="-.", label=r"$\propto\sqrt{\rho}$")
     ax.plot(rr, 2.0 * rr, color="grey", lw=0.8, ls=(0, (1, 3)), label=r"$\propto\rho$")
@@ -131,7 +143,7 @@ def plot_iss(estimates: Sequence[Any], path: str | Path, *, labels: Sequence[str
     ax.set_yscale("log")
     ax.set_xlabel(r"inflation $\rho$")
     ax.set_ylabel(r"ultimate bound $\hat\gamma(\rho)$ of $|z|_{\mathcal{A}}$")
-    ax.set_title("Corollary 1: empirical ISS gain (dotted: transient left at ρ = 0)", fontsize=9)
+    ax.set_title("Corollary 1: ultimate bounds found, not upper bounds (dotted: transient left at ρ = 0)", fontsize=9)
     ax.legend(fontsize=6.5, loc="lower right")
     fig.tight_layout()
     return _save(fig, Path(path))
@@ -153,5 +165,5 @@ def figure_iss(out: Path) -> list[Path]:
     from ._parameters import Parameters
 
     rhos = ("0", "0.001", "0.003", "0.01", "0.03", "0.1", "0.3", "1")
-    estimates = [iss_gain(Parameters.table_i(c), rhos) for c in ("a", "b")]
+    estimates = [iss_gain(Parameters.table_i(c), rhos, search_rhos=("0.01", "0.1", "1")) for c in ("a", "b")]
     return [plot_iss(estimates, Path(out) / "crosscheck_iss.png", labels=["case (a)", "case (b)"])]

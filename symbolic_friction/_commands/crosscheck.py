@@ -48,13 +48,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
     parser.add_argument("certificates", nargs="*", metavar="CERT",
                         help="certificate JSON files (default: every proofs/*.json)")
-    parser.add_argument("--trajectories", type=_positive_int, default=10_000, metavar="N",
-                        help="trajectories per gain set, shared by its certificates (default 10000)")
+    parser.add_argument("--trajectories", type=_positive_int, default=100_000, metavar="N",
+                        help="trajectories per gain set, shared by its certificates (default 100000)")
     parser.add_argument("--seed", type=int, default=0, help="seed of the random states and optimisers (default 0)")
     parser.add_argument("--horizon", type=_positive_float, default=None, metavar="T",
                         help="simulation horizon (default 20/|Re λ| of the slowest root)")
-    parser.add_argument("--samples", type=_positive_int, default=301, metavar="N",
-                        help="samples per trajectory, plus every event (default 301)")
+    parser.add_argument("--samples", type=_positive_int, default=101, metavar="N",
+                        help="samples per trajectory, plus every event (default 101)")
     parser.add_argument("--rtol", type=_positive_float, default=1e-8,
                         help="relative tolerance of every check (default 1e-8)")
     parser.add_argument("--theta", type=_positive_float, default=0.5,
@@ -68,6 +68,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="event limit per trajectory; a trajectory reaching it is incomplete (default 10000)")
     parser.add_argument("--iss", action="store_true",
                         help="also estimate Corollary 1's ISS gain (a few seconds per gain set)")
+    parser.add_argument("--iss-search", action="store_true",
+                        help="with --iss: search the selections of SGN_rho for the worst found ultimate bound "
+                             "at rho = 0.01, 0.1, 1 (about a minute per gain set)")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -110,7 +113,8 @@ def _run_crosscheck(crosscheck, files, args):
         theta=args.theta,
         adversarial=not args.no_adversarial,
         decay=args.decay,
-        iss=args.iss,
+        iss=args.iss or args.iss_search,
+        iss_search=("0.01", "0.1", "1") if args.iss_search else (),
         max_events=args.max_events,
     )
 

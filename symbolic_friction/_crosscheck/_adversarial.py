@@ -1,10 +1,8 @@
 """Adversarial initial states: optimisers that try to break the certified
 inequalities (scipy.optimize, imported lazily).
 
-* **Overshoot** (Proposition 1, eq. stabState): differential evolution over
-  the initial state in spherical coordinates ``(a, b, log₁₀ r)`` maximises
-  the observed ``sup_t |x(t)|_𝒜 / |x(0)|_𝒜``; every evaluation is a batch
-  of exact simulations, and the best state is polished by shrinking clouds.
+* **Overshoot** (Proposition 1, eq. stabState): see :mod:`._overshoot`
+  (direction and scale of ``x(0)``, peaks refined on the closed form).
 * **Pointwise bounds** (Lemma 2 item 1, eqs. VandR and hatVandHatR): the
   ratios ``V/|x|²_𝒜`` (everywhere, and on ``R``) and ``V̂/|x|²_𝒜`` (on
   ``R̂``) are minimised and maximised over states; the extremal states start
@@ -25,7 +23,7 @@ from .._parameters import Parameters
 from ._claims import Claims
 from ._initial import InitialStates, directions_to_x
 
-__all__ = ["maximise_overshoot", "pointwise_extremes", "hat_V_rate", "LOG_RADIUS"]
+__all__ = ["pointwise_extremes", "rate_maximisers", "hat_V_rate", "LOG_RADIUS"]
 
 LOG_RADIUS = (-2.0, 2.0)
 """Range of ``log₁₀(|x(0)|/f_c)`` searched."""
@@ -144,71 +142,3 @@ def rate_maximisers(params: Parameters, claim: Claims, *, seed: int, count: int 
         found.append((float(res.fun), res.x))
     found.sort(key=lambda q: q[0])
     return _to_x(params, np.array([u for _, u in found]))
-
-
-def maximise_overshoot(
-    params: Parameters,
-    evaluate: Callable[[np.ndarray, str], np.ndarray],
-    *,
-    budget: int,
-    seed: int,
-    cloud: int = 50,
-) -> tuple[np.ndarray, float]:
-    """Search the initial state that maximises ``sup_t |x(t)|_𝒜/|x(0)|_𝒜``.
-
-    Differential evolution (population 60) spends about 70 % of the budget;
-    the rest polishes the best state with shrinking Gaussian clouds of
-    ``cloud`` states around it (each cloud is one batch of simulations,
-    which suits the vectorised simulator better than one-at-a-time
-    Nelder–Mead steps).
-
-    Parameters
-    ----------
-    params : Parameters
-    evaluate : callable
-        ``evaluate(X0, label)`` simulates the states ``X0`` (rows, in ``x``),
-        checks them, and returns their observed overshoots.
-    budget : int
-        Number of trajectories the search may use.
-    seed : int
-    cloud : int
-        States per polishing round.
-
-    Returns
-    -------
-    x_best : ndarray, shape (3,)
-    overshoot : float
-    """
-    popsize = 20
-    pop = popsize * len(_BOUNDS)
-    de_budget = int(0.7 * budget)
-    maxiter = max(0, de_budget // pop - 1)
-    history: list[tuple[float, np.ndarray]] = []
-
-    def obj(U: np.ndarray) -> np.ndarray:
-        ov = evaluate(_to_x(params, U), "adversarial overshoot (DE)")
-        ov = np.where(np.isfinite(ov), ov, 0.0)
-        for u, o in zip(U, ov):
-            history.append((float(o), np.array(u)))
-        return -ov
-
-    if budget >= pop:
-        _de(obj, seed=seed, maxiter=maxiter, popsize=popsize)
-    else:
-        rng0 = np.random.default_rng(seed)
-        obj(np.array([[rng0.uniform(*b) for b in _BOUNDS] for _ in range(max(1, budget // 2))]))
-    best_val, best_u = max(history, key=lambda q: q[0])
-    rng = np.random.default_rng(seed + 1)
-    scale = np.array([0.05, 0.05, 0.05])
-    used = len(history)
-    while used + cloud <= budget:
-        U = best_u[None, :] + scale[None, :] * rng.standard_normal((cloud, 3))
-        ov = evaluate(_to_x(params, U), "adversarial overshoot (polish)")
-        ov = np.where(np.isfinite(ov), ov, 0.0)
-        used += cloud
-        j = int(np.argmax(ov))
-        if ov[j] > best_val:
-            best_val, best_u = float(ov[j]), U[j]
-        else:
-            scale = scale * 0.5
-    return _to_x(params, best_u[None, :])[0], best_val

@@ -15,9 +15,12 @@ solution of the perturbed inclusion (eq. perturbed), whose friction lies in
 (implicit Euler, :mod:`.._simulation.moreau`), as :mod:`.._simulation.friction`
 prescribes for perturbed laws:
 
-* ``"worst-case"``: the inflated law ``SGN_ρ`` with the greedy adversarial
+* ``"greedy"``: the inflated law ``SGN_ρ`` with the greedy adversarial
   selection of :class:`~.._simulation.friction.InflatedCoulomb` (the mass
-  creeps at ``|v| = ρ`` instead of sticking);
+  creeps at ``|v| = ρ`` instead of sticking).  One selection among many, so
+  a lower estimate only: Stribeck friction inside ``SGN_ρ`` goes higher;
+  :mod:`._iss_search` searches the admissible selections for the *worst
+  found* (``search_rhos``);
 * ``"stribeck"``: Stribeck friction with static level ``f_s = (1 + ρ) f_c``
   and Stribeck velocity ``v_s``, whose graph lies inside ``f_c SGN_ρ``
   (Fig. 4; :meth:`~.._simulation.friction.Stribeck.required_rho`); with
@@ -26,7 +29,8 @@ prescribes for perturbed laws:
 The distance is ``|z|_𝒜 = sqrt(s² + v² + dz_{f_c/k_i}(e_i)²)`` of the proof
 of Corollary 1.  Corollary 1 predicts ``γ̂(ρ) → 0`` as ``ρ → 0`` and a
 bounded ``γ̂`` for large ``ρ``; :class:`IssEstimate` records the measured
-curve and its log–log slope at small ``ρ``.
+curve and its log–log slope at small ``ρ``.  Nothing here is an upper
+bound: no curve is called a worst case.
 """
 
 from __future__ import annotations
@@ -53,7 +57,7 @@ class IssEstimate:
     params : Parameters
     rhos : tuple of float
     laws : tuple of str
-        ``"worst-case"`` and/or ``"stribeck"``.
+        ``"greedy"`` and/or ``"stribeck"``.
     gamma : dict
         ``law -> array`` of ``γ̂(ρ)`` (one value per ``ρ``).
     gamma_from_attractor, gamma_tail : dict
@@ -83,6 +87,8 @@ class IssEstimate:
     h: float = 0.0
     v_s: float = 0.0
     initial_states: np.ndarray = field(default=None, repr=False)  # type: ignore[assignment]
+    worst_found: dict = field(default_factory=dict)
+    """``ρ ->`` :class:`~._iss_search.WorstFound` at the searched inflations (``search_rhos``)."""
 
     def rows(self) -> list[tuple[str, float, float, float, float, int]]:
         """``(law, ρ, γ̂, from 𝒜, tail, tail events)`` for every law and ρ."""
@@ -94,15 +100,24 @@ class IssEstimate:
         ]
 
 
+def default_initial_states(params: Parameters) -> np.ndarray:
+    """The two ends and the centre of 𝒜, and three states outside 𝒜 with ``|z(0)|_𝒜`` between 0.5 and 1."""
+    from .._attractor import attractor_bound_z
+
+    e = float(attractor_bound_z(params))
+    return np.array([[e, 0.0, 0.0], [0.0, 0.0, 0.0], [-e, 0.0, 0.0], [e, 0.0, 0.5], [0.0, 0.5, 0.0], [-e, -0.5, 0.5]])
+
+
 def iss_gain(
     params: Parameters,
     rhos=DEFAULT_RHOS,
     *,
-    laws: tuple[str, ...] = ("worst-case", "stribeck"),
+    laws: tuple[str, ...] = ("greedy", "stribeck"),
     initial_states=None,
     horizon: float = 100.0,
     h: float = 5e-3,
     v_s: object = "0.1",
+    search_rhos=(),
 ) -> IssEstimate:
     """Estimate ``γ(ρ)`` of Corollary 1 by simulation (see the module docstring).
 
@@ -111,7 +126,7 @@ def iss_gain(
     params : Parameters
     rhos : sequence of numbers
         Inflations ``ρ ≥ 0`` (kept exact when given as strings).
-    laws : tuple of {"worst-case", "stribeck"}, keyword-only
+    laws : tuple of {"greedy", "stribeck"}, keyword-only
     initial_states : array_like, shape (m, 3), optional, keyword-only
         ``z(0)`` rows; default: the two ends and the centre of 𝒜, and three
         states outside 𝒜 with ``|z(0)|_𝒜`` between 0.5 and 1.
@@ -119,6 +134,9 @@ def iss_gain(
         Horizon ``T`` (the tail is ``[T/2, T]``) and the Moreau step.
     v_s : number, keyword-only
         Stribeck velocity.
+    search_rhos : sequence of numbers, keyword-only
+        Inflations at which to search the selections of ``SGN_ρ`` for the
+        worst found (:func:`~._iss_search.worst_found`, tens of seconds each).
 
     Raises
     ------
@@ -131,20 +149,15 @@ def iss_gain(
     from .._simulation import simulate
     from .._simulation.friction import InflatedCoulomb, Stribeck
 
-    unknown = [law for law in laws if law not in ("worst-case", "stribeck")]
+    unknown = [law for law in laws if law not in ("greedy", "stribeck")]
     if unknown:
-        raise ParameterError(f"unknown friction law(s) {unknown!r}; expected 'worst-case' and/or 'stribeck'")
+        raise ParameterError(f"unknown friction law(s) {unknown!r}; expected 'greedy' and/or 'stribeck'")
     rq = [to_rational(r, name="rho") for r in rhos]
     for r in rq:
         if r < 0:
             raise ParameterError(f"rho must be ≥ 0; got rho = {r}")
     if initial_states is None:
-        from .._attractor import attractor_bound_z
-
-        e = float(attractor_bound_z(params))
-        initial_states = np.array(
-            [[e, 0.0, 0.0], [0.0, 0.0, 0.0], [-e, 0.0, 0.0], [e, 0.0, 0.5], [0.0, 0.5, 0.0], [-e, -0.5, 0.5]]
-        )
+        initial_states = default_initial_states(params)
     Z0 = np.asarray(initial_states, dtype=float).reshape(-1, 3)
     f_c_q = params.f_c
     gamma: dict[str, np.ndarray] = {}
@@ -158,7 +171,7 @@ def iss_gain(
         gt = np.zeros(len(rq))
         hunt = np.zeros(len(rq), dtype=int)
         for j, rho in enumerate(rq):
-            if law_name == "worst-case":
+            if law_name == "greedy":
                 law = InflatedCoulomb(rho)
             else:
                 law = Stribeck(f_s=(1 + rho) * f_c_q, v_s=to_rational(v_s, name="v_s"))
@@ -179,6 +192,13 @@ def iss_gain(
         if len(pos) >= 2:
             (r0, g0), (r1, g1) = pos[0], pos[1]
             slope[law_name] = float(np.log(g1 / g0) / np.log(r1 / r0))
+    found = {}
+    if search_rhos:
+        from ._iss_search import worst_found
+
+        for r in search_rhos:
+            w = worst_found(params, r, initial_states=Z0, horizon=horizon, h=h)
+            found[w.rho] = w
     return IssEstimate(
         params=params,
         rhos=tuple(float(r) for r in rq),
@@ -192,4 +212,5 @@ def iss_gain(
         h=float(h),
         v_s=float(Fraction(to_rational(v_s, name="v_s"))),
         initial_states=Z0,
+        worst_found=found,
     )

@@ -62,6 +62,15 @@ def format_check(check: CertificateCheck) -> str:
         lines.append(
             f"  tightness ratio {tight['all']:.4f} at x(0) = ({w[0]:.6g}, {w[1]:.6g}, {w[2]:.6g})"
         )
+    search = check.overshoot_search
+    if search is not None:
+        from ._overshoot import linear_limit
+
+        lin, t_lin = linear_limit(cl.params)
+        lines.append(f"  adversary (differential evolution with restarts, {search.evaluations} trajectories; peak refined "
+                     f"on the closed form): worst found per scale |x(0)|_A/f_c")
+        lines.append("    " + "  ".join(f"{s:.3g}: {r:.4f}" for s, r in zip(search.scales, search.ratio)))
+        lines.append(f"  {search.describe(cl.kappa)}; friction-free limit sup_t |e^(At)| = {lin:.6f} at t = {t_lin:.4g}")
     att = next((r for r in check.results if r.id == "prop1.attractivity"), None)
     if att is not None and att.details:
         d = att.details
@@ -99,6 +108,11 @@ def format_report(report: CrosscheckReport) -> str:
             out.append(f"  {law:11s} {rho:8.3g} {g:10.4g} {ga:10.4g} {gt:10.4g} {ev:12d}")
         for law, slope in est.slope.items():
             out.append(f"  {law}: log-log slope of gamma at small rho = {slope:.3f}")
+        for rho, w in sorted(getattr(est, "worst_found", {}).items()):
+            stribeck = ", ".join(f"v_s={v}: {b:.4g}" for v, b in w.stribeck.items())
+            out.append(f"  rho = {rho:g}: worst found {w.bound:.5g} ({w.law}, z(0) = {w.initial_state}); "
+                       f"Stribeck f_s=(1+rho)f_c {stribeck}"
+                       + ("" if w.covers_stribeck else "  SEARCH NOT DONE: a Stribeck law goes higher"))
     out.append("")
     if report.incomplete:
         out.append(

@@ -39,7 +39,11 @@ _S = "symbolic_friction/_simulation/search.py"
 _KC = "symbolic_friction/_kconditions.py"
 _V = "symbolic_friction/_certify/verify.py"
 _CE = "symbolic_friction/_certify/certificate.py"
-_P = "symbolic_friction/_crosscheck/_properties.py"
+_T = "symbolic_friction/_crosscheck/_results.py"
+_L2 = "symbolic_friction/_crosscheck/lemma2.py"
+_P1 = "symbolic_friction/_crosscheck/prop1.py"
+_AL = "symbolic_friction/_crosscheck/_along.py"
+_PR = "symbolic_friction/_crosscheck/_property.py"
 _R = "symbolic_friction/_crosscheck/_run.py"
 _SI = "symbolic_friction/_simulation/_trajectories.py"
 _KER = "symbolic_friction/_simulation/_kernel.py"
@@ -149,17 +153,17 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant("verify.c1_halved", "verifier", _V, "_matrix(p[i][j] - cert.c1 * identity[i][j]",
            "_matrix(p[i][j] - cert.c1 * identity[i][j] / 2", "P − c₁I ⪰ 0 weakened to P − (c₁/2)I ⪰ 0"),
     # ------------------------------------------------------------------ the cross-check
-    Mutant("cc.acc_never_fails", "cross-check", _P, "self.failures += int(np.count_nonzero(r < -self.rtol))",
+    Mutant("cc.acc_never_fails", "cross-check", _T, "self.failures += int(np.count_nonzero(r < -self.rtol))",
            "self.failures += int(np.count_nonzero(r < -np.inf))", "no property can record a failure"),
-    Mutant("cc.decrease_without_c", "cross-check", _P, 'for pid, c in (("lemma2.decrease", cl.c), ("lemma2.nonincreasing", 0.0)):',
-           'for pid, c in (("lemma2.decrease", 0.0), ("lemma2.nonincreasing", 0.0)):', "Lemma 2's decrease checked without c∫v²"),
-    Mutant("cc.lower_bound_half", "cross-check", _P, "rel = (Vv - cl.c1 * d2) / scaleV", "rel = (Vv - 0.5 * cl.c1 * d2) / scaleV",
-           "Lemma 2's lower bound checked with c₁/2"),
-    Mutant("cc.stability_kappa", "cross-check", _P, "rel = (cl.kappa * d0[:, None] - d) / L[:, None]",
-           "rel = (2 * cl.kappa * d0[:, None] - d) / L[:, None]", "Proposition 1's bound checked with 2κ"),
-    Mutant("cc.rhat_flipped", "cross-check", _P, "in_Rhat = valid & is_sample & ~_in_R(", "in_Rhat = valid & is_sample & _in_R(",
-           "R̂ and R swapped in the cross-check"),
-    Mutant("cc.tolerance", "cross-check", _P, "DEFAULT_RTOL = 1e-8", "DEFAULT_RTOL = 1e3", "tolerance made huge"),
+    Mutant("cc.decrease_without_c", "cross-check", _L2, "return _pair_evaluation(self.id, a, certificate.c, _scale(a, certificate))",
+           "return _pair_evaluation(self.id, a, 0.0, _scale(a, certificate))", "Lemma 2's decrease checked without c∫v²"),
+    Mutant("cc.lower_bound_half", "cross-check", _L2, "rel = (a.V - c1 * a.d2) / _scale(a, certificate)",
+           "rel = (a.V - 0.5 * c1 * a.d2) / _scale(a, certificate)", "Lemma 2's lower bound checked with c₁/2"),
+    Mutant("cc.stability_kappa", "cross-check", _P1, "rel = (kappa * a.d0[:, None] - a.d) / a.L[:, None]",
+           "rel = (2 * kappa * a.d0[:, None] - a.d) / a.L[:, None]", "Proposition 1's bound checked with 2κ"),
+    Mutant("cc.rhat_flipped", "cross-check", _AL, "return self.valid & self.is_sample & ~in_R(",
+           "return self.valid & self.is_sample & in_R(", "R̂ and R swapped in the cross-check"),
+    Mutant("cc.tolerance", "cross-check", _PR, "DEFAULT_RTOL = 1e-8", "DEFAULT_RTOL = 1e3", "tolerance made huge"),
     Mutant("cc.accepts_unproved", "cross-check", _R, "            if not report.proved:", "            if False:",
            "unproved certificates are cross-checked instead of refused"),
     Mutant("cc.hides_event_limit", "cross-check", _SI, "    COMPLETE = (T_END, EQUILIBRIUM)",

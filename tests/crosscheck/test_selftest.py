@@ -10,10 +10,10 @@ import pytest
 
 from symbolic_friction._certify import load
 from symbolic_friction._commands import check
-from symbolic_friction._crosscheck import _properties
+from symbolic_friction._crosscheck import _results
 from symbolic_friction._crosscheck._selftest import EXPECTED, crosscheck_self_test
 
-PROOFS = Path(__file__).resolve().parents[1] / "proofs"
+PROOFS = Path(__file__).resolve().parents[2] / "proofs"
 
 
 @pytest.fixture(scope="module")
@@ -32,33 +32,33 @@ def test_self_test_passes_and_names_what_caught_each_variant(certs):
 
 def test_a_cross_check_that_cannot_fail_fails_the_self_test(certs, monkeypatch):
     # every relative slack reported as comfortably positive: no property can fail any more
-    real_add = _properties._Acc.add
+    real_add = _results.Tally.add
 
     def never_fails(self, rel, mask, make, **kw):
         return real_add(self, np.where(np.isfinite(rel), np.abs(rel), rel), mask, make, **kw)
 
-    monkeypatch.setattr(_properties._Acc, "add", never_fails)
+    monkeypatch.setattr(_results.Tally, "add", never_fails)
     result = crosscheck_self_test(certs)
     assert not result.ok
     assert all(not r.ok for r in result.rows if r.variant in EXPECTED)
 
 
 def test_a_cross_check_that_always_fails_fails_the_self_test(certs, monkeypatch):
-    real_add = _properties._Acc.add
+    real_add = _results.Tally.add
 
     def always_fails(self, rel, mask, make, **kw):
         return real_add(self, np.where(np.isfinite(rel), -np.abs(rel) - 1.0, rel), mask, make, **kw)
 
-    monkeypatch.setattr(_properties._Acc, "add", always_fails)
+    monkeypatch.setattr(_results.Tally, "add", always_fails)
     result = crosscheck_self_test(certs)
     assert not result.ok
     assert not next(r for r in result.rows if r.variant == "proved").ok
 
 
 def test_check_section_reports_a_broken_cross_check(monkeypatch, capsys):
-    real_add = _properties._Acc.add
+    real_add = _results.Tally.add
     monkeypatch.setattr(
-        _properties._Acc, "add", lambda self, rel, mask, make, **kw: real_add(self, np.abs(rel), mask, make, **kw)
+        _results.Tally, "add", lambda self, rel, mask, make, **kw: real_add(self, np.abs(rel), mask, make, **kw)
     )
     args = argparse.Namespace(proofs=str(PROOFS), write=False, json=False, no_certificates=False)
     section = check.crosscheck_section(args)
