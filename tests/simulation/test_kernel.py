@@ -21,6 +21,9 @@ CASES = {
     "stiff": Parameters(k_v="51.1", k_p="5.3525", k_i="12.8775"),
     "triple": Parameters(k_v=3, k_p=3, k_i=1),
     "creep": Parameters(k_v=17, k_p=336, k_i=1746, f_c=F(3828, 4096)),
+    # static friction above Coulomb: stick exits at ±f_s, slips that start with v' ≠ 0
+    "a_stiction": Parameters(k_v="6.4", k_p=3, k_i=4, f_s="1.2"),
+    "b_stiction": Parameters(k_v="1.5", k_p="0.66", k_i="0.08", f_s="1.5"),
 }
 
 
