@@ -190,9 +190,11 @@ class HuntingCycle:
     multiplier : float
         ``d(-P)/dσ`` at ``σ*``: the cycle attracts nearby stick exits if
         ``|multiplier| < 1``; ``multiplier²`` is the derivative of ``P∘P``.
-    amplitude_s, amplitude_e_i, amplitude_distance : float
-        ``max |s|``, ``max |e_i|`` and ``max |z|_𝒜`` over a period
-        (``|z|_𝒜`` of the paper's 𝒜, eq. Aph, with ``f_c``).
+    amplitude_s, amplitude_e_i : float
+        ``max |s|`` and ``max |e_i|`` over a period.
+    amplitude_distance, amplitude_distance_x : float
+        ``max |z|_𝒜`` (the distance of the proof of Corollary 1) and
+        ``max |x|_𝒜`` over a period, to the paper's 𝒜 (eq. Aph, with ``f_c``).
     slips : int
         Slips per half period (1: no reversal).
     """
@@ -208,6 +210,7 @@ class HuntingCycle:
     amplitude_s: float = math.nan
     amplitude_e_i: float = math.nan
     amplitude_distance: float = math.nan
+    amplitude_distance_x: float = math.nan
     slips: int = 1
     extra: dict = field(default_factory=dict, repr=False)
 
@@ -296,13 +299,15 @@ def _describe(P: HuntingMap, sigma: float, symmetric: bool) -> HuntingCycle | No
 
 
 def _with_amplitudes(cycle: HuntingCycle, orbit, k_i: float) -> HuntingCycle:
+    from .._attractor import distance_z
+
     z = orbit.z
-    d = np.asarray(orbit.distance)
     values = dict(cycle.__dict__)
     values.update(
         amplitude_s=float(np.abs(z[:, 1]).max()),
         amplitude_e_i=float(np.abs(z[:, 0]).max()),
-        amplitude_distance=float(d.max()),
+        amplitude_distance=float(np.asarray(distance_z(cycle.params, z)).max()),
+        amplitude_distance_x=float(np.asarray(orbit.distance).max()),
         extra={},
     )
     return HuntingCycle(**values)
