@@ -19,6 +19,22 @@ stick–slip limit cycle around the setpoint.  Here the cycle is
 
 from __future__ import annotations
 
+from ._certificate import HuntingCertificate, verify_hunting, verify_hunting_file, write_hunting
 from ._map import HuntingCycle, HuntingMap, MapStep, cycle_orbit, find_cycles
+from ._proof import Box, CycleProof, box_around, prove_cycle
 
-__all__ = ["HuntingCycle", "HuntingMap", "MapStep", "cycle_orbit", "find_cycles"]
+__all__ = [
+    "Box",
+    "CycleProof",
+    "HuntingCertificate",
+    "HuntingCycle",
+    "HuntingMap",
+    "MapStep",
+    "box_around",
+    "cycle_orbit",
+    "find_cycles",
+    "prove_cycle",
+    "verify_hunting",
+    "verify_hunting_file",
+    "write_hunting",
+]

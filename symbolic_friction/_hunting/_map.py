@@ -38,7 +38,7 @@ import numpy as np
 from .._errors import ParameterError
 from .._parameters import Parameters
 
-__all__ = ["HuntingMap", "MapStep", "HuntingCycle", "find_cycles", "cycle_orbit"]
+__all__ = ["HuntingMap", "MapStep", "HuntingCycle", "find_cycles", "cycle_orbit", "RealRootEscape", "real_root_escape"]
 
 # A slip still going after this many time constants of the slowest root has decayed by e^-240
 # (1e-104 relative): it is reported as not ending (the solution converges to a point of 𝒜).
@@ -323,3 +323,63 @@ def cycle_orbit(cycle: HuntingCycle, *, samples: int = 2001, periods: float = 1.
     # the distance |z|_𝒜 is largest where |s| is (the sticks) or within a slip; the samples and events cover both
     sol = simulate(cycle.params, cycle.exit_state, t_end, grid_points=samples, max_events=10_000)
     return sol
+
+
+@dataclass(frozen=True)
+class RealRootEscape:
+    """Three distinct real roots: a slip from a stick exit with ``|σ| ≥ |λ₁|(f_s - f_c)`` never ends.
+
+    Proof.  Let ``λ₃ < λ₂ < λ₁ < 0`` be the roots of ``χ(s) = s³ + k_v s² + k_p s + k_i``
+    (the discriminant is positive, decided exactly).  ``ℓ_j = (1, λ_j, λ_j²)`` is a left
+    eigenvector of ``A`` (``ℓ_jᵀ A = λ_j ℓ_jᵀ``), so ``L_j(y) = σ + λ_j p + λ_j² v`` obeys
+    ``L_j(y(t)) = e^{λ_j t} L_j(y0)`` along the slip, and
+    ``v(t) = Σ_j L_j(y0) e^{λ_j t} / χ'(λ_j)`` (the right eigenvector ``(-k_i/λ, λ + k_v, 1)``
+    has ``ℓ_jᵀ r_j = χ'(λ_j)``).  A sum of three real exponentials has at most two real zeros
+    counted with multiplicity (Pólya–Szegő, Part V, Problem 75).  A slip from the stick exit
+    ``σ > 0``, ``φ = f_s`` starts from ``y0 = (σ, Δ, 0)``, ``Δ = f_s - f_c``: ``v(0) = 0`` is one
+    zero and ``v'(0) = Δ > 0``.  As ``t → ∞`` the sign of ``v`` is that of
+    ``L₁(y0)/χ'(λ₁) = (σ + λ₁Δ)/χ'(λ₁)`` with ``χ'(λ₁) > 0``.  If ``σ > |λ₁|Δ`` that is positive:
+    ``v`` is positive near ``0⁺`` and near ``∞``, so it has an even number of zeros in
+    ``(0, ∞)``, at most one: none.  If ``σ = |λ₁|Δ``, ``v`` is a sum of two exponentials with
+    its one zero at 0: none either.  So the slip never ends and the solution converges to
+    ``(0, f_c, 0) ∈ 𝒜`` with ``v > 0``: no further stick.  (Below the bound ``v`` changes sign
+    once, and at the end ``L₁ = σ_end + λ₁ p_end < 0`` with ``p_end ≤ 0`` gives
+    ``σ_end < 0``: the slip always overshoots.)  The case ``σ < 0`` is the mirror image.
+
+    Attributes
+    ----------
+    root_bracket : tuple of Fraction
+        ``a ≤ λ₁ ≤ b < 0`` (exact; ``χ(a) ≤ 0 ≤ χ(b)``).
+    bound : Fraction
+        ``|a| (f_s - f_c) ≥ |λ₁| (f_s - f_c)``: stick exits with ``|σ|`` at or above it slip forever.
+    """
+
+    root_bracket: tuple
+    bound: object
+
+
+def real_root_escape(params: Parameters) -> RealRootEscape | None:
+    """:class:`RealRootEscape` if ``χ`` has three distinct real roots (decided exactly), else ``None``."""
+    from fractions import Fraction
+
+    a, b, c = params.k_v, params.k_p, params.k_i
+    disc = 18 * a * b * c - 4 * a**3 * c + a**2 * b**2 - 4 * b**3 - 27 * c**2
+    if not disc > 0:
+        return None
+
+    def chi(x: Fraction) -> Fraction:
+        return ((x + a) * x + b) * x + c
+
+    lam = max(np.roots([1.0, float(a), float(b), float(c)]).real)
+    r = Fraction(float(lam)).limit_denominator(10**9)  # an exact rational root when there is a simple one
+    if chi(r) == 0:
+        lo = hi = r
+    else:
+        eps = Fraction(abs(float(lam)) * 1e-12 + 1e-300)
+        lo, hi = r - eps, r + eps
+        while not (chi(lo) < 0 < chi(hi)):
+            eps *= 4
+            lo, hi = r - eps, r + eps
+    if not hi < 0:
+        return None
+    return RealRootEscape(root_bracket=(lo, hi), bound=-lo * (params.f_s - params.f_c))

@@ -40,7 +40,7 @@ from fractions import Fraction
 
 from .._parameters import Parameters
 
-__all__ = ["Box", "Check", "CycleProof", "prove_cycle", "PRECISION"]
+__all__ = ["Box", "Check", "CycleProof", "prove_cycle", "box_around", "PRECISION"]
 
 PRECISION = 128
 """Bits of the arb balls (the enclosures are rigorous at any precision; this keeps them tight)."""
