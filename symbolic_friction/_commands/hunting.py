@@ -70,11 +70,11 @@ def run(args: argparse.Namespace) -> int:
             "that proves it, and the package's existing certificates (proofs/) apply."
         )
         return 0
+    from fractions import Fraction
+
     ratios = None
     if args.sweep:
         try:
-            from fractions import Fraction
-
             ratios = [Fraction(r.strip()) for r in args.sweep.split(",") if r.strip()]
         except ValueError:
             raise ParameterError(f"--sweep must be comma-separated ratios f_s/f_c like 1.1,1.2; got {args.sweep!r}") from None
@@ -85,7 +85,18 @@ def run(args: argparse.Namespace) -> int:
     from .._hunting._map import find_cycles
     from .._hunting._proof import box_around, prove_cycle
 
+    from .._hunting._map import real_root_escape
+
     print(f"{params}: ρ = (f_s - f_c)/f_c = {params.rho}")
+    escape = real_root_escape(params)
+    if escape is not None:
+        lo, hi = escape.root_bracket
+        root = f"λ₁ = {lo}" if lo == hi else f"λ₁ ∈ [{float(lo):.15g}, {float(hi):.15g}]"
+        print(
+            f"three distinct real roots (discriminant > 0, exact), slowest {root}: a slip from a stick exit with "
+            f"|σ| ≥ |λ₁|(f_s - f_c) = {float(escape.bound):.10g} never ends (proof: RealRootEscape), so only solutions "
+            "whose stick exits stay below that bound can hunt; above it the mass slips into 𝒜"
+        )
     cycles = [c for c in find_cycles(params) if c.symmetric]
     if not cycles:
         print("no symmetric hunting cycle found (stick exits with σ in [Δ·1e-4, Δ·1e4], Δ = f_s - f_c): nothing certified")
@@ -103,6 +114,8 @@ def run(args: argparse.Namespace) -> int:
         )
         stab = "stable (attracts nearby stick exits)" if cycle.stable else "unstable"
         print(f"  multiplier d(-P)/dσ = {cycle.multiplier:.10g} (P∘P: {cycle.multiplier ** 2:.10g}): {stab}")
+        if escape is not None:
+            print(f"  σ* = {cycle.sigma:.6g} < {float(escape.bound):.6g}: below the escape bound")
         box = box_around(cycle.sigma, cycle.slip_time)
         proof = prove_cycle(params, box)
         for check in proof.checks:
@@ -119,6 +132,9 @@ def run(args: argparse.Namespace) -> int:
 
             agreement = simulation_agreement(cycle)
             print(f"  {agreement.describe()}: {'agrees to 1e-9' if agreement.holds(1e-9) else 'does NOT agree to 1e-9'}")
+            lo, hi = box.sigma
+            inside = bool(agreement.last_sigmas) and all(lo <= Fraction(x) <= hi for x in agreement.last_sigmas)
+            print(f"  the simulated |σ| at those exits {'lies' if inside else 'does NOT lie'} in the proved box [σ_lo, σ_hi]")
         iss = None
         if not args.no_iss:
             from .._hunting._iss import iss_comparison

@@ -46,6 +46,8 @@ class Agreement:
     state_error : float
         ``max |z_exit ∓ z*|`` (infinity norm, ``z*`` the cycle's exit state) over the last exits.
     tail : int
+    last_sigmas : tuple of float
+        ``|σ|`` at the last ``tail`` exits (to be compared with a proved box).
     """
 
     start_offset: float
@@ -55,6 +57,7 @@ class Agreement:
     half_period_error: float
     state_error: float
     tail: int
+    last_sigmas: tuple = ()
 
     def holds(self, tol: float = 1e-9) -> bool:
         return self.exits > self.tail and max(self.sigma_error, self.half_period_error, self.state_error) <= tol
@@ -96,7 +99,10 @@ def simulation_agreement(cycle: HuntingCycle, *, start_offset: float = 1e-3, per
         z_err = max(z_err, float(np.max(np.abs(z - np.sign(x[0]) * star))))
     times = [t for t, _ in exits[-(tail + 1):]]
     dt_err = max(abs((b - a) - cycle.period / 2) for a, b in zip(times, times[1:]))
-    return Agreement(start_offset, periods, len(exits), float(sig_err), float(dt_err), float(z_err), tail)
+    return Agreement(
+        start_offset, periods, len(exits), float(sig_err), float(dt_err), float(z_err), tail,
+        tuple(abs(float(x[0])) for _, x in last),
+    )
 
 
 def amplitude_sweep(params: Parameters, ratios) -> list[tuple[float, HuntingCycle | None]]:
@@ -120,7 +126,7 @@ def hunting_figure(cycle: HuntingCycle, path, *, sweep=None) -> None:
     from ._map import cycle_orbit
 
     P = HuntingMap(cycle.params)
-    orbit = cycle_orbit(cycle, samples=3001)
+    orbit = cycle_orbit(cycle, samples=20001)
     ncols = 3 if sweep else 2
     fig, axes = plt.subplots(1, ncols, figsize=(5.0 * ncols, 4.2))
     ax = axes[0]

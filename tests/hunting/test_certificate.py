@@ -91,3 +91,13 @@ def test_malformed_files_are_refused(cert_file, tmp_path, capsys, edit, match):
     with pytest.raises(CertificateFormatError, match=match):
         verify_hunting_file(path)
     assert main(["verify", str(path)]) == 2
+
+
+COMMITTED = sorted((Path(__file__).resolve().parents[2] / "hunting").glob("*.json"))
+
+
+def test_the_committed_hunting_certificates_verify():
+    """Table I (a), (b) with f_s = 1.2 f_c and three other gain sets (written by `symbolic-friction hunting`)."""
+    assert len(COMMITTED) >= 5
+    for path in COMMITTED:
+        assert verify_hunting_file(path).proved, path
