@@ -14,6 +14,11 @@ This module is the whole closed-form simulator of the inclusion
   requested sample times and every event's time, modes and state;
 * :func:`trajectories`: that loop over many initial states, in parallel.
 
+With static friction above Coulomb (``f_s > f_c``, ``K[I_EXCESS] > 0``) a stick
+ends at ``φ = ±f_s`` and the mode table decides at rest with the stick boundary
+``±f_s`` (:func:`.modes.mode_at_rest` with ``excess``); with ``f_s = f_c`` every
+operation is the Coulomb one, bit for bit.
+
 It is plain Python on scalars and preallocated arrays, so that it runs as it
 is (the pure-Python fallback, which is given the constants as Python lists
 of floats) and, unchanged, compiled by numba (:mod:`._jit` loads this same
