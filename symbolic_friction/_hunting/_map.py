@@ -31,7 +31,7 @@ the closed form); they are *proved* by :mod:`._proof`.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -195,6 +195,8 @@ class HuntingCycle:
     amplitude_distance, amplitude_distance_x : float
         ``max |z|_𝒜`` (the distance of the proof of Corollary 1) and
         ``max |x|_𝒜`` over a period, to the paper's 𝒜 (eq. Aph, with ``f_c``).
+        Amplitudes are maxima over 4001 samples of one exactly simulated
+        period plus its events (``max |s|`` is exact: it is reached in the sticks).
     slips : int
         Slips per half period (1: no reversal).
     """
@@ -212,7 +214,6 @@ class HuntingCycle:
     amplitude_distance: float = math.nan
     amplitude_distance_x: float = math.nan
     slips: int = 1
-    extra: dict = field(default_factory=dict, repr=False)
 
     @property
     def stable(self) -> bool:
@@ -292,13 +293,10 @@ def _describe(P: HuntingMap, sigma: float, symmetric: bool) -> HuntingCycle | No
         slips=len(st.slips),
     )
     orbit = cycle_orbit(cycle, samples=4001)
-    k_i = float(P.params.k_i)
-    return HuntingCycle(
-        **{**cycle.__dict__, "extra": {}},
-    ) if orbit is None else _with_amplitudes(cycle, orbit, k_i)
+    return cycle if orbit is None else _with_amplitudes(cycle, orbit)
 
 
-def _with_amplitudes(cycle: HuntingCycle, orbit, k_i: float) -> HuntingCycle:
+def _with_amplitudes(cycle: HuntingCycle, orbit) -> HuntingCycle:
     from .._attractor import distance_z
 
     z = orbit.z
@@ -308,7 +306,6 @@ def _with_amplitudes(cycle: HuntingCycle, orbit, k_i: float) -> HuntingCycle:
         amplitude_e_i=float(np.abs(z[:, 0]).max()),
         amplitude_distance=float(np.asarray(distance_z(cycle.params, z)).max()),
         amplitude_distance_x=float(np.asarray(orbit.distance).max()),
-        extra={},
     )
     return HuntingCycle(**values)
 
