@@ -54,6 +54,22 @@ def test_one_step_of_the_map_is_the_simulation_between_two_stick_exits(cycle_a):
         assert abs(abs(x_exit[1]) - 1.2) == 0.0
 
 
+def test_a_step_with_reversals_is_the_simulation_too():
+    """From σ = 100 the slip ends beyond -f_s and reverses twice before the mass sticks."""
+    P = HuntingMap(A12)
+    st = P.step(100.0)
+    assert st.reason == "exit" and [s[0] for s in st.slips] == [1, -1, 1]
+    s0 = -100.0 / 4.0
+    z0 = ((-1.2 - 3.0 * s0) / 4.0, s0, 0.0)
+    t_half = st.slip_time + st.stick
+    sol = simulate(A12, z0, t_half * 1.01, t_eval=[0.0, t_half])
+    assert [e[1:] for e in sol.events[:4]] == [(1, -1), (-1, 1), (1, 0), (0, -1)]
+    for (t, _, _), x, slip in zip(sol.events, sol.event_x, st.slips):
+        assert abs(x[0] - slip[2]) <= 1e-13 * 100 and abs(x[1] - slip[3]) <= 1e-13 * 100
+    assert abs(sol.events[3][0] - t_half) <= 1e-12 * t_half
+    assert abs(sol.event_x[3][0] - st.next_sigma) <= 1e-13 * 100
+
+
 def test_the_cycle_agrees_with_a_long_simulation_to_1e_9(cycle_a, cycle_b):
     for c in (cycle_a, cycle_b):
         ag = simulation_agreement(c)
