@@ -125,6 +125,13 @@ _LAZY: dict[str, str] = {
     "Moreau": "._simulation.moreau",
     "Regularized": "._simulation.regularized",
     "IvpEvents": "._simulation.ivp_events",
+    # hunting: static friction above Coulomb (beyond the paper)
+    "HuntingMap": "._hunting",
+    "HuntingCycle": "._hunting",
+    "find_cycles": "._hunting",
+    "prove_cycle": "._hunting",
+    "HuntingCertificate": "._hunting",
+    "verify_hunting": "._hunting",
 }
 
 # public submodules (imported lazily): name -> private module

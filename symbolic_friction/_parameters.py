@@ -32,7 +32,7 @@ def _fmt(q: Fraction) -> str:
 
 @dataclass(frozen=True)
 class Parameters:
-    """Normalised gains ``(k_p, k_i, k_v)`` and Coulomb level ``f_c``.
+    """Normalised gains ``(k_p, k_i, k_v)``, Coulomb level ``f_c`` and static level ``f_s``.
 
     Parameters
     ----------
@@ -40,14 +40,21 @@ class Parameters:
         Normalised proportional, integral and velocity gains and Coulomb
         friction level.  Converted exactly with :func:`to_rational` (a float
         through its decimal ``repr``).
+    f_s : number or None, default None (``f_s = f_c``)
+        Normalised static friction level, ``f_s ≥ f_c``: the mass at rest
+        sticks while ``|k_i e_i + k_p s| ≤ f_s`` and slips with kinetic
+        friction ``f_c``.  ``f_s = f_c`` is the paper's model (eq. basic);
+        ``f_s > f_c`` is the stiction its conclusion names as future work
+        (see :mod:`symbolic_friction._hunting`).  A gain set with
+        ``f_s = f_c`` compares, hashes and prints exactly as one without it.
 
     Raises
     ------
     InvalidNumberError, NonFiniteError
         If a value is not a finite number.
     AssumptionError
-        If Assumption 1 (``k_i > 0``, ``k_p > 0``, ``k_v k_p > k_i``) or
-        ``f_c > 0`` is violated; the message gives the numbers.
+        If Assumption 1 (``k_i > 0``, ``k_p > 0``, ``k_v k_p > k_i``),
+        ``f_c > 0`` or ``f_s ≥ f_c`` is violated; the message gives the numbers.
 
     Examples
     --------
@@ -62,6 +69,7 @@ class Parameters:
     k_i: Fraction
     k_v: Fraction
     f_c: Fraction = field(default=Fraction(1))
+    f_s: Fraction = field(default=None)  # type: ignore[assignment]  # None: f_s = f_c
 
     _names: ClassVar[tuple[str, ...]] = ("k_p", "k_i", "k_v", "f_c")
 
@@ -80,12 +88,19 @@ class Parameters:
             )
         if not f_c > 0:
             raise AssumptionError(f"the Coulomb level needs f_c > 0; got f_c = {_fmt(f_c)}")
+        f_s = f_c if self.f_s is None else to_rational(self.f_s, name="f_s")
+        if not f_s >= f_c:
+            raise AssumptionError(
+                f"the static level needs f_s ≥ f_c; got f_s = {_fmt(f_s)} < f_c = {_fmt(f_c)}"
+            )
+        object.__setattr__(self, "f_s", f_s)
 
     def __hash__(self) -> int:
         # hashing four Fractions costs microseconds, and every simulation looks its gains up
         cached = self.__dict__.get("_hash")
         if cached is None:
-            cached = hash((self.k_p, self.k_i, self.k_v, self.f_c))
+            key = (self.k_p, self.k_i, self.k_v, self.f_c)
+            cached = hash(key if self.f_s == self.f_c else key + (self.f_s,))
             object.__setattr__(self, "_hash", cached)
         return cached
 
@@ -99,6 +114,7 @@ class Parameters:
         k_d_bar: object,
         alpha_v: object = 0,
         f_c_bar: object,
+        f_s_bar: object = None,
     ) -> "Parameters":
         """Build normalised parameters from physical ones (paper §II-A).
 
@@ -112,6 +128,8 @@ class Parameters:
             Viscous friction coefficient, ``alpha_v >= 0`` (default 0).
         f_c_bar : number, keyword-only
             Coulomb friction force, ``f_c_bar > 0``.
+        f_s_bar : number or None, keyword-only
+            Static friction force, ``f_s_bar ≥ f_c_bar`` (default: ``f_c_bar``).
 
         Raises
         ------
@@ -135,6 +153,7 @@ class Parameters:
             k_i=to_rational(k_i_bar, name="k_i_bar") / m_q,
             k_v=(to_rational(k_d_bar, name="k_d_bar") + a_q) / m_q,
             f_c=to_rational(f_c_bar, name="f_c_bar") / m_q,
+            f_s=None if f_s_bar is None else to_rational(f_s_bar, name="f_s_bar") / m_q,
         )
 
     @classmethod
@@ -155,6 +174,16 @@ class Parameters:
         return 2 * (self.k_v * self.k_p - self.k_i)
 
     @property
+    def stiction(self) -> bool:
+        """``f_s > f_c``: static friction above the Coulomb level (the paper's model has ``f_s = f_c``)."""
+        return self.f_s > self.f_c
+
+    @property
+    def rho(self) -> Fraction:
+        """``ρ = (f_s - f_c)/f_c``: the stiction law lies in ``f_c SGN_ρ`` of Corollary 1 (eq. perturbed)."""
+        return (self.f_s - self.f_c) / self.f_c
+
+    @property
     def routh_margin(self) -> Fraction:
         """``k_v k_p / k_i``; Assumption 1 holds iff this exceeds 1."""
         return self.k_v * self.k_p / self.k_i
@@ -164,8 +193,11 @@ class Parameters:
         return (float(self.k_p), float(self.k_i), float(self.k_v), float(self.f_c))
 
     def as_strings(self) -> dict[str, str]:
-        """The four parameters as exact ``"p/q"`` strings (file format)."""
-        return {name: _fmt(getattr(self, name)) for name in self._names}
+        """The parameters as exact ``"p/q"`` strings (file format); ``f_s`` only when it differs from ``f_c``."""
+        out = {name: _fmt(getattr(self, name)) for name in self._names}
+        if self.stiction:
+            out["f_s"] = _fmt(self.f_s)
+        return out
 
     def __str__(self) -> str:
         inner = ", ".join(f"{k}={v}" for k, v in self.as_strings().items())

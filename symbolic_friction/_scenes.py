@@ -131,15 +131,15 @@ def _parse_params(doc: Mapping[str, Any]) -> Parameters:
     if "gains" in doc:
         table = _table(doc["gains"], "gains")
         keys = ("k_p", "k_i", "k_v", "f_c")
-        _check_keys(table, "gains", keys, keys)
-        values = {k: _number(table[k], f"gains.{k}") for k in keys}
+        _check_keys(table, "gains", keys + ("f_s",), keys)  # f_s: static level above Coulomb (optional)
+        values = {k: _number(table[k], f"gains.{k}") for k in keys + ("f_s",) if k in table}
         try:
             return Parameters(**values)
         except SymbolicFrictionError as exc:
             raise SceneError(f"gains: {exc}") from None
     if "physical" in doc:
         table = _table(doc["physical"], "physical")
-        keys = ("m", "k_p_bar", "k_i_bar", "k_d_bar", "alpha_v", "f_c_bar")
+        keys = ("m", "k_p_bar", "k_i_bar", "k_d_bar", "alpha_v", "f_c_bar", "f_s_bar")
         _check_keys(table, "physical", keys, ("m", "k_p_bar", "k_i_bar", "k_d_bar", "f_c_bar"))
         values = {k: _number(table[k], f"physical.{k}") for k in keys if k in table}
         try:

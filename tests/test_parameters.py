@@ -89,3 +89,28 @@ def test_from_physical_fc():
 
 def test_routh_margin():
     assert TABLE_I["a"].routh_margin == Fraction(32, 5) * 3 / 4
+
+
+def test_static_level_defaults_to_coulomb_and_is_invisible_then():
+    from fractions import Fraction
+
+    p = Parameters(k_p=3, k_i=4, k_v="6.4", f_c=2)
+    q = Parameters(k_p=3, k_i=4, k_v="6.4", f_c=2, f_s=2)
+    assert p.f_s == Fraction(2) and p == q and hash(p) == hash(q)
+    assert p.as_strings() == {"k_p": "3", "k_i": "4", "k_v": "32/5", "f_c": "2"} and str(p) == str(q)
+    assert not p.stiction and p.rho == 0
+
+
+def test_static_level_above_coulomb():
+    from fractions import Fraction
+
+    p = Parameters(k_p=3, k_i=4, k_v="6.4", f_c=1, f_s="1.2")
+    assert p.f_s == Fraction(6, 5) and p.stiction and p.rho == Fraction(1, 5)
+    assert p.as_strings()["f_s"] == "6/5" and "f_s=6/5" in str(p)
+    assert p != Parameters.table_i("a") and hash(p) != hash(Parameters.table_i("a"))
+    assert Parameters.from_physical(m=2, k_p_bar=6, k_i_bar=8, k_d_bar="12.8", f_c_bar=2, f_s_bar="2.4") == p
+
+
+def test_static_level_below_coulomb_is_refused_with_the_numbers():
+    with pytest.raises(AssumptionError, match=r"f_s ≥ f_c; got f_s = 9/10 < f_c = 1"):
+        Parameters(k_p=3, k_i=4, k_v="6.4", f_c=1, f_s="0.9")

@@ -253,3 +253,12 @@ def test_direct_construction_checks_every_field():
     for change, match in cases:
         with pytest.raises(SceneError, match=match):
             Scene(**{**ok, **change})
+
+
+
+def test_a_scene_may_give_a_static_level_above_coulomb():
+    text = BASE.replace('[gains]\nk_p = 3\nk_i = 4\nk_v = "6.4"\nf_c = 1', '[gains]\nk_p = 3\nk_i = 4\nk_v = "6.4"\nf_c = 1\nf_s = "1.2"')
+    params = scene(text).params
+    assert params.f_s == Fraction(6, 5) and params.stiction
+    with pytest.raises(SceneError, match="f_s ≥ f_c"):
+        scene(text.replace('f_s = "1.2"', 'f_s = "0.5"'))

@@ -63,6 +63,8 @@ def certify(params: Parameters, *, mode: str = "tightest", margin: object = None
 
     Raises
     ------
+    ParameterError
+        If ``params`` has static friction above Coulomb (``f_s > f_c``).
     InfeasibleError, InaccurateSolveError
         If the solver does not report an optimal solution.
     CertificateError
@@ -74,6 +76,12 @@ def certify(params: Parameters, *, mode: str = "tightest", margin: object = None
     >>> cert.k1, cert.k2, cert.overshoot_bound
     (Fraction(2, 1), Fraction(2, 1), '3.46703')
     """
+    if params.stiction:
+        # Proposition 1 is about the paper's model; with f_s > f_c the mass hunts (see hunting_cycle)
+        raise ParameterError(
+            f"a stability certificate is for the paper's model f_s = f_c; got f_s = {params.f_s} > f_c = {params.f_c}: "
+            "with static friction above Coulomb the loop hunts (symbolic-friction hunting)"
+        )
     candidate = find_candidate(params, mode=mode, margin=margin)
     certificate = to_certificate(candidate, label=label)
     report = verify_certificate(certificate)

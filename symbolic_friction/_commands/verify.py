@@ -1,5 +1,9 @@
 """``symbolic-friction verify FILE…``: exact re-check of certificate files.
 
+Each file is dispatched on its ``schema`` field: a stability certificate of
+the paper's model (:mod:`.._certify.verify`, exact rationals) or a hunting
+certificate (:mod:`.._hunting._certificate`, a Krawczyk proof in arb balls).
+
 Exit status: 0 if every file proves its claim; 1 if some inequality fails
 (each failing one is named with its exact numbers); 2 if a file is missing
 or malformed (not JSON, unknown schema, missing keys, a float where an exact
@@ -31,9 +35,12 @@ def run(args: argparse.Namespace) -> int:
 
     failed = False
     malformed: list[Exception] = []
+    from .._hunting._certificate import is_hunting_file, verify_hunting_file
+
     for name in args.files:
         try:
-            report = verify_file(name)
+            # dispatch on the file's schema: a hunting certificate has its own proof
+            report = verify_hunting_file(name) if is_hunting_file(name) else verify_file(name)
         except (CertificateFormatError, FileNotFoundError, IsADirectoryError, PermissionError) as exc:
             malformed.append(exc)
             print(f"MALFORMED {exc}", file=sys.stdout)

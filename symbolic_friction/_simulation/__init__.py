@@ -169,6 +169,11 @@ def simulate(
     if not isinstance(params, Parameters):
         raise SimulationError(f"params must be a Parameters instance; got {type(params).__name__}")
     solver = configure(method, options)
+    if params.stiction and solver.name != "event":
+        raise SimulationError(
+            f"method {solver.name!r} models Coulomb friction only (f_s = f_c); got f_s = {params.f_s} > f_c = {params.f_c}: "
+            "use the event-driven method"
+        )
     z = _check_state(z0)
     t = _check_horizon(t_end)
     te = _check_t_eval(t_eval, t)

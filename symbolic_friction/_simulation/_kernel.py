@@ -14,6 +14,11 @@ This module is the whole closed-form simulator of the inclusion
   requested sample times and every event's time, modes and state;
 * :func:`trajectories`: that loop over many initial states, in parallel.
 
+With static friction above Coulomb (``f_s > f_c``, ``K[I_EXCESS] > 0``) a stick
+ends at ``φ = ±f_s`` and the mode table decides at rest with the stick boundary
+``±f_s`` (:func:`.modes.mode_at_rest` with ``excess``); with ``f_s = f_c`` every
+operation is the Coulomb one, bit for bit.
+
 It is plain Python on scalars and preallocated arrays, so that it runs as it
 is (the pure-Python fallback, which is given the constants as Python lists
 of floats) and, unchanged, compiled by numba (:mod:`._jit` loads this same
@@ -59,7 +64,7 @@ mode_at_rest = kernel(_mode_at_rest_py)
 p_norm = kernel(_p_norm_py)
 
 @kernel
-def mode_after_slip(sigma, offset, direction, f_c, tol):
+def mode_after_slip(sigma, offset, direction, f_c, tol, excess=0.0):
     """:func:`.modes.mode_at_rest` at the end of a slip in ``direction`` (``v`` has just reached 0).
 
     ``offset = φ - direction·f_c`` as the closed form gives it.  A solution
@@ -67,11 +72,14 @@ def mode_after_slip(sigma, offset, direction, f_c, tol):
     direction·offset ≤ 0``; a computed offset of the other sign is a
     rounding error and is set to 0 (a tolerance-free rule).  The mode may
     equal ``direction`` (a grazing contact, row (iii) or (ix)): the slip then
-    simply goes on.  ``model.modes_runtime`` binds it to the table.
+    simply goes on.  With static friction (``excess = f_s - f_c > 0``) the
+    mass at rest sticks while ``|φ| ≤ f_s``, so a slip that ends with ``|φ|``
+    in ``(f_c, f_s]`` sticks, and a grazing contact sticks too.
+    ``model.modes_runtime`` binds it to the table.
     """
     if direction * offset > 0.0:
         offset = 0.0 * offset
-    return mode_at_rest(sigma, direction, offset, f_c, tol)
+    return mode_at_rest(sigma, direction, offset, f_c, tol, excess)
 
 
 # -- layout of K ---------------------------------------------------------------
@@ -89,7 +97,11 @@ I_T = 49  # T of eq. (CoC), 3×3 row-major: x = T z
 # the first zero of w, whatever σ: found once per gain set (search.slip_model) within
 # [0, I_STICK_SLIP_H]; +inf if w has no zero there.
 I_STICK_SLIP_T, I_STICK_SLIP_H = 58, 59
-K_SIZE = 60
+# Static friction: f_s and the excess f_s - f_c (rounded once from the exact rationals; 0 in the
+# paper's model, where every operation below reduces to the Coulomb one).  A stick ends at φ = ±f_s,
+# and the slip that follows starts from the offset y0 = (σ, ±(f_s - f_c), 0).
+I_FS, I_EXCESS = 60, 61
+K_SIZE = 62
 
 # -- statuses --------------------------------------------------------------------
 T_END, MAX_EVENTS, EQUILIBRIUM, NONFINITE, BUFFER_FULL = 0, 1, 2, 3, 4
@@ -451,6 +463,7 @@ def trajectory(K, W, N, z0, x0, t_end, max_events, ts, out_x, out_z, out_mode, e
     status, n_events, t_stop
     """
     f_c = K[I_FC]
+    f_s, excess = K[I_FS], K[I_EXCESS]
     cap = ev_t.size
     m = ts.size
     i = 0
@@ -468,7 +481,7 @@ def trajectory(K, W, N, z0, x0, t_end, max_events, ts, out_x, out_z, out_mode, e
     else:
         # φ = -k_i e_i - k_p s is rounded: a few ulps of its terms
         tol = SNAP_ULPS * EPS * (K[I_GAIN_KI] * abs(float(z0[0])) + K[I_GAIN_KP] * abs(float(z0[1])))
-        base, offset, mode = mode_at_rest(sigma, 0, phi, f_c, tol)
+        base, offset, mode = mode_at_rest(sigma, 0, phi, f_c, tol, excess)
     if status == T_END:
         # grazing contacts continue a slip without an event; bound the loop anyway
         for _ in range(4 * max_events + 16):
@@ -479,21 +492,24 @@ def trajectory(K, W, N, z0, x0, t_end, max_events, ts, out_x, out_z, out_mode, e
                     t = t_end
                     break
                 d = 1 if sigma > 0.0 else -1
-                # distance to the exit d·f_c: exactly -offset when leaving where the last slip ended
+                # distance to the exit d·f_s: exactly -offset when leaving where the last slip ended
                 gap = -offset if base == d else (d - base) * f_c - offset
+                if excess != 0.0:
+                    gap += d * excess
                 t_next = t + gap / sigma
                 if t_next >= t_end:
                     i = _emit(K, q, t, t_end, True, 0, sigma, base, offset, ts, i, out_x, out_z, out_mode)
                     t = t_end
                     break
                 i = _emit(K, q, t, t_next, False, 0, sigma, base, offset, ts, i, out_x, out_z, out_mode)
-                t, base, offset, mode = t_next, d, 0.0, d  # rows (iii)/(ix): slip d
+                # rows (iii)/(ix): slip d; with stiction from φ = d·f_s, with a jump in v' to d·(f_s - f_c)
+                t, base, offset, mode = t_next, d, (d * excess if excess != 0.0 else 0.0), d
                 if n_ev >= cap:
                     status = BUFFER_FULL
                     break
                 ev_t[n_ev] = t
                 ev_x[n_ev, 0] = sigma
-                ev_x[n_ev, 1] = d * f_c
+                ev_x[n_ev, 1] = d * f_s
                 ev_x[n_ev, 2] = 0.0
                 ev_m[n_ev, 0] = 0
                 ev_m[n_ev, 1] = d
@@ -528,7 +544,7 @@ def trajectory(K, W, N, z0, x0, t_end, max_events, ts, out_x, out_z, out_mode, e
                 if max(abs(ys), abs(yp), abs(yv)) <= UNDERFLOW:  # decayed onto x*_k ∈ 𝒜
                     ys, yp = 0.0, 0.0
                 tol = SNAP_ULPS * EPS * max(abs(s0), abs(p0), abs(v0))
-                base, offset, new_mode = mode_after_slip(ys, yp, d, f_c, tol)
+                base, offset, new_mode = mode_after_slip(ys, yp, d, f_c, tol, excess)
                 t, sigma, v = t_next, ys, 0.0
                 if new_mode != d:  # else a grazing contact: the slip goes on
                     if n_ev >= cap:

@@ -26,6 +26,11 @@ The solution is a concatenation of the three affine flows of Claim 1
   (:attr:`Status.MAX_EVENTS`; later samples are NaN, never made up), so
   rounding at a switching surface can never make the method spin forever.
 
+With static friction above Coulomb (``Parameters(f_s=…)``, ``f_s > f_c``; beyond
+the paper) the same loop runs with the stick boundary at ``±f_s``: a stick ends
+at ``φ = ±f_s`` and the slip starts from the offset ``(σ, ±(f_s - f_c), 0)``
+(a jump of the acceleration), and a slip that ends with ``|φ| ≤ f_s`` sticks.
+
 All of this is one kernel for one trajectory (:mod:`._kernel`), compiled by
 numba when it is installed; :func:`run` applies it to one or many initial
 states and returns the one result type, :class:`.Trajectories`.

@@ -62,8 +62,14 @@ TABLE: tuple[tuple[str, str, int], ...] = (
 _MODE_OF_ROW = {row: k for row, _, k in TABLE}
 
 
-def table_row(sigma: Any, phi: Any, v: Any, f_c: Any) -> str:
+def table_row(sigma: Any, phi: Any, v: Any, f_c: Any, f_s: Any = None) -> str:
     """The row (``"i"`` … ``"xi"``) of the appendix's table that contains the state.
+
+    With static friction ``f_s > f_c`` (``None``: ``f_s = f_c``, the paper's
+    model) the rows at rest are read with the stick boundary ``±f_s`` in
+    place of ``±f_c``: the mass at rest sticks while ``|φ| ≤ f_s`` and leaves
+    ``φ = ±f_s`` when ``σ`` pushes it out (rows (iii), (ix)); a slip's
+    kinetic friction stays ``f_c`` (eq. basic with ``f_s``).
 
     Examples
     --------
@@ -71,6 +77,8 @@ def table_row(sigma: Any, phi: Any, v: Any, f_c: Any) -> str:
     >>> table_row(F(0), F(1), F(0), F(1)), table_row(-1, 1, 0, 1), table_row(0, 0.5, 0, 1)
     ('iv', 'v', 'vi')
     """
+    if f_s is not None:
+        f_c = f_s  # the rows at rest compare φ with the stick boundary
     if v > 0:
         return "i"
     if v < 0:
@@ -86,7 +94,7 @@ def table_row(sigma: Any, phi: Any, v: Any, f_c: Any) -> str:
     return "vi"
 
 
-def select_mode(sigma: Any, phi: Any, v: Any, f_c: Any) -> int:
+def select_mode(sigma: Any, phi: Any, v: Any, f_c: Any, f_s: Any = None) -> int:
     """The mode ``k ∈ {1, 0, -1}`` that the table assigns to ``(σ, φ, v)``.
 
     ``1`` is slip with ``v > 0`` (``x' = Ax - b``), ``0`` is stick
@@ -98,10 +106,12 @@ def select_mode(sigma: Any, phi: Any, v: Any, f_c: Any) -> int:
     >>> select_mode(1, 1, 0, 1), select_mode(-1, 1, 0, 1), select_mode(-1, -1, 0, 1)
     (1, 0, -1)
     """
-    return _MODE_OF_ROW[table_row(sigma, phi, v, f_c)]
+    return _MODE_OF_ROW[table_row(sigma, phi, v, f_c, f_s)]
 
 
-def mode_at_rest(sigma: float, base: int, offset: float, f_c: float, tol: float) -> tuple[int, float, int]:
+def mode_at_rest(
+    sigma: float, base: int, offset: float, f_c: float, tol: float, excess: float = 0.0
+) -> tuple[int, float, int]:
     """The table's mode at ``v = 0`` for ``φ = base·f_c + offset``, with rounding decided by ``σ``.
 
     The state is kept as an exact boundary ``base ∈ {-1, 0, 1}`` plus an
@@ -114,21 +124,27 @@ def mode_at_rest(sigma: float, base: int, offset: float, f_c: float, tol: float)
     (iii)–(v) and (vii)–(ix) do.  With ``tol = 0`` and exact numbers this is
     exactly :func:`select_mode`.
 
+    With static friction (``excess = f_s - f_c > 0``) the table is the same
+    with the stick boundaries moved to ``φ = ±f_s`` (:func:`table_row` with
+    ``f_s``): the mass sticks while ``|φ| ≤ f_s``; the boundary ``±f_s`` is
+    kept as ``base = ±1`` plus ``offset = ±excess``.  ``excess = 0`` is the
+    paper's model, computed with the very same operations.
+
     Returns
     -------
     base, offset : int, float
-        ``(±1, 0)`` if ``φ`` was put on ``±f_c``, else unchanged.
+        ``(±1, 0)`` (``(±1, ±excess)``) if ``φ`` was put on ``±f_s``, else unchanged.
     mode : int
     """
     # Written without calls to other Python functions: the simulation kernel
     # compiles this very function (see ._kernel).
-    gap_plus = offset if base == 1 else (base - 1) * f_c + offset  # φ - f_c
-    gap_minus = offset if base == -1 else (base + 1) * f_c + offset  # φ + f_c
-    # the uncertainty of k·f_c + offset when offset is known within tol, plus the rounding of ±f_c
-    if abs(gap_plus) <= tol + 4.0 * _EPS * abs(base - 1) * f_c:
-        return 1, 0.0 * offset, 1 if sigma > 0 else 0  # rows (iii), (iv), (v)
-    if abs(gap_minus) <= tol + 4.0 * _EPS * abs(base + 1) * f_c:
-        return -1, 0.0 * offset, -1 if sigma < 0 else 0  # rows (vii), (viii), (ix)
+    gap_plus = offset - excess if base == 1 else (base - 1) * f_c - excess + offset  # φ - f_s
+    gap_minus = offset + excess if base == -1 else (base + 1) * f_c + excess + offset  # φ + f_s
+    # the uncertainty of k·f_c + offset when offset is known within tol, plus the rounding of ±f_c (and f_s - f_c)
+    if abs(gap_plus) <= tol + 4.0 * _EPS * (abs(base - 1) * f_c + excess):
+        return 1, 0.0 * offset + excess, 1 if sigma > 0 else 0  # rows (iii), (iv), (v)
+    if abs(gap_minus) <= tol + 4.0 * _EPS * (abs(base + 1) * f_c + excess):
+        return -1, 0.0 * offset - excess, -1 if sigma < 0 else 0  # rows (vii), (viii), (ix)
     if gap_plus > 0:
         return base, offset, 1  # row (ii)
     if gap_minus < 0:

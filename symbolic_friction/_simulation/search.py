@@ -84,7 +84,7 @@ def slip_model(params: Parameters) -> SlipModel:
     bounds = SlipBounds.from_params(params)
     table = ScanTable.build(expm)
     f_c = float(params.f_c)
-    K = _pack(expm, bounds, table, f_c)
+    K = _pack(expm, bounds, table, f_c, f_s=float(params.f_s), excess=float(params.f_s - params.f_c))
     W = np.ascontiguousarray(table.values)
     N = np.ascontiguousarray(table.noise)
     for a in (K, W, N):
@@ -92,8 +92,14 @@ def slip_model(params: Parameters) -> SlipModel:
     return SlipModel(expm=expm, bounds=bounds, table=table, f_c=f_c, K=K, W=W, N=N)
 
 
-def _pack(expm: MatrixExponential, bounds: SlipBounds, table: ScanTable, f_c: float) -> np.ndarray:
-    """The scalars of :mod:`._kernel` (its ``I_*`` layout), all generated from the package's ``A`` and ``P``."""
+def _pack(
+    expm: MatrixExponential, bounds: SlipBounds, table: ScanTable, f_c: float, *, f_s: float | None = None, excess: float = 0.0
+) -> np.ndarray:
+    """The scalars of :mod:`._kernel` (its ``I_*`` layout), all generated from the package's ``A`` and ``P``.
+
+    ``f_s`` (default ``f_c``) and ``excess = f_s - f_c`` (rounded once from the exact
+    rationals) are the static friction level and its excess over the Coulomb level.
+    """
     from . import _kernel as k
 
     K = np.zeros(k.K_SIZE)
@@ -108,6 +114,7 @@ def _pack(expm: MatrixExponential, bounds: SlipBounds, table: ScanTable, f_c: fl
     (_, a11, a12), (a20, a21, a22) = v_rows(expm)
     K[k.I_A11], K[k.I_A12], K[k.I_A20], K[k.I_A21], K[k.I_A22] = a11, a12, a20, a21, a22
     K[k.I_FC] = f_c
+    K[k.I_FS], K[k.I_EXCESS] = (f_c if f_s is None else f_s), excess
     K[k.I_DT], K[k.I_CELLS], K[k.I_WINDOW] = table.dt, table.cells, table.window
     K[k.I_GAIN_KP], K[k.I_GAIN_KI] = expm.k_p, expm.k_i
     K[k.I_TINV : k.I_TINV + 9] = np.array(coc_inverse_entries(expm.k_p, expm.k_i), dtype=float).reshape(-1)

@@ -46,13 +46,17 @@ T_EVAL = np.linspace(0.0, T_END, 301)
 PARAMS = Parameters.table_i("a")
 
 
-def per_call(Z0: np.ndarray, repeats: int, **kw) -> tuple[float, float, float]:
+# the same gains with static friction 1.2 f_c: every stick exit starts a slip with v' ≠ 0 (no cached length)
+STICTION = Parameters(k_p=PARAMS.k_p, k_i=PARAMS.k_i, k_v=PARAMS.k_v, f_c=PARAMS.f_c, f_s="1.2")
+
+
+def per_call(Z0: np.ndarray, repeats: int, params: Parameters = PARAMS, **kw) -> tuple[float, float, float]:
     """Median, min and max over ``repeats`` of the mean time per ``simulate`` call over ``Z0``."""
     rounds = []
     for _ in range(repeats):
         start = time.perf_counter()
         for z0 in Z0:
-            simulate(PARAMS, z0, T_END, t_eval=T_EVAL, **kw)
+            simulate(params, z0, T_END, t_eval=T_EVAL, **kw)
         rounds.append((time.perf_counter() - start) / len(Z0))
     return statistics.median(rounds), min(rounds), max(rounds)
 
@@ -108,6 +112,11 @@ def main() -> int:
     print(f"\nevent, one simulate() call per trajectory, {args.scalar} trajectories × {args.repeats}:")
     print(f"  compiled kernel: {1e6 * med:.1f} µs per trajectory (min {1e6 * lo:.1f}, max {1e6 * hi:.1f}); "
           f"{events:.1f} events per trajectory")
+
+    s_med, s_lo, s_hi = per_call(Z0[: args.scalar], args.repeats, params=STICTION)
+    s_events = np.mean([len(simulate(STICTION, z, T_END, t_eval=T_EVAL).events) for z in Z0[:200]])
+    print(f"  compiled kernel, static friction f_s = 1.2 f_c: {1e6 * s_med:.1f} µs per trajectory "
+          f"(min {1e6 * s_lo:.1f}, max {1e6 * s_hi:.1f}); {s_events:.1f} events per trajectory")
 
     os.environ["SYMBOLIC_FRICTION_JIT"] = "0"
     p_med, _, _ = per_call(Z0[:100], 3)

@@ -14,9 +14,11 @@ be *different* from the package's:
   ``k·v'`` changes sign from − to + with ``k·v ≤ 0`` at the local minimum
   (a double crossing inside one step); the crossing is then bisected on the
   interval's Taylor polynomial down to ``10^{-(dps-8)}`` relative;
-* the stick exit time is ``(sign(σ) f_c - φ)/σ``;
+* the stick exit time is ``(sign(σ) f_s - φ)/σ``;
 * the mode at ``v = 0`` is read off the appendix's table, written again here
-  from the paper with exact comparisons.
+  from the paper with exact comparisons; with static friction ``f_s > f_c``
+  (eq. basic with a static level: stick while ``|φ| ≤ f_s``, kinetic
+  friction ``f_c``) its rows at rest compare ``φ`` with ``±f_s``.
 
 The reference is slow (mpmath), so tests use it on a few hundred sample times.
 
@@ -39,8 +41,13 @@ from symbolic_friction import Parameters
 __all__ = ["Reference", "reference_table_mode"]
 
 
-def reference_table_mode(sigma, phi, v, f_c) -> int:
-    """The appendix's table of Claim 1, rows (i)–(xi), written from the paper."""
+def reference_table_mode(sigma, phi, v, f_c, f_s=None) -> int:
+    """The appendix's table of Claim 1, rows (i)–(xi), written from the paper.
+
+    With ``f_s`` the mass at rest sticks while ``|φ| ≤ f_s``.
+    """
+    if f_s is not None:
+        f_c = f_s
     if v > 0:  # (i)
         return 1
     if v < 0:  # (xi)
@@ -86,6 +93,7 @@ class Reference:
         self.ctx = ctx
         q = lambda value: ctx.mpf(Fraction(value).numerator) / Fraction(value).denominator  # noqa: E731
         self.k_p, self.k_i, self.k_v, self.f_c = q(params.k_p), q(params.k_i), q(params.k_v), q(params.f_c)
+        self.f_s = q(params.f_s)
         self.A = [
             [ctx.mpf(0), ctx.mpf(0), -self.k_i],
             [ctx.mpf(1), ctx.mpf(0), -self.k_p],
@@ -197,7 +205,7 @@ class Reference:
         ctx = self.ctx
         x = list(self.x0)
         t = ctx.mpf(0)
-        mode = reference_table_mode(x[0], x[1], x[2], self.f_c)
+        mode = reference_table_mode(x[0], x[1], x[2], self.f_c, self.f_s)
         while True:
             if mode == 0:
                 sigma, phi = x[0], x[1]
@@ -206,21 +214,21 @@ class Reference:
                     self.status = "equilibrium"
                     return
                 d = 1 if sigma > 0 else -1
-                t1 = t + (d * self.f_c - phi) / sigma
+                t1 = t + (d * self.f_s - phi) / sigma
                 if t1 >= self.t_end:
                     self.pieces.append(_Piece(t, self.t_end, 0, x))
                     return
                 self.pieces.append(_Piece(t, t1, 0, x))
-                x = [sigma, d * self.f_c, ctx.mpf(0)]
+                x = [sigma, d * self.f_s, ctx.mpf(0)]
                 t = t1
-                new = reference_table_mode(x[0], x[1], x[2], self.f_c)
+                new = reference_table_mode(x[0], x[1], x[2], self.f_c, self.f_s)
             else:
                 piece, x_end = self._slip(t, x, mode)
                 self.pieces.append(piece)
                 if x_end is None:
                     return
                 t, x = piece.t1, x_end
-                new = reference_table_mode(x[0], x[1], x[2], self.f_c)
+                new = reference_table_mode(x[0], x[1], x[2], self.f_c, self.f_s)
             if new != mode:
                 self.events.append((t, mode, new))
                 mode = new

@@ -9,13 +9,19 @@ import sys
 import numpy as np
 import pytest
 
+from symbolic_friction import Parameters
 from symbolic_friction._simulation import _jit, simulate, simulate_batch
 
 from .gain_sets import GAIN_SETS
 
 numba = pytest.importorskip("numba")
 
-CASES = GAIN_SETS
+CASES = {
+    **GAIN_SETS,
+    # static friction above Coulomb: stick exits at ±f_s, slips that start with v' ≠ 0
+    "a_stiction": Parameters(k_v="6.4", k_p=3, k_i=4, f_s="1.2"),
+    "b_stiction": Parameters(k_v="1.5", k_p="0.66", k_i="0.08", f_s="1.5"),
+}
 
 
 def starts(n: int, seed: int) -> np.ndarray:
