@@ -35,7 +35,7 @@ _HELP = {
 _EPILOG = """examples:
   symbolic-friction hunting --k-p 3 --k-i 4 --k-v 6.4 --f-c 1 --f-s 1.2
   symbolic-friction hunting --k-p 0.66 --k-i 0.08 --k-v 1.5 --f-c 1 --f-s 1.2 --figure hunting_b.png --sweep 1.05,1.1,1.2,1.5,2
-  symbolic-friction verify hunting/*.json
+  symbolic-friction verify proofs/hunting/*.json
 """
 
 
@@ -50,7 +50,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     gains = parser.add_argument_group("normalised gains (exact: '1.2' is 6/5)")
     for name in _NAMES:
         gains.add_argument("--" + name.replace("_", "-"), dest=name, required=True, metavar="Q", help=_HELP[name])
-    parser.add_argument("--out", default="hunting", metavar="DIR", help="directory for the certificates (default: hunting)")
+    parser.add_argument("--out", default="proofs/hunting", metavar="DIR", help="directory for the certificates (default: proofs/hunting)")
     parser.add_argument("--name", default=None, metavar="STEM", help="file stem (default: hunting_<hash of the gains>)")
     parser.add_argument("--figure", default=None, metavar="PNG", help="write the phase plane, the map and (with --sweep) the sweep")
     parser.add_argument("--sweep", default=None, metavar="R,R,…", help="ratios f_s/f_c for an amplitude sweep (e.g. 1.05,1.1,1.2,1.5)")

@@ -17,7 +17,7 @@ def test_case_a_prints_proves_and_writes_a_certificate(tmp_path, capsys):
     assert "σ* = 0.10504486800" in out and "period T = 46.86041856" in out
     assert "PROVED: exactly one symmetric cycle" in out and "stable (proved |multiplier| < 1)" in out
     assert "agrees to 1e-9" in out
-    assert "Corollary 1 at ρ = (f_s - f_c)/f_c = 0.2" in out and "within the worst-case γ̂(ρ)" in out
+    assert "Corollary 1 at ρ = (f_s - f_c)/f_c = 0.2" in out and "within the worst found γ̂(ρ)" in out
     assert png.stat().st_size > 10_000
     cert = tmp_path / "a.json"
     data = json.loads(cert.read_text(encoding="utf-8"))

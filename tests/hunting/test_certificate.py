@@ -93,7 +93,7 @@ def test_malformed_files_are_refused(cert_file, tmp_path, capsys, edit, match):
     assert main(["verify", str(path)]) == 2
 
 
-COMMITTED = sorted((Path(__file__).resolve().parents[2] / "hunting").glob("*.json"))
+COMMITTED = sorted((Path(__file__).resolve().parents[2] / "proofs" / "hunting").glob("*.json"))
 
 
 def test_the_committed_hunting_certificates_verify():
