@@ -9,13 +9,87 @@ Windows).  Readers see the old file or the complete new one.
 
 from __future__ import annotations
 
+import errno
 import os
+import stat
 import tempfile
 from collections.abc import Callable
 from pathlib import Path
 from typing import IO
 
-__all__ = ["atomic_write", "atomic_write_text"]
+from ._errors import InputFileError, OutputPathError
+
+__all__ = ["atomic_write", "atomic_write_text", "read_limited", "ensure_directory", "describe_os_error"]
+
+
+def describe_os_error(exc: OSError, path: str | os.PathLike[str] | None = None) -> str:
+    """``"<path>: <what went wrong>"`` for an OS error, in words a user can act on."""
+    name = exc.filename if exc.filename is not None else path
+    what = {
+        errno.ENAMETOOLONG: "file name too long",
+        errno.ELOOP: "too many levels of symbolic links (a symlink loop?)",
+        errno.ENOTDIR: "a component of the path is a file, not a directory",
+        errno.EISDIR: "is a directory",
+        errno.ENOENT: "no such file or directory",
+        errno.EACCES: "permission denied",
+        errno.EEXIST: "already exists",
+        errno.ENOSPC: "no space left on the device",
+        errno.EROFS: "read-only file system",
+    }.get(exc.errno or 0, exc.strerror or type(exc).__name__)
+    text = str(name) if name is not None else "?"
+    if len(text) > 120:
+        text = text[:60] + "…" + text[-40:] + f" ({len(text)} characters)"
+    return f"{text}: {what}"
+
+
+def read_limited(path: str | os.PathLike[str], *, limit: int, what: str = "file") -> bytes:
+    """Read a regular file of at most ``limit`` bytes, refusing anything else.
+
+    A FIFO, a device such as ``/dev/zero``, a directory, a symlink loop or a
+    file larger than ``limit`` raises :class:`~symbolic_friction.InputFileError`
+    with one line saying so, without blocking and without reading it whole.
+    """
+    path = Path(path)
+    try:
+        # O_NONBLOCK: opening a FIFO must not wait for a writer.
+        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+    except OSError as exc:
+        raise InputFileError(f"cannot read {what} {describe_os_error(exc, path)}") from None
+    try:
+        info = os.fstat(fd)
+        if stat.S_ISDIR(info.st_mode):
+            raise InputFileError(f"cannot read {what} {path}: is a directory")
+        if not stat.S_ISREG(info.st_mode):
+            raise InputFileError(f"cannot read {what} {path}: not a regular file (a FIFO, socket or device)")
+        if info.st_size > limit:
+            raise InputFileError(f"{what} {path} has {info.st_size} bytes; at most {limit} are accepted")
+        with os.fdopen(fd, "rb", closefd=False) as handle:
+            data = handle.read(limit + 1)
+    except OSError as exc:
+        raise InputFileError(f"cannot read {what} {describe_os_error(exc, path)}") from None
+    finally:
+        os.close(fd)
+    if len(data) > limit:
+        raise InputFileError(f"{what} {path} has more than {limit} bytes; at most {limit} are accepted")
+    return data
+
+
+def ensure_directory(path: str | os.PathLike[str], *, what: str = "output directory") -> Path:
+    """Create ``path`` (and its parents) if needed and check it is a writable directory.
+
+    Called before any long computation, so that an unusable ``--out`` fails
+    at once with one line instead of after the work.
+    """
+    path = Path(path)
+    try:
+        if path.exists() and not path.is_dir():
+            raise OutputPathError(f"{what} {path} exists and is not a directory")
+        path.mkdir(parents=True, exist_ok=True)
+        if not os.access(path, os.W_OK | os.X_OK):
+            raise OutputPathError(f"{what} {path} is not writable")
+    except OSError as exc:
+        raise OutputPathError(f"cannot use {what} {describe_os_error(exc, path)}") from None
+    return path
 
 
 def atomic_write(path: str | os.PathLike[str], write: Callable[[IO[bytes]], object]) -> Path:

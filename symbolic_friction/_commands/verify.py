@@ -15,34 +15,72 @@ HELP = "exactly re-check certificate files (exit 0 only if every file proves its
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    """``FILE…`` and ``--verbose``."""
+    """``FILE…``, ``--json`` and ``--junit-xml FILE``."""
     parser.description = (
         f"{HELP}. Exit status: 0 if every file proves its claim, 1 if an inequality fails "
         "(named with its exact numbers), 2 if a file is missing or malformed."
     )
     parser.add_argument("files", nargs="+", metavar="FILE", help="certificate JSON files")
-    parser.add_argument("-v", "--verbose", action="store_true", help="print every inequality with its exact numbers")
+    parser.add_argument("--json", action="store_true",
+                        help="print one JSON object (every file, its gains, verdict and inequalities) instead of text")
+    parser.add_argument("--junit-xml", metavar="FILE", default=None,
+                        help="also write a JUnit XML report, one test case per certificate")
 
 
 def run(args: argparse.Namespace) -> int:
-    """Verify each file; print one summary line per file (and every check with ``--verbose``)."""
-    from .._certify import verify_file
-    from .._errors import CertificateFormatError
+    """Verify each file; print one summary line per file, with its gains (and every check with ``--verbose``)."""
+    import json
 
+    from .._certify import verify_file
+    from .._errors import CertificateFormatError, InputFileError
+    from .._junit import Case, write_junit
+    from .._output import emit
+
+    if args.junit_xml is not None:
+        from .._junit import check_writable
+
+        check_writable(args.junit_xml)
     failed = False
     malformed: list[Exception] = []
+    cases: list = []
+    payload: list[dict] = []
     for name in args.files:
         try:
             report = verify_file(name)
-        except (CertificateFormatError, FileNotFoundError, IsADirectoryError, PermissionError) as exc:
+        except (CertificateFormatError, InputFileError) as exc:
             malformed.append(exc)
-            print(f"MALFORMED {exc}", file=sys.stdout)
+            cases.append(Case(name=str(name), classname="verify", seconds=0.0, error=str(exc)))
+            payload.append({"file": str(name), "status": "malformed", "error": str(exc)})
+            if not args.json:
+                emit(f"MALFORMED {exc}", level=0)
             continue
-        print(report.summary(), file=sys.stdout)
-        if args.verbose:
+        cert = report.certificate
+        gains = cert.gains_text()
+        cases.append(Case(
+            name=str(name), classname="verify", seconds=0.0,
+            failure=None if report.proved else "; ".join(c.message for c in report.failures),
+            output=gains,
+        ))
+        payload.append({
+            "file": str(name),
+            "status": "proved" if report.proved else "failed",
+            "gains": {k: str(v.numerator) if v.denominator == 1 else f"{v.numerator}/{v.denominator}" for k, v in cert.parameters.items()},
+            "gains_text": gains,
+            "label": cert.provenance.label if cert.provenance is not None else "",
+            "overshoot_bound": cert.overshoot_bound,
+            "failures": [{"obligation": c.obligation, "inequality": c.name, "instance": c.instance} for c in report.failures],
+            **({"checks": [{"obligation": c.obligation, "inequality": c.name, "instance": c.instance, "holds": c.holds}
+                           for c in report.checks]} if args.verbose else {}),
+        })
+        if not args.json:
+            emit(f"{report.summary()} [{gains}]", level=0)
             for check in report.checks:
-                print(f"  {check}  [{check.obligation}]", file=sys.stdout)
+                emit(f"  {check}  [{check.obligation}]", level=2)
         failed = failed or not report.proved
+    if args.junit_xml is not None:
+        write_junit(args.junit_xml, "symbolic-friction verify", cases)
+    if args.json:
+        emit(json.dumps({"files": payload, "passed": not failed and not malformed}, indent=2, ensure_ascii=False), level=0)
     if malformed:
         # the CLI turns this into "error: …" and exit status 2
         if len(malformed) == 1:
