@@ -19,7 +19,7 @@ from typing import IO
 
 from ._errors import InputFileError, OutputPathError
 
-__all__ = ["atomic_write", "atomic_write_text", "read_limited", "ensure_directory", "describe_os_error"]
+__all__ = ["atomic_write", "atomic_write_text", "read_limited", "ensure_directory", "check_output_directory", "describe_os_error"]
 
 
 def describe_os_error(exc: OSError, path: str | os.PathLike[str] | None = None) -> str:
@@ -133,3 +133,37 @@ def atomic_write_text(path: str | os.PathLike[str], text: str) -> Path:
     """Write ``text`` as UTF-8 with ``\\n`` line endings, atomically (see :func:`atomic_write`)."""
     data = text.encode("utf-8")
     return atomic_write(path, lambda handle: handle.write(data))
+
+
+def check_output_directory(path: str | os.PathLike[str], *, what: str = "output directory") -> Path:
+    """Check, without creating anything, that ``path`` could be created (or is) a writable directory.
+
+    For outputs written only sometimes (counterexamples): the run fails at
+    once on an unusable path, and a run that writes nothing leaves no empty
+    directory behind.
+    """
+    path = Path(path)
+    try:
+        for part in path.parts:
+            if len(part.encode("utf-8", "surrogateescape")) > 255:
+                raise OSError(errno.ENAMETOOLONG, os.strerror(errno.ENAMETOOLONG), str(path))
+        if path.exists():
+            if not path.is_dir():
+                raise OutputPathError(f"{what} {path} exists and is not a directory")
+            existing = path
+        else:
+            os.lstat(path.parent) if str(path.parent) else None  # raises ENOTDIR / ELOOP on a bad component
+            existing = path.parent
+            while not existing.exists():
+                existing = existing.parent
+            if not existing.is_dir():
+                raise OutputPathError(f"cannot use {what} {path}: {existing} is a file, not a directory")
+        if not os.access(existing, os.W_OK | os.X_OK):
+            raise OutputPathError(f"{what} {path} is not writable")
+    except FileNotFoundError:
+        pass  # a missing parent is created when the output is written
+    except OSError as exc:
+        if isinstance(exc, OutputPathError):
+            raise
+        raise OutputPathError(f"cannot use {what} {describe_os_error(exc, path)}") from None
+    return path

@@ -32,6 +32,7 @@ MAX_INPUT_DIGITS = 1000
 """A number typed by a user (option, scene file) may have at most this many characters."""
 MAX_EXPONENT = 1000
 """... and a decimal exponent of at most this magnitude (``1e999999999`` would be a 10⁹-digit integer)."""
+_MAX_BITS = int(MAX_INPUT_DIGITS * 3.3219280948873626) + 1
 _CHUNK = 4000  # below Python's int/str conversion limit (4300 digits)
 
 
@@ -106,6 +107,8 @@ def to_rational(value: object, *, name: str = "value", binary: bool = False) -> 
     if isinstance(value, Fraction):
         return value
     if isinstance(value, int):
+        if value.bit_length() > _MAX_BITS:
+            raise InvalidNumberError(f"{name} has more than {MAX_INPUT_DIGITS} digits; such numbers are refused")
         return Fraction(value)
     if isinstance(value, float):
         if not math.isfinite(value):

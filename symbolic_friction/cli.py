@@ -91,6 +91,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     except RecursionError:
         _error_line(prefix, "input nested too deeply")
         return 2
+    except OverflowError as exc:  # only user numbers reach float conversion at this size
+        _error_line(prefix, f"a number is beyond the range of floating point (about 1e308): {exc}")
+        return 2
     except KeyboardInterrupt:
         print(f"symbolic-friction {args.command}: interrupted", file=sys.stderr)
         return 130

@@ -30,6 +30,29 @@ def _positive_int(text: str) -> int:
     return value
 
 
+MAX_TRAJECTORIES = 1_000_000
+MAX_SAMPLES = 100_000
+MAX_EVENTS = 10_000_000
+MAX_TOTAL_SAMPLES = 100_000_000
+"""Bounds on the work one run may ask for (time and memory), said in the error when exceeded."""
+
+
+def _bounded_int(bound: int):
+    def parse(text: str) -> int:
+        value = _positive_int(text)
+        if value > bound:
+            raise argparse.ArgumentTypeError(f"at most {bound} is supported (a bound on time and memory); got {text[:40]}")
+        return value
+
+    return parse
+
+
+def _seed(text: str) -> int:
+    if len(text) > 40 or not text.isascii() or not text.lstrip("+").isdigit():
+        raise argparse.ArgumentTypeError(f"expected an integer ≥ 0 of at most 40 digits; got {text[:40]!r}")
+    return int(text)
+
+
 def _positive_float(text: str) -> float:
     try:
         value = float(text)
@@ -48,12 +71,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
     parser.add_argument("certificates", nargs="*", metavar="CERT",
                         help="certificate JSON files (default: every proofs/*.json)")
-    parser.add_argument("--trajectories", type=_positive_int, default=10_000, metavar="N",
+    parser.add_argument("--trajectories", type=_bounded_int(MAX_TRAJECTORIES), default=10_000, metavar="N",
                         help="trajectories per gain set, shared by its certificates (default 10000)")
-    parser.add_argument("--seed", type=int, default=0, help="seed of the random states and optimisers (default 0)")
+    parser.add_argument("--seed", type=_seed, default=0, help="seed of the random states and optimisers (default 0)")
     parser.add_argument("--horizon", type=_positive_float, default=None, metavar="T",
                         help="simulation horizon (default 20/|Re λ| of the slowest root)")
-    parser.add_argument("--samples", type=_positive_int, default=301, metavar="N",
+    parser.add_argument("--samples", type=_bounded_int(MAX_SAMPLES), default=301, metavar="N",
                         help="samples per trajectory, plus every event (default 301)")
     parser.add_argument("--rtol", type=_positive_float, default=1e-8,
                         help="relative tolerance of every check (default 1e-8)")
@@ -64,7 +87,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--no-adversarial", action="store_true", help="skip the optimisers")
     parser.add_argument("--decay", action="store_true",
                         help="also fit the decay of |x(t)|_A (power law or exponential)")
-    parser.add_argument("--max-events", type=_positive_int, default=10_000, metavar="N",
+    parser.add_argument("--max-events", type=_bounded_int(MAX_EVENTS), default=10_000, metavar="N",
                         help="event limit per trajectory; a trajectory reaching it is incomplete (default 10000)")
     parser.add_argument("--iss", action="store_true",
                         help="also estimate Corollary 1's ISS gain (a few seconds per gain set)")
@@ -76,6 +99,7 @@ def run(args: argparse.Namespace) -> int:
 
     from .._crosscheck import crosscheck, format_report, write_counterexamples
     from .._errors import ParameterError, UnprovedCertificateError
+    from .._io import check_output_directory
 
     files = list(args.certificates)
     if not files:
@@ -86,6 +110,12 @@ def run(args: argparse.Namespace) -> int:
         raise ParameterError(f"--rtol must be < 1; got {args.rtol:g}")
     if args.theta > 1:
         raise ParameterError(f"--theta must be ≤ 1; got {args.theta:g}")
+    if args.trajectories * args.samples > MAX_TOTAL_SAMPLES:
+        raise ParameterError(
+            f"--trajectories × --samples = {args.trajectories * args.samples} samples per gain set; at most "
+            f"{MAX_TOTAL_SAMPLES} are supported (a bound on memory)"
+        )
+    check_output_directory(args.out, what="--out")
     try:
         report = _run_crosscheck(crosscheck, files, args)
     except UnprovedCertificateError as exc:
