@@ -24,6 +24,8 @@ __all__ = ["atomic_write", "atomic_write_text", "read_limited", "ensure_director
 
 def describe_os_error(exc: OSError, path: str | os.PathLike[str] | None = None) -> str:
     """``"<path>: <what went wrong>"`` for an OS error, in words a user can act on."""
+    if exc.errno is None and exc.filename is None and path is None:
+        return str(exc) or type(exc).__name__  # an OSError raised with a message of its own
     name = exc.filename if exc.filename is not None else path
     what = {
         errno.ENAMETOOLONG: "file name too long",

@@ -187,7 +187,7 @@ def run_case(argv: list[str], files: dict[str, object], env_extra: dict[str, str
     env = dict(os.environ)
     env["PYTHONPATH"] = str(REPO) + os.pathsep + env.get("PYTHONPATH", "")
     env.pop("COLUMNS", None)
-    cwd = str(REPO)
+    cwd = str(directory)  # never the checkout: nothing a case writes can land in proofs/
     for key, value in env_extra.items():
         if key == "_cwd":
             cwd = value.format(d=directory)
