@@ -83,6 +83,15 @@ def main(argv: Sequence[str] | None = None) -> int:
     except SymbolicFrictionError as exc:
         _error_line(prefix, str(exc))
         return 2
+    except BrokenPipeError:
+        # the reader went away (`| head`): stop quietly, as other command-line tools do
+        import os
+
+        try:
+            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        except OSError:  # pragma: no cover
+            pass
+        return 141
     except OSError as exc:
         from ._io import describe_os_error
 

@@ -27,6 +27,9 @@ def run(args: argparse.Namespace) -> int:
         for spec in available_figures().values():
             print(f"{spec.name:10s} {spec.description}")
         return 0
-    for path in make_figures(args.out, args.only):
-        print(f"wrote {path}")
+    from .._io import ensure_directory
+    from .._output import emit
+
+    ensure_directory(args.out)  # an unusable --out fails now, not after drawing
+    make_figures(args.out, args.only, on_written=lambda path: emit(f"wrote {path}", level=0))
     return 0
