@@ -87,7 +87,7 @@ def format_table(title: str, columns: Sequence[str], rows: Sequence[Sequence[str
 
 _ASCII = {
     "κ": "kappa", "≤": "<=", "≥": ">=", "≠": "!=", "—": "-", "–": "-", "…": "...", "·": "*", "²": "^2", "³": "^3",
-    "𝒜": "A", "⪰": ">=0", "≻": ">", "≺": "<", "⇔": "<=>", "⇒": "=>", "→": "->", "←": "<-", "≡": "==", "≷": "<>",
+    "𝒜": "A", "⪰": ">=", "≻": ">", "≺": "<", "⇔": "<=>", "⇒": "=>", "→": "->", "←": "<-", "≡": "==", "≷": "<>",
     "λ": "lambda", "σ": "sigma", "φ": "phi", "ξ": "xi", "ρ": "rho", "α": "alpha", "δ": "delta", "θ": "theta",
     "ζ": "zeta", "μ": "mu", "ε": "epsilon", "ĉ": "c^", "V̂": "V^", "̂": "^", "∂": "d", "∈": "in", "⊂": "subset",
     "⊆": "subset", "√": "sqrt", "∞": "inf", "±": "+-", "×": "x", "−": "-", "✓": "ok", "✗": "x", "₁": "1",
@@ -101,7 +101,7 @@ def _ascii_replace(exc: UnicodeError) -> tuple[str, int]:
     if not isinstance(exc, UnicodeEncodeError):
         raise exc
     bad = exc.object[exc.start : exc.end]
-    return "".join(_ASCII.get(ch, "?") for ch in bad), exc.end
+    return "".join(_ASCII.get(ch, ch if ch.isascii() else "?") for ch in bad), exc.end
 
 
 def install_ascii_fallback() -> None:
