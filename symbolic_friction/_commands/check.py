@@ -348,7 +348,33 @@ def certificates_section(args: argparse.Namespace) -> Section:
         # --write regenerates every configured certificate (from its own provenance, or
         # Table I's gains for Table I's file names), so one command brings a project up to date.
         written = [f"wrote {p}" for p in write_listed_certificates(proofs, names)]
-    entries = check_listed_certificates(proofs, names)
+    from .._output import emit, fit, terminal_width
+    from .._progress import Progress
+
+    stream = not getattr(args, "json", False)
+    columns = ("file", "proved", "up to date", "kappa")
+    file_width = min(max([len(str(proofs / n)) for n in names] + [4]), max(20, terminal_width() - 36))
+    widths = (file_width, 6, 10, 8)
+    title = "Certificates (exact re-verification)"
+    if stream and names:
+        emit(title)
+        emit("  ".join(c.ljust(w) for c, w in zip(columns, widths)).rstrip())
+        emit("  ".join("-" * w for w in widths))
+    entries = []
+    with Progress(len(names), desc="certificates") as bar:
+        for name in names:
+            entry = check_listed_certificates(proofs, [name])[0]
+            entries.append(entry)
+            bar.update()
+            if stream:
+                cells = (str(entry.path), "yes" if entry.proved else "NO", "no" if entry.stale else "yes",
+                         entry.report.certificate.overshoot_bound if entry.report is not None else "-")
+                line = "  ".join(fit(c, w).ljust(w) for c, w in zip(cells, widths)).rstrip()
+                if bar.enabled:
+                    bar._bar.write(line, file=sys.stdout)  # above the bar, which stays at the bottom
+                    sys.stdout.flush()
+                else:
+                    emit(line, level=1 if entry.ok else 0)
     rows = [
         (str(e.path), "yes" if e.proved else "NO", "no" if e.stale else "yes",
          e.report.certificate.overshoot_bound if e.report is not None else "-")
@@ -384,10 +410,10 @@ def certificates_section(args: argparse.Namespace) -> Section:
              for e in entries]
     if not entries:
         cases.append(Case(name=str(proofs), classname="check.certificates", failure=summary))
-    return Section("Certificates (exact re-verification)", ("file", "proved", "up to date", "kappa"), rows,
+    return Section(title, columns, rows,
                    {"certificates": payload}, ok, notes, summary=summary,
                    counts={"certificates": len(entries), "certificates_proved": proved, "certificates_current": current},
-                   cases=cases)
+                   cases=cases, streamed=stream and bool(names))
 
 
 def crosscheck_section(args: argparse.Namespace) -> Section:
@@ -400,6 +426,10 @@ def crosscheck_section(args: argparse.Namespace) -> Section:
     from .._crosscheck._selftest import EXPECTED, crosscheck_self_test
     from .._parameters import Parameters
 
+    from .._output import emit
+
+    if not getattr(args, "json", False):
+        emit("cross-check self-test: simulating Table I's certificates and wrong variants of them …")
     certificates = {}
     for case in ("a", "b"):
         path = resolve_target(args).proofs / f"case_{case}_tightest.json"
