@@ -253,3 +253,15 @@ def test_direct_construction_checks_every_field():
     for change, match in cases:
         with pytest.raises(SceneError, match=match):
             Scene(**{**ok, **change})
+
+
+def test_readme_documents_the_scene_format_of_the_module_docstring():
+    """The scene file format is published in the README, word for word as in the module docstring."""
+    from pathlib import Path
+
+    import symbolic_friction._scenes as scenes
+
+    block = scenes.__doc__.split("unknown keys are errors)::\n\n", 1)[1].split("\nBuilt-in scenes", 1)[0]
+    expected = "\n".join(line[4:] if line.startswith("    ") else line for line in block.rstrip("\n").splitlines())
+    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
+    assert "### Scene files" in readme and expected in readme
