@@ -8,7 +8,9 @@ pre-commit hook exactly as ``.pre-commit-hooks.yaml`` declares it, plus
 obligation and certificate.  Editing one constant makes the hook and ``check``
 fail, naming the inequality.  (``pre-commit try-repo`` would build a fresh
 environment with cvxpy and numba from the network; the hook's entry command is
-run directly instead, in a subprocess with this checkout on ``PYTHONPATH``.)
+run directly instead, in a subprocess with this checkout on ``PYTHONPATH``, and
+once more as the console script of a copy installed into a fresh virtual
+environment.)
 """
 
 from __future__ import annotations
@@ -141,3 +143,41 @@ def test_without_configuration_outside_the_checkout_check_refuses(tmp_path):
     check = _run(_cli("check"), tmp_path)
     assert check.returncode == 2
     assert check.stderr.count("\n") == 1 and "no configuration found" in check.stderr
+
+
+def test_in_a_fresh_virtual_environment_the_installed_hook_passes(project, tmp_path):
+    """The package installed (not imported from this checkout) into a fresh virtual environment: its console
+    script, run exactly as the hook's entry says, passes in the user's repository (the shipped JSON Schema and
+    the configuration search work from an installed copy).  The dependencies come from the running
+    environment through a ``.pth`` file; the build backend is fetched by pip (skipped if it cannot be)."""
+    import shutil
+    import sysconfig
+
+    source = tmp_path / "src"
+    source.mkdir()
+    shutil.copytree(REPO / "symbolic_friction", source / "symbolic_friction",
+                    ignore=shutil.ignore_patterns("__pycache__"))
+    for name in ("pyproject.toml", "README.md"):
+        shutil.copy(REPO / name, source / name)
+    venv = tmp_path / "venv"
+    subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(venv)], check=True)
+    python = venv / "bin" / "python"
+    purelib = subprocess.run([str(python), "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
+                             capture_output=True, text=True, check=True).stdout.strip()
+    Path(purelib, "dependencies.pth").write_text(sysconfig.get_paths()["purelib"] + "\n", encoding="utf-8")
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "COLUMNS")}
+    install = subprocess.run([sys.executable, "-m", "pip", "--python", str(python), "install", "--quiet", "--no-deps",
+                              str(source)], capture_output=True, text=True, env=env, timeout=600)
+    if install.returncode != 0:
+        pytest.skip(f"could not build the package here: {install.stderr.strip().splitlines()[-1:]}")
+    where = subprocess.run([str(python), "-c", "import symbolic_friction; print(symbolic_friction.__file__)"],
+                           capture_output=True, text=True, env=env, cwd=project, check=True).stdout
+    assert where.startswith(purelib)  # the installed copy, not this checkout
+    entry = _hook_entry("symbolic-friction-check")[3:]  # the arguments after the console script
+    hook = subprocess.run([str(venv / "bin" / "symbolic-friction"), *entry], capture_output=True, text=True,
+                          env=env, cwd=project, timeout=600)
+    assert hook.returncode == 0, hook.stdout + hook.stderr
+    assert hook.stdout.strip().splitlines()[-1].startswith("check: PASSED")
+    verify = subprocess.run([str(venv / "bin" / "symbolic-friction"), *_hook_entry("symbolic-friction-verify")[3:],
+                             "proofs/fast_axis.json"], capture_output=True, text=True, env=env, cwd=project)
+    assert verify.returncode == 0 and "PROVED" in verify.stdout, verify.stderr
