@@ -67,6 +67,8 @@ def read_limited(path: str | os.PathLike[str], *, limit: int, what: str = "file"
             raise InputFileError(f"{what} {path} has {info.st_size} bytes; at most {limit} are accepted")
         with os.fdopen(fd, "rb", closefd=False) as handle:
             data = handle.read(limit + 1)
+    except InputFileError:
+        raise
     except OSError as exc:
         raise InputFileError(f"cannot read {what} {describe_os_error(exc, path)}") from None
     finally:

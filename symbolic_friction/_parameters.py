@@ -21,7 +21,7 @@ from fractions import Fraction
 from typing import ClassVar
 
 from ._errors import AssumptionError
-from ._rational import format_rational, to_rational
+from ._rational import format_rational, short_rational, to_rational
 
 __all__ = ["Parameters", "TABLE_I"]
 
@@ -42,7 +42,8 @@ def _float(q: Fraction, name: str) -> float:
 
 
 def _fmt(q: Fraction) -> str:
-    return format_rational(q)
+    # messages stay one readable line: a 300-digit value is shown as ≈1e-300
+    return short_rational(q)
 
 
 @dataclass(frozen=True)
@@ -191,10 +192,10 @@ class Parameters:
 
     def as_strings(self) -> dict[str, str]:
         """The four parameters as exact ``"p/q"`` strings (file format)."""
-        return {name: _fmt(getattr(self, name)) for name in self._names}
+        return {name: format_rational(getattr(self, name)) for name in self._names}
 
     def __str__(self) -> str:
-        inner = ", ".join(f"{k}={v}" for k, v in self.as_strings().items())
+        inner = ", ".join(f"{k}={_fmt(getattr(self, k))}" for k in self._names)
         return f"Parameters({inner})"
 
 

@@ -16,7 +16,7 @@ from fractions import Fraction
 
 from ._errors import InvalidNumberError, NonFiniteError
 
-__all__ = ["to_rational", "format_rational", "parse_integer", "format_integer", "MAX_INPUT_DIGITS", "MAX_EXPONENT"]
+__all__ = ["to_rational", "format_rational", "short_rational", "parse_integer", "format_integer", "MAX_INPUT_DIGITS", "MAX_EXPONENT"]
 
 # ASCII digits only (re.ASCII): "٣" or "３" are refused, never read as 3.
 _NUMBER_RE = re.compile(
@@ -167,3 +167,31 @@ def format_rational(q: Fraction) -> str:
     q = Fraction(q)
     num = format_integer(q.numerator)
     return num if q.denominator == 1 else f"{num}/{format_integer(q.denominator)}"
+
+
+def short_rational(q: Fraction, *, limit: int = 40) -> str:
+    """``format_rational(q)`` for messages: exact when short, else ``≈1e-300 (exact: a 301-digit denominator)``.
+
+    >>> short_rational(Fraction(32, 5))
+    '32/5'
+    >>> short_rational(Fraction(1, 10**300))
+    '≈1e-300 (exact: a 301-digit denominator)'
+    """
+    q = Fraction(q)
+    num, den = abs(q.numerator), q.denominator
+    num_digits = len(format_integer(num)) if num.bit_length() < 40_000 else int(num.bit_length() * 0.30103) + 1
+    den_digits = len(format_integer(den)) if den.bit_length() < 40_000 else int(den.bit_length() * 0.30103) + 1
+    if num_digits + den_digits + 1 <= limit:
+        return format_rational(q)
+    try:
+        approx = f"{float(q):.6g}"
+    except OverflowError:
+        approx = f"{'-' if q < 0 else ''}1e+{num_digits - den_digits}"
+    if approx in ("0", "-0"):
+        approx = f"1e-{den_digits - num_digits}"
+    parts = []
+    if num_digits > 20:
+        parts.append(f"a {num_digits}-digit numerator")
+    if den_digits > 20:
+        parts.append(f"a {den_digits}-digit denominator")
+    return f"≈{approx} (exact: {' and '.join(parts) or 'long'})"
