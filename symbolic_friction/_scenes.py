@@ -82,6 +82,8 @@ MAX_SAMPLES = 1_000_000
 """Most sample times a scene may ask for per trajectory (a bound on memory, said in the error)."""
 MAX_STATES = 100_000
 """Most initial states in one scene."""
+MAX_TOTAL_SAMPLES = 20_000_000
+"""Most sample times over all trajectories of a scene (states × samples), a bound on memory."""
 MAX_INTEGER_KNOB = 10_000_000
 """Largest integer method knob (``grid_points``, ``max_events`` …) a scene may set."""
 MAX_SCENE_BYTES = 10_000_000
@@ -373,6 +375,11 @@ class Scene:
             raise SceneError(f"samples: expected an integer ≥ 2; got {_type_name(samples)} {str(samples)[:40]}")
         if samples is not None and samples > MAX_SAMPLES:
             raise SceneError(f"samples: at most {MAX_SAMPLES} sample times per trajectory are supported; got {str(samples)[:40]}")
+        if samples is not None and len(states) * samples > MAX_TOTAL_SAMPLES:
+            raise SceneError(
+                f"samples: {len(states)} initial states × {samples} samples = {len(states) * samples} sample times; "
+                f"at most {MAX_TOTAL_SAMPLES} per scene are supported (a bound on memory)"
+            )
         outputs = doc.get("outputs", ["trajectories", "events"])
         if not isinstance(outputs, list):
             raise SceneError(f"outputs: expected a list of strings; got {_type_name(outputs)} {outputs!r}")

@@ -128,6 +128,9 @@ CASES: list[tuple[str, list[str], dict[str, object], dict[str, str]]] = [
     ("structure-scene-deep-toml-table", ["simulate", "{d}/s.toml"], {"s.toml": "a = " + "{b = " * 100_000 + "1" + "}" * 100_000}, {}),
     ("structure-scene-huge-samples", ["simulate", "{d}/s.toml"], {"s.toml": _scene("").replace("t_end = 10", "t_end = 10\nsamples = 1000000000000")}, {}),
     ("structure-scene-huge-grid-points", ["simulate", "{d}/s.toml"], {"s.toml": _scene("[method]\nname = \"event\"\ngrid_points = 1000000000000\n")}, {}),
+    ("structure-scene-states-times-samples", ["simulate", "{d}/s.toml"],
+     {"s.toml": _scene("").replace("initial_states = [[0, 1, 0]]", "initial_states = [" + ", ".join(["[0, 1, 0]"] * 100) + "]")
+      .replace("t_end = 10", "t_end = 10\nsamples = 1000000")}, {}),
     ("structure-scene-not-utf8", ["simulate", "{d}/s.toml"], {"s.toml": b"\xff\xfe"}, {}),
     ("structure-scene-unknown-key", ["simulate", "{d}/s.toml"], {"s.toml": _scene("").replace("t_end = 10", "t_end = 10\nbogus = 1")}, {}),
     ("structure-config-deep-toml", ["check", "--config", "{d}/symbolic-friction.toml"], {"symbolic-friction.toml": "a = " + "[" * 100_000 + "]" * 100_000}, {}),
