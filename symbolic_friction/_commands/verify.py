@@ -11,6 +11,7 @@ from __future__ import annotations
 import argparse
 import sys
 
+_LONG = 4000
 HELP = "exactly re-check certificate files (exit 0 only if every file proves its claim)"
 
 
@@ -73,7 +74,11 @@ def run(args: argparse.Namespace) -> int:
                            for c in report.checks]} if args.verbose else {}),
         })
         if not args.json:
-            emit(f"{report.summary()} [{gains}]", level=0)
+            line = f"{report.summary()} [{gains}]"
+            if len(line) > _LONG and not args.verbose:
+                # numbers of thousands of digits: the verdict stays readable; --verbose or --json give them exactly
+                line = line[: _LONG - 200] + f" … ({len(line)} characters; --verbose or --json print the exact numbers)"
+            emit(line, level=0)
             for check in report.checks:
                 emit(f"  {check}  [{check.obligation}]", level=2)
         failed = failed or not report.proved
