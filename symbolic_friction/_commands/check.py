@@ -390,7 +390,9 @@ def certificates_section(args: argparse.Namespace) -> Section:
     else:
         summary = f"no certificates checked in {proofs} (pass --no-certificates to check only the derivations)"
     notes = [summary]
-    notes += [e.describe() for e in entries if not e.ok]
+    notes += [e.describe() + (f" (listed in {where.origin})" if e.report is None and not e.path.exists()
+                              and where.certificates is not None else "")
+              for e in entries if not e.ok]
     notes += written
     if where.certificates is not None and proofs.is_dir():
         listed = {str(proofs / n) for n in where.certificates}
