@@ -86,6 +86,19 @@ class Progress:
         if self._bar is not None:
             self._bar.update(n)
 
+    def write(self, line: str, *, level: int = 1) -> None:
+        """Print ``line`` on stdout, above the bar while one is drawn (see :func:`~symbolic_friction._output.emit`)."""
+        if self._bar is not None:
+            from ._output import verbosity
+
+            if verbosity() >= level:
+                self._bar.write(line, file=sys.stdout)
+                sys.stdout.flush()
+        else:
+            from ._output import emit
+
+            emit(line, level=level)
+
     def render(self, now: float | None = None) -> str:
         """The state as plain text, ``[#####.....] 5/10 desc 1.2 s`` (for logs and tests)."""
         now = time.perf_counter() if now is None else now

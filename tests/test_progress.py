@@ -64,3 +64,13 @@ def test_render_half_way():
 def test_negative_total_is_rejected():
     with pytest.raises(ValueError, match="total must be >= 0; got -1"):
         Progress(-1)
+
+
+def test_write_goes_above_a_drawn_bar_or_plainly_to_stdout(capsys):
+    stream = _Tty()
+    with Progress(1, desc="w", stream=stream) as bar:
+        bar.write("row one")
+        bar.update()
+    with Progress(1, stream=io.StringIO()) as quiet_bar:
+        quiet_bar.write("row two")
+    assert capsys.readouterr().out.splitlines() == ["row one", "row two"]

@@ -370,11 +370,7 @@ def certificates_section(args: argparse.Namespace) -> Section:
                 cells = (str(entry.path), "yes" if entry.proved else "NO", "no" if entry.stale else "yes",
                          entry.report.certificate.overshoot_bound if entry.report is not None else "-")
                 line = "  ".join(fit(c, w).ljust(w) for c, w in zip(cells, widths)).rstrip()
-                if bar.enabled:
-                    bar._bar.write(line, file=sys.stdout)  # above the bar, which stays at the bottom
-                    sys.stdout.flush()
-                else:
-                    emit(line, level=1 if entry.ok else 0)
+                bar.write(line, level=1 if entry.ok else 0)  # above the bar, which stays at the bottom
     rows = [
         (str(e.path), "yes" if e.proved else "NO", "no" if e.stale else "yes",
          e.report.certificate.overshoot_bound if e.report is not None else "-")

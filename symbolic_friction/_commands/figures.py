@@ -38,14 +38,7 @@ def run(args: argparse.Namespace) -> int:
         make_figures(args.out, unknown)  # raises, naming them and the available figures, before any drawing
     ensure_directory(args.out)  # an unusable --out fails now, not after drawing
     with Progress(len(names), desc="figures") as bar:
-
-        def written(path: object) -> None:
-            if bar.enabled:
-                bar._bar.write(f"wrote {path}")  # above the bar, which stays at the bottom
-            else:
-                emit(f"wrote {path}", level=0)
-
         for name in names:
-            make_figures(args.out, [name], on_written=written)
+            make_figures(args.out, [name], on_written=lambda path: bar.write(f"wrote {path}", level=0))
             bar.update()
     return 0
