@@ -91,6 +91,8 @@ def ensure_directory(path: str | os.PathLike[str], *, what: str = "output direct
         path.mkdir(parents=True, exist_ok=True)
         if not os.access(path, os.W_OK | os.X_OK):
             raise OutputPathError(f"{what} {path} is not writable")
+    except OutputPathError:
+        raise
     except OSError as exc:
         raise OutputPathError(f"cannot use {what} {describe_os_error(exc, path)}") from None
     return path
