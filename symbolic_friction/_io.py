@@ -86,6 +86,8 @@ def ensure_directory(path: str | os.PathLike[str], *, what: str = "output direct
     """
     path = Path(path)
     try:
+        if path.is_symlink() and not path.exists():
+            raise OutputPathError(f"{what} {path} is a broken symbolic link or a symlink loop")
         if path.exists() and not path.is_dir():
             raise OutputPathError(f"{what} {path} exists and is not a directory")
         path.mkdir(parents=True, exist_ok=True)
@@ -153,6 +155,8 @@ def check_output_directory(path: str | os.PathLike[str], *, what: str = "output 
         for part in path.parts:
             if len(part.encode("utf-8", "surrogateescape")) > 255:
                 raise OSError(errno.ENAMETOOLONG, os.strerror(errno.ENAMETOOLONG), str(path))
+        if path.is_symlink() and not path.exists():
+            raise OutputPathError(f"{what} {path} is a broken symbolic link or a symlink loop")
         if path.exists():
             if not path.is_dir():
                 raise OutputPathError(f"{what} {path} exists and is not a directory")

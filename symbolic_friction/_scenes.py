@@ -44,6 +44,7 @@ name (:func:`load_scene`).
 
 from __future__ import annotations
 
+import os
 import re
 import tomllib
 from collections.abc import Mapping, Sequence
@@ -422,7 +423,8 @@ class Scene:
         except RecursionError:
             raise SceneError(f"{source}: not valid TOML: nested too deeply") from None
         except ValueError as exc:  # e.g. an integer beyond Python's 4300-digit conversion limit
-            raise SceneError(f"{source}: not valid TOML: {str(exc)[:200]}") from None
+            reason = "an integer has more than 4300 digits" if "Exceeds the limit" in str(exc) else str(exc)[:200]
+            raise SceneError(f"{source}: not valid TOML: {reason}") from None
         return cls.from_mapping(doc, source=source, default_name=default_name)
 
     @classmethod
@@ -628,6 +630,10 @@ def load_scene(scene: str | Path) -> Scene:
     if name in builtin_scenes():
         resource = _builtin_dir() / f"{name}.toml"
         return Scene.from_text(resource.read_text(encoding="utf-8"), source=f"built-in scene {name}", default_name=name)
+    if os.path.lexists(path):
+        # an existing path that is not a regular file (a FIFO, a device, a symlink loop) is read, and refused,
+        # by the bounded reader, which says what it is
+        return Scene.from_file(path)
     raise SceneError(
         f"scene {name!r}: no such file and no built-in scene of that name; built-in scenes: {', '.join(builtin_scenes())}"
     )

@@ -165,6 +165,39 @@ CASES: list[tuple[str, list[str], dict[str, object], dict[str, str]]] = [
 ]
 
 
+# What the one line must say, for the cases where the wording matters most (the rest: exit 2, one line).
+SAYS = {
+    "path-verify-fifo": "not a regular file (a FIFO, socket or device)",
+    "path-verify-dev-zero": "not a regular file",
+    "path-verify-symlink-loop": "symlink loop",
+    "path-verify-name-too-long": "file name too long",
+    "path-verify-through-a-file": "a component of the path is a file",
+    "path-verify-huge-file": "bytes; at most 10000000 are accepted",
+    "path-simulate-fifo": "not a regular file",
+    "path-simulate-symlink-loop": "symlink loop",
+    "path-certify-out-file": "exists and is not a directory",
+    "path-certify-out-dev-null": "exists and is not a directory",
+    "path-certify-out-symlink-loop": "symlink loop",
+    "path-simulate-out-through-file": "a component of the path is a file",
+    "path-check-write-proofs-file": "is not a directory",
+    "number-certify-huge-integer": "at most 1000 are accepted",
+    "number-certify-huge-exponent": "exponents beyond ±1000 are refused",
+    "number-certify-arabic-digit": "ASCII digits only",
+    "number-verify-arabic-digit": "ASCII digits",
+    "number-scene-huge-integer": "an integer has more than 4300 digits",
+    "number-scene-f-c-overflow": "outside the range of floating point",
+    "structure-verify-deep-json-array": "nested too deeply",
+    "structure-scene-deep-toml-table": "nested too deeply",
+    "structure-scene-huge-samples": "at most 1000000 sample times",
+    "structure-scene-huge-grid-points": "at most 10000000 is supported",
+    "structure-crosscheck-huge-trajectories": "at most 1000000 is supported",
+    "name-certify-parent": "without directories (it is written inside --out)",
+    "name-certify-control-char": "printable characters only",
+    "usage-check-no-config-outside": "no configuration found",
+    "encoding-ascii-assumption": "k_v*k_p > k_i; got 1 <= 4",
+}
+
+
 def _materialise(directory: Path, files: dict[str, object]) -> None:
     for name, content in files.items():
         path = directory / name
@@ -210,6 +243,7 @@ def test_at_least_sixty_cases_in_every_category():
     assert len(ids) == len(set(ids)) and len(ids) >= 60
     categories = {i.split("-")[0] for i in ids}
     assert categories == {"path", "number", "structure", "name", "usage", "encoding"}
+    assert set(SAYS) <= set(ids)
 
 
 @pytest.mark.parametrize("case", CASES, ids=[c[0] for c in CASES])
@@ -222,6 +256,7 @@ def test_bad_input_is_one_line_and_exit_2(case, tmp_path):
     lines = err.strip().splitlines()
     assert len(lines) == 1, err[-2000:]
     assert "error" in lines[0]
+    assert SAYS.get(name, "") in lines[0]
     assert seconds < TIMEOUT
 
 

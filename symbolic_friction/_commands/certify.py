@@ -131,8 +131,10 @@ def check_stem(stem: str) -> str:
         raise ParameterError(
             f"--name must be a plain file name without directories (it is written inside --out); got {stem!r}"
         )
-    if len(stem) > _STEM_MAX or not stem.isprintable():
-        raise ParameterError(f"--name must be at most {_STEM_MAX} printable characters; got {len(stem)} characters")
+    if len(stem) > _STEM_MAX:
+        raise ParameterError(f"--name must be at most {_STEM_MAX} characters; got {len(stem)} characters")
+    if not stem.isprintable():
+        raise ParameterError(f"--name must hold printable characters only (no newlines or control characters); got {stem!r}")
     return stem
 
 
