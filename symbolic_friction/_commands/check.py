@@ -566,6 +566,10 @@ def run(args: argparse.Namespace) -> int:
             counts.update(s.counts)
         payload["passed"] = passed
         payload["counts"] = counts
+        payload["configuration"] = {
+            "source": where.origin, "proofs": str(where.proofs), "report": where.report,
+            "certificates": None if where.certificates is None else list(where.certificates), "only": only,
+        }
         print(json.dumps(payload, indent=2, ensure_ascii=False), flush=True)
         for s in sections:
             for note in s.notes:

@@ -57,7 +57,10 @@ def test_every_obligation_holds(full_run):
 
 def test_json_schema(full_run):
     _, payload, _, _ = full_run
-    assert set(payload) == {"obligations", "errata", "certificates", "crosscheck_self_test", "passed", "counts"}
+    assert set(payload) == {"obligations", "errata", "certificates", "crosscheck_self_test", "passed", "counts",
+                            "configuration"}
+    assert payload["configuration"]["source"].endswith("pyproject.toml") and payload["configuration"]["report"] is True
+    assert len(payload["configuration"]["certificates"]) == 4 and payload["configuration"]["only"] is None
     assert payload["passed"] is True
     assert payload["counts"]["selftest_ok"] == payload["counts"]["selftest_rows"] == 14
     assert payload["counts"]["obligations"] == payload["counts"]["obligations_hold"] == len(payload["obligations"])
