@@ -31,6 +31,7 @@ certificate gives a byte-identical file on any machine)::
 
 from __future__ import annotations
 
+import functools
 import json
 import os
 import re
@@ -508,6 +509,13 @@ def json_schema() -> dict[str, Any]:
     return json.loads(files("symbolic_friction").joinpath("schemas", "certificate-v1.schema.json").read_text(encoding="utf-8"))
 
 
+@functools.lru_cache(maxsize=1)
+def _validator() -> Any:
+    import jsonschema
+
+    return jsonschema.Draft202012Validator(json_schema())
+
+
 def validate_schema(data: object) -> None:
     """Validate a parsed certificate against :func:`json_schema` with :mod:`jsonschema`.
 
@@ -518,8 +526,7 @@ def validate_schema(data: object) -> None:
     """
     import jsonschema
 
-    validator = jsonschema.Draft202012Validator(json_schema())
-    error = jsonschema.exceptions.best_match(validator.iter_errors(data))
+    error = jsonschema.exceptions.best_match(_validator().iter_errors(data))
     if error is not None:
         where = "".join(f"[{p!r}]" if isinstance(p, int) else f".{p}" for p in error.absolute_path).lstrip(".") or "certificate"
         message = error.message if len(error.message) <= 200 else error.message[:200] + "…"
