@@ -181,3 +181,18 @@ def test_in_a_fresh_virtual_environment_the_installed_hook_passes(project, tmp_p
     verify = subprocess.run([str(venv / "bin" / "symbolic-friction"), *_hook_entry("symbolic-friction-verify")[3:],
                              "proofs/fast_axis.json"], capture_output=True, text=True, env=env, cwd=project)
     assert verify.returncode == 0 and "PROVED" in verify.stdout, verify.stderr
+
+
+def _hook_files(hook_id: str) -> re.Pattern:
+    text = (REPO / ".pre-commit-hooks.yaml").read_text(encoding="utf-8")
+    block = re.split(rf"^- id: {re.escape(hook_id)}$", text, flags=re.MULTILINE)[1].split("\n- id:", 1)[0]
+    return re.compile(re.search(r"^\s*files:\s*'(.+)'\s*$", block, re.MULTILINE).group(1))
+
+
+def test_hooks_run_when_a_certificate_or_the_configuration_changes():
+    check, verify = _hook_files("symbolic-friction-check"), _hook_files("symbolic-friction-verify")
+    for path in ("proofs/slow_axis.json", "proofs/slow_axis.md", "pyproject.toml", "sub/symbolic-friction.toml"):
+        assert check.search(path), path
+    for path in ("README.md", "src/data.json", "package.json"):
+        assert not check.search(path) and not verify.search(path), path
+    assert verify.search("proofs/slow_axis.json") and not verify.search("proofs/slow_axis.md")
