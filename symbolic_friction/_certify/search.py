@@ -60,7 +60,7 @@ from typing import Any
 
 from .._errors import InaccurateSolveError, InfeasibleError, ParameterError, SolverError
 from .._parameters import Parameters
-from .._rational import format_rational, short_rational, to_rational
+from .._rational import short_rational, to_rational
 
 __all__ = ["MODES", "DEFAULT_MARGIN", "Candidate", "Search", "find_candidate", "eigen_bounds_P", "check_mode", "check_margin"]
 

@@ -190,10 +190,6 @@ class Section:
     streamed: bool = False
 
 
-def _short(text: str, width: int) -> str:
-    return text if len(text) <= width else text[: width - 1] + "…"
-
-
 def obligations_section(args: argparse.Namespace) -> Section:
     """Run every obligation, list the errata and check or write the report."""
     from .._obligations import all_errata, all_obligations

@@ -8,7 +8,6 @@ module imports only the standard library at top level (Standard 6).
 from __future__ import annotations
 
 import argparse
-import sys
 
 HELP = "simulate a scene (TOML file or built-in name) and write CSV/NPZ (and PNG) outputs"
 

@@ -9,7 +9,6 @@ rational string is required, …).
 from __future__ import annotations
 
 import argparse
-import sys
 
 _LONG = 4000
 HELP = "exactly re-check certificate files (exit 0 only if every file proves its claim)"

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from symbolic_friction._certify.certificate import json_schema, load, loads, validate_schema
+from symbolic_friction._certify.certificate import json_schema, loads, validate_schema
 from symbolic_friction._errors import CertificateFormatError
 
 REPO = Path(__file__).resolve().parents[2]
