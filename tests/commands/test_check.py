@@ -271,7 +271,7 @@ def test_sections_can_be_appended(fake, tmp_path, capsys, monkeypatch):
     assert main(["check", "--json", "--write", "--proofs", str(tmp_path)]) == 1
     captured = capsys.readouterr()
     payload = json.loads(captured.out)
-    assert set(payload) == {"obligations", "errata", "certificates", "passed", "counts"}
+    assert set(payload) == {"obligations", "errata", "certificates", "passed", "counts", "configuration"}
     assert payload["passed"] is False
     assert captured.err.strip().splitlines()[-1].startswith("check: FAILED — Certificates; 1 of 1 obligations hold")
 
