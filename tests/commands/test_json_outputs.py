@@ -114,3 +114,19 @@ def test_simulate_list_json(capsys):
     assert main(["simulate", "--list", "--json"]) == 0
     payload, _ = _json(capsys)
     assert "paper-a" in payload["scenes"]
+
+
+def test_verify_junit_has_one_case_per_certificate(tmp_path, capsys):
+    import xml.etree.ElementTree as ET
+
+    bad = json.loads((PROOFS / "case_a_tightest.json").read_text(encoding="utf-8"))
+    bad["constants"]["k3"] = bad["constants"]["k2"]
+    (tmp_path / "bad.json").write_text(json.dumps(bad), encoding="utf-8")
+    report = tmp_path / "v.xml"
+    assert main(["verify", str(PROOFS / "case_a_feasible.json"), str(tmp_path / "bad.json"),
+                 "--junit-xml", str(report)]) == 1
+    suite = ET.parse(report).getroot().find("testsuite")
+    assert (suite.get("tests"), suite.get("failures"), suite.get("errors")) == ("2", "1", "0")
+    good, wrong = suite.findall("testcase")
+    assert good.find("failure") is None and good.find("system-out").text == "k_p=3, k_i=4, k_v=32/5, f_c=1"
+    assert "k3 > k2" in wrong.find("failure").get("message")
