@@ -71,7 +71,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "(counterexamples written to --out), 2 on bad input."
     )
     parser.add_argument("certificates", nargs="*", metavar="CERT",
-                        help="certificate JSON files (default: every proofs/*.json)")
+                        help="certificate JSON files (default: those configured in [tool.symbolic-friction], "
+                        "else every proofs/*.json)")
     parser.add_argument("--trajectories", type=_bounded_int(MAX_TRAJECTORIES), default=10_000, metavar="N",
                         help="trajectories per gain set, shared by its certificates (default 10000)")
     parser.add_argument("--seed", type=_seed, default=0, help="seed of the random states and optimisers (default 0)")
@@ -109,7 +110,14 @@ def run(args: argparse.Namespace) -> int:
 
     files = list(args.certificates)
     if not files:
-        files = sorted(str(p) for p in Path("proofs").glob("*.json"))
+        from .._config import find_config
+
+        config = find_config()
+        if config is not None and config.certificates:
+            # the project's configured certificates ([tool.symbolic-friction]), like `check`
+            files = [str(_relative(config.proofs / name)) for name in config.certificates]
+        else:
+            files = sorted(str(p) for p in Path("proofs").glob("*.json"))
         if not files:
             raise FileNotFoundError("no certificate given and no proofs/*.json in the current directory")
     if args.rtol >= 1:
@@ -235,6 +243,15 @@ def _junit_cases(report) -> list:
                 output=f"{r.paper}: {r.inequality}; {r.samples} instances on {r.trajectories} trajectories",
             ))
     return cases
+
+
+def _relative(path):
+    from pathlib import Path
+
+    try:
+        return path.relative_to(Path.cwd().resolve())
+    except ValueError:
+        return path
 
 
 def _run_crosscheck(crosscheck, files, args):
