@@ -487,8 +487,11 @@ def _format_table(section: Section) -> str:
 def _crashed(make: Callable[[argparse.Namespace], Section], exc: Exception) -> Section:
     """A section that raised: reported as failing, never as passing."""
     name = getattr(make, "__name__", "section")
+    from .._junit import Case
+
     reason = f"{name} crashed: {type(exc).__name__}: {exc}"
-    return Section(name, ("error",), [(reason,)], {}, False, [f"FAILED {reason}"], summary=reason)
+    return Section(name, ("error",), [(reason,)], {}, False, [f"FAILED {reason}"], summary=reason,
+                   cases=[Case(name=name, classname="check.sections", error=reason)])
 
 
 def _validate(args: argparse.Namespace) -> None:

@@ -439,3 +439,18 @@ def test_proofs_dir_without_configuration_checks_every_certificate_in_it(tmp_pat
     assert target.certificates is None and target.report is False  # no obligations.md, no Table I demanded
     section = check.certificates_section(args)
     assert section.ok and [Path(row[0]).name for row in section.rows] == ["case_b_feasible.json"]
+
+
+def test_a_crashing_section_is_an_error_in_the_junit_report(fake, tmp_path, capsys, monkeypatch):
+    import xml.etree.ElementTree as ET
+
+    fake(_Holds)
+
+    def broken(args):
+        raise RuntimeError("boom")
+
+    monkeypatch.setattr(check, "SECTIONS", [check.obligations_section, broken])
+    report = tmp_path / "r.xml"
+    assert main(["check", "--write", "--proofs", str(tmp_path), "--junit-xml", str(report)]) == 1
+    errors = [c for c in ET.parse(report).getroot().iter("testcase") if c.find("error") is not None]
+    assert [c.get("name") for c in errors] == ["broken"] and "RuntimeError: boom" in errors[0].find("error").text
