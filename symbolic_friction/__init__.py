@@ -30,6 +30,9 @@ from ._errors import (
     StaleFileError,
     UnprovedCertificateError,
     UsageError,
+    ConfigError,
+    InputFileError,
+    OutputPathError,
     SymbolicFrictionError,
 )
 from ._parameters import TABLE_I, Parameters
@@ -161,6 +164,9 @@ __all__ = [
     "StaleFileError",
     "UnprovedCertificateError",
     "UsageError",
+    "ConfigError",
+    "InputFileError",
+    "OutputPathError",
     *_LAZY,
     *_MODULES,
 ]

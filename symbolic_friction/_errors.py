@@ -25,6 +25,9 @@ __all__ = [
     "StaleFileError",
     "UsageError",
     "UnprovedCertificateError",
+    "ConfigError",
+    "InputFileError",
+    "OutputPathError",
 ]
 
 
@@ -86,3 +89,15 @@ class StaleFileError(SymbolicFrictionError, RuntimeError):
 
 class UsageError(SymbolicFrictionError, ValueError):
     """A command was asked for something it cannot do as given (a missing directory, a bad combination)."""
+
+
+class ConfigError(UsageError):
+    """The project configuration (``[tool.symbolic-friction]``) is missing, unreadable or malformed."""
+
+
+class InputFileError(SymbolicFrictionError, OSError):
+    """An input path cannot be read as asked: missing, not a regular file, too large, a symlink loop, …"""
+
+
+class OutputPathError(SymbolicFrictionError, OSError):
+    """An output path cannot be written: it is a file, lies below a file, has a name too long, …"""

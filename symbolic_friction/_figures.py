@@ -80,8 +80,13 @@ def available_figures() -> dict[str, FigureSpec]:
     return dict(FIGURES)
 
 
-def make_figures(out_dir: str | Path, names: Sequence[str] | None = None) -> list[Path]:
+def make_figures(
+    out_dir: str | Path, names: Sequence[str] | None = None, *, on_written: Any = None
+) -> list[Path]:
     """Write the figures ``names`` (default: all) into ``out_dir``; return the files.
+
+    ``on_written(path)``, if given, is called as soon as each file is written
+    (the command line prints it at once instead of after every figure).
 
     Raises
     ------
@@ -99,7 +104,11 @@ def make_figures(out_dir: str | Path, names: Sequence[str] | None = None) -> lis
     out.mkdir(parents=True, exist_ok=True)
     written: list[Path] = []
     for name in chosen:
-        written += figures[name].function(out)
+        paths = figures[name].function(out)
+        written += paths
+        if on_written is not None:
+            for path in paths:
+                on_written(path)
     return written
 
 

@@ -21,13 +21,29 @@ from fractions import Fraction
 from typing import ClassVar
 
 from ._errors import AssumptionError
-from ._rational import format_rational, to_rational
+from ._rational import format_rational, short_rational, to_rational
 
 __all__ = ["Parameters", "TABLE_I"]
 
 
+def _float(q: Fraction, name: str) -> float:
+    from ._errors import ParameterError
+
+    try:
+        value = float(q)
+    except OverflowError:
+        value = float("inf")
+    if value == 0.0 or value == float("inf"):
+        raise ParameterError(
+            f"{name} = {_fmt(q) if len(_fmt(q)) < 40 else _fmt(q)[:20] + '…'} is outside the range of floating point "
+            "(about 1e-308 to 1e308) that the numerical search and the simulators use"
+        )
+    return value
+
+
 def _fmt(q: Fraction) -> str:
-    return format_rational(q)
+    # messages stay one readable line: a 300-digit value is shown as ≈1e-300
+    return short_rational(q)
 
 
 @dataclass(frozen=True)
@@ -189,18 +205,30 @@ class Parameters:
         return self.k_v * self.k_p / self.k_i
 
     def as_floats(self) -> tuple[float, float, float, float]:
-        """``(k_p, k_i, k_v, f_c)`` as floats, for numerical code."""
-        return (float(self.k_p), float(self.k_i), float(self.k_v), float(self.f_c))
+        """``(k_p, k_i, k_v, f_c)`` as floats, for numerical code.
+
+        Raises
+        ------
+        ParameterError
+            If a value is beyond the range of float64 or so small it rounds to 0
+            (numerical code would compute with inf or 0, not with the gain).
+        """
+        cached = self.__dict__.get("_floats")
+        if cached is None:
+            cached = tuple(_float(getattr(self, name), name) for name in self._names)
+            object.__setattr__(self, "_floats", cached)
+        return cached  # type: ignore[return-value]
 
     def as_strings(self) -> dict[str, str]:
         """The parameters as exact ``"p/q"`` strings (file format); ``f_s`` only when it differs from ``f_c``."""
-        out = {name: _fmt(getattr(self, name)) for name in self._names}
+        out = {name: format_rational(getattr(self, name)) for name in self._names}
         if self.stiction:
-            out["f_s"] = _fmt(self.f_s)
+            out["f_s"] = format_rational(self.f_s)
         return out
 
     def __str__(self) -> str:
-        inner = ", ".join(f"{k}={v}" for k, v in self.as_strings().items())
+        names = (*self._names, "f_s") if self.stiction else self._names
+        inner = ", ".join(f"{k}={_fmt(getattr(self, k))}" for k in names)
         return f"Parameters({inner})"
 
 

@@ -1,8 +1,9 @@
-"""A tiny progress bar for long loops (certificate sweeps, batch simulations).
+"""Progress bars for long loops (certificate sweeps, batch simulations, the cross-check), drawn by tqdm.
 
-It writes to ``stderr`` only, and by default only when ``stderr`` is a
-terminal, so piped or captured output (CI logs, ``--json`` on stdout) is never
-polluted.  Standard library only; no third-party dependency.
+A bar is drawn on ``stderr`` only, and by default only when ``stderr`` is a
+terminal and ``--quiet`` was not given, so piped or captured output (CI logs,
+``--json`` on stdout) is never polluted.  tqdm is imported when a bar is
+actually drawn, so a disabled bar costs nothing at start-up.
 
 Examples
 --------
@@ -17,26 +18,27 @@ from __future__ import annotations
 
 import sys
 import time
-from typing import TextIO
+from typing import Any, TextIO
 
 __all__ = ["Progress"]
 
 
 class Progress:
-    """A one-line ``[#####.....] 50/100 certify 1.2 s`` bar, redrawn in place.
+    """A one-line ``certify: 50%|█████     | 50/100 [00:01<00:01]`` bar (tqdm), redrawn in place.
 
     Parameters
     ----------
     total : int
         Number of steps expected (``>= 0``).
     desc : str, keyword-only
-        Short label printed after the counts.
+        Short label printed before the bar.
     stream : text stream, keyword-only
         Where to draw; defaults to ``sys.stderr`` at construction time.
     enabled : bool or None, keyword-only
-        ``None`` (default) draws only if ``stream.isatty()``.
+        ``None`` (default) draws only if ``stream.isatty()`` and the command
+        line was not given ``--quiet``.
     width : int, keyword-only
-        Number of cells of the bar.
+        Number of cells of the bar (``render``; tqdm fits its own bar to the terminal).
     min_interval : float, keyword-only
         Minimum seconds between two redraws (the final state is always drawn).
     """
@@ -57,24 +59,48 @@ class Progress:
         self.desc = desc
         self.stream = sys.stderr if stream is None else stream
         if enabled is None:
+            from ._output import verbosity
+
             isatty = getattr(self.stream, "isatty", None)
             enabled = bool(isatty()) if callable(isatty) else False
+            enabled = enabled and verbosity() > 0
         self.enabled = enabled
         self.width = width
         self.min_interval = min_interval
         self.count = 0
         self._start = time.perf_counter()
-        self._last_draw = float("-inf")
+        self._bar: Any = None
+        if self.enabled:
+            from tqdm import tqdm
+
+            from ._output import terminal_width
+
+            self._bar = tqdm(
+                total=self.total, desc=desc or None, file=self.stream, mininterval=min_interval, leave=True,
+                ncols=min(terminal_width(), 100), ascii=_ascii_only(self.stream),
+            )
 
     def update(self, n: int = 1) -> None:
-        """Advance by ``n`` steps and redraw if enough time has passed."""
+        """Advance by ``n`` steps (tqdm redraws at most every ``min_interval`` seconds)."""
         self.count += n
-        now = time.perf_counter()
-        if self.enabled and (now - self._last_draw >= self.min_interval or self.count >= self.total):
-            self._draw(now)
+        if self._bar is not None:
+            self._bar.update(n)
+
+    def write(self, line: str, *, level: int = 1) -> None:
+        """Print ``line`` on stdout, above the bar while one is drawn (see :func:`~symbolic_friction._output.emit`)."""
+        if self._bar is not None:
+            from ._output import verbosity
+
+            if verbosity() >= level:
+                self._bar.write(line, file=sys.stdout)
+                sys.stdout.flush()
+        else:
+            from ._output import emit
+
+            emit(line, level=level)
 
     def render(self, now: float | None = None) -> str:
-        """The bar as a string (without the leading carriage return)."""
+        """The state as plain text, ``[#####.....] 5/10 desc 1.2 s`` (for logs and tests)."""
         now = time.perf_counter() if now is None else now
         frac = 1.0 if self.total == 0 else min(1.0, self.count / self.total)
         filled = int(round(frac * self.width))
@@ -82,21 +108,21 @@ class Progress:
         label = f" {self.desc}" if self.desc else ""
         return f"[{bar}] {self.count}/{self.total}{label} {now - self._start:.1f} s"
 
-    def _draw(self, now: float) -> None:
-        self._last_draw = now
-        self.stream.write("\r" + self.render(now))
-        self.stream.flush()
-
     def close(self) -> None:
         """Draw the final state and end the line."""
-        if self.enabled:
-            self._draw(time.perf_counter())
-            self.stream.write("\n")
-            self.stream.flush()
-            self.enabled = False
+        if self._bar is not None:
+            self._bar.close()
+            self._bar = None
+        self.enabled = False
 
     def __enter__(self) -> "Progress":
         return self
 
     def __exit__(self, *exc: object) -> None:
         self.close()
+
+
+def _ascii_only(stream: Any) -> bool:
+    """tqdm's block characters only where the stream can encode them."""
+    encoding = (getattr(stream, "encoding", None) or "ascii").lower().replace("-", "")
+    return not encoding.startswith("utf")

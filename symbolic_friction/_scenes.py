@@ -44,6 +44,7 @@ name (:func:`load_scene`).
 
 from __future__ import annotations
 
+import os
 import re
 import tomllib
 from collections.abc import Mapping, Sequence
@@ -78,6 +79,16 @@ _TOP_KEYS = (
     "v_hat",
 )
 _NAME_RE = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]*$")
+MAX_SAMPLES = 1_000_000
+"""Most sample times a scene may ask for per trajectory (a bound on memory, said in the error)."""
+MAX_STATES = 100_000
+"""Most initial states in one scene."""
+MAX_TOTAL_SAMPLES = 20_000_000
+"""Most sample times over all trajectories of a scene (states × samples), a bound on memory."""
+MAX_INTEGER_KNOB = 10_000_000
+"""Largest integer method knob (``grid_points``, ``max_events`` …) a scene may set."""
+MAX_SCENE_BYTES = 10_000_000
+"""Largest scene file read."""
 
 
 # ---------------------------------------------------------------- parsing helpers
@@ -152,7 +163,9 @@ def _parse_params(doc: Mapping[str, Any]) -> Parameters:
 def _parse_states(value: Any) -> tuple[tuple[Fraction, Fraction, Fraction], ...]:
     path = "initial_states"
     if not isinstance(value, list) or not value:
-        raise SceneError(f"{path}: expected a non-empty list of [e_i, s, v]; got {_type_name(value)} {value!r}")
+        raise SceneError(f"{path}: expected a non-empty list of [e_i, s, v]; got {_type_name(value)} {str(value)[:60]}")
+    if len(value) > MAX_STATES:
+        raise SceneError(f"{path}: at most {MAX_STATES} initial states per scene are supported; got {len(value)}")
     states = []
     for i, row in enumerate(value):
         p = f"{path}[{i}]"
@@ -219,6 +232,8 @@ def _parse_method(value: Any) -> tuple[str, tuple[tuple[str, Any], ...]]:
         if isinstance(default, int) and not isinstance(default, bool):
             if isinstance(raw, bool) or not isinstance(raw, int):
                 raise SceneError(f"{path}: expected an integer; got {_type_name(raw)} {raw!r}")
+            if abs(raw) > MAX_INTEGER_KNOB:
+                raise SceneError(f"{path}: at most {MAX_INTEGER_KNOB} is supported (a bound on time and memory); got {str(raw)[:40]}")
             knobs.append((key, raw))
         elif isinstance(default, str):
             knobs.append((key, _string(raw, path)))
@@ -358,7 +373,14 @@ class Scene:
         t_end = _positive(doc["t_end"], "t_end")
         samples = doc.get("samples")
         if samples is not None and (isinstance(samples, bool) or not isinstance(samples, int) or samples < 2):
-            raise SceneError(f"samples: expected an integer ≥ 2; got {_type_name(samples)} {samples!r}")
+            raise SceneError(f"samples: expected an integer ≥ 2; got {_type_name(samples)} {str(samples)[:40]}")
+        if samples is not None and samples > MAX_SAMPLES:
+            raise SceneError(f"samples: at most {MAX_SAMPLES} sample times per trajectory are supported; got {str(samples)[:40]}")
+        if samples is not None and len(states) * samples > MAX_TOTAL_SAMPLES:
+            raise SceneError(
+                f"samples: {len(states)} initial states × {samples} samples = {len(states) * samples} sample times; "
+                f"at most {MAX_TOTAL_SAMPLES} per scene are supported (a bound on memory)"
+            )
         outputs = doc.get("outputs", ["trajectories", "events"])
         if not isinstance(outputs, list):
             raise SceneError(f"outputs: expected a list of strings; got {_type_name(outputs)} {outputs!r}")
@@ -398,14 +420,21 @@ class Scene:
             doc = tomllib.loads(text)
         except tomllib.TOMLDecodeError as exc:
             raise SceneError(f"{source}: not valid TOML: {exc}") from None
+        except RecursionError:
+            raise SceneError(f"{source}: not valid TOML: nested too deeply") from None
+        except ValueError as exc:  # e.g. an integer beyond Python's 4300-digit conversion limit
+            reason = "an integer has more than 4300 digits" if "Exceeds the limit" in str(exc) else str(exc)[:200]
+            raise SceneError(f"{source}: not valid TOML: {reason}") from None
         return cls.from_mapping(doc, source=source, default_name=default_name)
 
     @classmethod
     def from_file(cls, path: str | Path) -> "Scene":
         """Read a scene file; its stem is the default name."""
+        from ._io import read_limited
+
         path = Path(path)
         try:
-            text = path.read_text(encoding="utf-8")
+            text = read_limited(path, limit=MAX_SCENE_BYTES, what="scene file").decode("utf-8")
         except UnicodeDecodeError as exc:
             raise SceneError(f"{path}: not a UTF-8 text file ({exc.reason})") from None
         return cls.from_text(text, source=str(path), default_name=path.stem)
@@ -601,6 +630,10 @@ def load_scene(scene: str | Path) -> Scene:
     if name in builtin_scenes():
         resource = _builtin_dir() / f"{name}.toml"
         return Scene.from_text(resource.read_text(encoding="utf-8"), source=f"built-in scene {name}", default_name=name)
+    if os.path.lexists(path):
+        # an existing path that is not a regular file (a FIFO, a device, a symlink loop) is read, and refused,
+        # by the bounded reader, which says what it is
+        return Scene.from_file(path)
     raise SceneError(
         f"scene {name!r}: no such file and no built-in scene of that name; built-in scenes: {', '.join(builtin_scenes())}"
     )

@@ -63,3 +63,19 @@ def test_sympy_float_goes_through_repr():
 def test_format_rational():
     assert format_rational(Fraction(32, 5)) == "32/5"
     assert format_rational(Fraction(-4)) == "-4"
+
+
+def test_short_rational_keeps_messages_one_readable_line():
+    from symbolic_friction._rational import short_rational
+
+    assert short_rational(Fraction(32, 5)) == "32/5"
+    assert short_rational(Fraction(1, 10**300)) == "≈1e-300 (exact: a 301-digit denominator)"
+    assert short_rational(Fraction(10**999)) == "≈1e+999 (exact: a 1000-digit numerator)"
+    assert len(short_rational(Fraction(7**5000, 3**4000))) < 100  # beyond Python's 4300-digit str limit
+
+
+def test_integers_beyond_the_str_limit_parse_and_print():
+    from symbolic_friction._rational import format_integer, parse_integer
+
+    text = "9" * 12_345
+    assert format_integer(parse_integer(text)) == text and parse_integer("-" + text) == -parse_integer(text)

@@ -262,3 +262,15 @@ def test_a_scene_may_give_a_static_level_above_coulomb():
     assert params.f_s == Fraction(6, 5) and params.stiction
     with pytest.raises(SceneError, match="f_s ≥ f_c"):
         scene(text.replace('f_s = "1.2"', 'f_s = "0.5"'))
+
+
+def test_readme_documents_the_scene_format_of_the_module_docstring():
+    """The scene file format is published in the README, word for word as in the module docstring."""
+    from pathlib import Path
+
+    import symbolic_friction._scenes as scenes
+
+    block = scenes.__doc__.split("unknown keys are errors)::\n\n", 1)[1].split("\nBuilt-in scenes", 1)[0]
+    expected = "\n".join(line[4:] if line.startswith("    ") else line for line in block.rstrip("\n").splitlines())
+    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
+    assert "### Scene files" in readme and expected in readme

@@ -33,11 +33,13 @@ from .pipeline import (
     certify,
     certify_table_i,
     check_committed_certificates,
+    check_listed_certificates,
     default_stem,
     regenerate,
     render_files,
     table_i_stem,
     write_certificate,
+    write_listed_certificates,
 )
 from .report import render_markdown
 from .search import DEFAULT_MARGIN, MODES, Candidate, Search, find_candidate
@@ -60,6 +62,8 @@ __all__ = [
     "SweepItem",
     "certify_table_i",
     "check_committed_certificates",
+    "check_listed_certificates",
+    "write_listed_certificates",
     "CommittedCertificate",
     "regenerate",
     "render_files",

@@ -31,6 +31,7 @@ certificate gives a byte-identical file on any machine)::
 
 from __future__ import annotations
 
+import functools
 import json
 import os
 import re
@@ -41,11 +42,14 @@ from typing import Any
 
 from .._errors import CertificateFormatError
 from .._io import atomic_write_text
-from .._rational import format_rational
+from .._rational import format_rational, parse_integer
 
 __all__ = [
     "SCHEMA",
     "PARAMETER_NAMES",
+    "PHYSICAL_NAMES",
+    "json_schema",
+    "validate_schema",
     "CONSTANT_NAMES",
     "OBLIGATIONS",
     "Provenance",
@@ -73,11 +77,19 @@ OBLIGATIONS: tuple[str, ...] = (
 )
 """The proof obligations (ids of ``symbolic-friction check``) a certificate instantiates."""
 
+PHYSICAL_NAMES: tuple[str, ...] = ("m", "k_p_bar", "k_i_bar", "k_d_bar", "alpha_v", "f_c_bar")
+"""Optional physical parameters (paper §II-A) a certificate may record beside its normalised gains."""
 _TOP_KEYS = ("schema", "parameters", "constants", "overshoot_bound")
-_OPTIONAL_TOP_KEYS = ("provenance",)
+_OPTIONAL_TOP_KEYS = ("provenance", "physical")
 _PROVENANCE_KEYS = ("package", "package_version", "mode", "margin", "solver", "solver_status", "obligations", "label")
-_RATIONAL_RE = re.compile(r"^[+-]?\d+(/\d+)?$")
-_DECIMAL_RE = re.compile(r"^\d+(\.\d+)?$")
+_RATIONAL_RE = re.compile(r"^[+-]?[0-9]+(/[0-9]+)?$")
+_DECIMAL_RE = re.compile(r"^[0-9]+(\.[0-9]+)?$")
+MAX_NUMBER_CHARS = 20_000
+"""Longest exact number accepted in a certificate (a 1,500-digit denominator is fine; 10⁵ digits is not)."""
+MAX_FILE_BYTES = 10_000_000
+"""Largest certificate file read."""
+MAX_TEXT_CHARS = 10_000
+"""Longest free-text field (label, solver, …)."""
 
 
 def _rational_field(value: object, key: str) -> Fraction:
@@ -87,16 +99,31 @@ def _rational_field(value: object, key: str) -> Fraction:
         raise CertificateFormatError(
             f"{key} must be a string holding an exact rational such as '32/5' or '4'; got the {kind} {value!r}"
         )
-    if not _RATIONAL_RE.match(value):
+    return _signed_rational_field(value, key, positive=True)
+
+
+def _signed_rational_field(value: object, key: str, *, positive: bool = False, nonnegative: bool = False) -> Fraction:
+    if isinstance(value, bool) or not isinstance(value, str):
+        kind = "float" if isinstance(value, float) else type(value).__name__
         raise CertificateFormatError(
-            f"{key} must be an exact rational string such as '32/5' or '4' (no decimals, no spaces); got {value!r}"
+            f"{key} must be a string holding an exact rational such as '32/5' or '4'; got the {kind} {value!r}"
+        )
+    if len(value) > MAX_NUMBER_CHARS:
+        raise CertificateFormatError(f"{key} has {len(value)} characters; at most {MAX_NUMBER_CHARS} are accepted")
+    if not _RATIONAL_RE.match(value):
+        shown = value if len(value) <= 40 else value[:40] + "…"
+        raise CertificateFormatError(
+            f"{key} must be an exact rational string such as '32/5' or '4' (ASCII digits, no decimals, no spaces); got {shown!r}"
         )
     num, _, den = value.partition("/")
-    if den and int(den) == 0:
-        raise CertificateFormatError(f"{key} has a zero denominator: {value!r}")
-    q = Fraction(int(num), int(den) if den else 1)
-    if not q > 0:
+    denominator = parse_integer(den) if den else 1
+    if denominator == 0:
+        raise CertificateFormatError(f"{key} has a zero denominator: {value[:40]!r}")
+    q = Fraction(parse_integer(num), denominator)
+    if positive and not q > 0:
         raise CertificateFormatError(f"{key} must be positive; got {value!r}")
+    if nonnegative and q < 0:
+        raise CertificateFormatError(f"{key} must be ≥ 0; got {value!r}")
     return q
 
 
@@ -117,6 +144,8 @@ def _decimal_field(value: object, key: str) -> str:
     if isinstance(value, bool) or not isinstance(value, str):
         kind = "float" if isinstance(value, float) else type(value).__name__
         raise CertificateFormatError(f"{key} must be a decimal string such as '3.69516'; got the {kind} {value!r}")
+    if len(value) > MAX_NUMBER_CHARS:
+        raise CertificateFormatError(f"{key} has {len(value)} characters; at most {MAX_NUMBER_CHARS} are accepted")
     if not _DECIMAL_RE.match(value):
         raise CertificateFormatError(f"{key} must be a plain decimal string such as '3.69516'; got {value!r}")
     if not Fraction(value) > 0:
@@ -166,6 +195,8 @@ class Provenance:
                 raise CertificateFormatError(
                     f"provenance.{name} must be a string; got {type(getattr(self, name)).__name__}"
                 )
+            if len(getattr(self, name)) > MAX_TEXT_CHARS:
+                raise CertificateFormatError(f"provenance.{name} is longer than {MAX_TEXT_CHARS} characters")
         object.__setattr__(self, "margin", _as_positive_fraction(self.margin, "provenance.margin"))
         obligations = self.obligations
         if isinstance(obligations, str) or not all(isinstance(o, str) for o in obligations):
@@ -232,6 +263,10 @@ class Certificate:
         Decimal string claimed to be ``≥ √(c₂ĉ₂/(c₁ĉ₁))`` (eq. stabState).
     provenance : Provenance or None
         How the certificate was found.
+    physical : dict or None
+        The physical parameters the gains were given as (``m``, ``k_p_bar``,
+        ``k_i_bar``, ``k_d_bar``, ``alpha_v``, ``f_c_bar``; paper §II-A), if
+        any; the verifier checks that they normalise to the gains.
 
     Raises
     ------
@@ -255,8 +290,11 @@ class Certificate:
     c: Fraction
     overshoot_bound: str
     provenance: Provenance | None = field(default=None)
+    physical: dict[str, Fraction] | None = field(default=None, compare=True)
 
     def __post_init__(self) -> None:
+        if self.physical is not None:
+            object.__setattr__(self, "physical", _physical(self.physical))
         for name in PARAMETER_NAMES:
             object.__setattr__(self, name, _as_positive_fraction(getattr(self, name), f"parameters.{name}"))
         for name in CONSTANT_NAMES:
@@ -312,7 +350,16 @@ class Certificate:
         }
         if self.provenance is not None:
             out["provenance"] = self.provenance.to_dict()
+        if self.physical is not None:
+            out["physical"] = {k: format_rational(v) for k, v in self.physical.items()}
         return out
+
+    def gains_text(self) -> str:
+        """``"k_p=3, k_i=4, k_v=32/5, f_c=1"`` (and the physical parameters when recorded)."""
+        text = ", ".join(f"{k}={format_rational(v)}" for k, v in self.parameters.items())
+        if self.physical is not None:
+            text += " (" + ", ".join(f"{k}={format_rational(v)}" for k, v in self.physical.items()) + ")"
+        return text
 
     @classmethod
     def from_dict(cls, data: object) -> "Certificate":
@@ -340,11 +387,37 @@ class Certificate:
         values = {name: _rational_field(parameters[name], f"parameters.{name}") for name in PARAMETER_NAMES}
         values.update({name: _rational_field(constants[name], f"constants.{name}") for name in CONSTANT_NAMES})
         provenance = Provenance.from_dict(data["provenance"]) if "provenance" in data else None
+        physical = None
+        if "physical" in data:
+            if not isinstance(data["physical"], dict):
+                raise CertificateFormatError(f"physical must be a JSON object; got a JSON {_json_kind(data['physical'])}")
+            _check_keys(data["physical"], required=PHYSICAL_NAMES, optional=(), where="physical")
+            physical = {n: _signed_rational_field(data["physical"][n], f"physical.{n}") for n in PHYSICAL_NAMES}
         return cls(
             **values,
             overshoot_bound=_decimal_field(data["overshoot_bound"], "overshoot_bound"),
             provenance=provenance,
+            physical=physical,
         )
+
+
+def _physical(values: object) -> dict[str, Fraction]:
+    """Constructor-side check of the physical parameters: all six names, exact, ``m, f_c_bar > 0``, ``alpha_v ≥ 0``."""
+    if not isinstance(values, dict):
+        raise CertificateFormatError(f"physical must be a mapping of {', '.join(PHYSICAL_NAMES)}; got {type(values).__name__}")
+    _check_keys(values, required=PHYSICAL_NAMES, optional=(), where="physical")
+    out: dict[str, Fraction] = {}
+    for name in PHYSICAL_NAMES:
+        value = values[name]
+        if isinstance(value, bool):
+            raise CertificateFormatError(f"physical.{name} must be an exact rational; got the boolean {value!r}")
+        q = Fraction(value) if isinstance(value, (int, Fraction)) else _signed_rational_field(value, f"physical.{name}")
+        if name in ("m", "f_c_bar") and not q > 0:
+            raise CertificateFormatError(f"physical.{name} must be positive; got {format_rational(q)}")
+        if name == "alpha_v" and q < 0:
+            raise CertificateFormatError(f"physical.alpha_v must be ≥ 0; got {format_rational(q)}")
+        out[name] = q
+    return out
 
 
 def _json_kind(value: object) -> str:
@@ -401,24 +474,80 @@ def loads(text: str | bytes, *, source: str = "<string>") -> Certificate:
             text = text.decode("utf-8")
         except UnicodeDecodeError as exc:
             raise CertificateFormatError(f"{source}: not valid JSON: not UTF-8 ({exc.reason} at byte {exc.start})")
+    if len(text) > MAX_FILE_BYTES:
+        raise CertificateFormatError(f"{source}: {len(text)} characters; a certificate has at most {MAX_FILE_BYTES}")
     try:
-        data = json.loads(text, parse_constant=_reject_constant, object_pairs_hook=_no_duplicates)
+        data = json.loads(
+            text, parse_constant=_reject_constant, object_pairs_hook=_no_duplicates,
+            parse_int=_json_int,
+        )
     except json.JSONDecodeError as exc:
         raise CertificateFormatError(
             f"{source}: not valid JSON: {exc.msg} at line {exc.lineno}, column {exc.colno}"
         ) from None
+    except RecursionError:
+        raise CertificateFormatError(f"{source}: not a certificate: JSON nested too deeply") from None
     except CertificateFormatError as exc:
         raise CertificateFormatError(f"{source}: {exc}") from None
     try:
-        return Certificate.from_dict(data)
+        certificate = Certificate.from_dict(data)
+        validate_schema(data)
     except CertificateFormatError as exc:
         raise CertificateFormatError(f"{source}: {exc}") from None
+    return certificate
+
+
+def _json_int(text: str) -> object:
+    """JSON integers are never part of a certificate (exact values are strings); a huge one is not even read."""
+    return int(text) if len(text) <= 4000 else float("inf")
+
+
+def json_schema() -> dict[str, Any]:
+    """The JSON Schema (draft 2020-12) of the certificate format, as shipped in the package."""
+    from importlib.resources import files
+
+    return json.loads(files("symbolic_friction").joinpath("schemas", "certificate-v1.schema.json").read_text(encoding="utf-8"))
+
+
+@functools.lru_cache(maxsize=1)
+def _validator() -> Any:
+    import jsonschema
+
+    return jsonschema.Draft202012Validator(json_schema())
+
+
+def validate_schema(data: object) -> None:
+    """Validate a parsed certificate against :func:`json_schema` with :mod:`jsonschema`.
+
+    Raises
+    ------
+    CertificateFormatError
+        With the first violation, located by its JSON path.
+    """
+    import jsonschema
+
+    error = jsonschema.exceptions.best_match(_validator().iter_errors(data))
+    if error is not None:
+        where = "".join(f"[{p!r}]" if isinstance(p, int) else f".{p}" for p in error.absolute_path).lstrip(".") or "certificate"
+        message = error.message if len(error.message) <= 200 else error.message[:200] + "…"
+        raise CertificateFormatError(f"does not match the certificate schema at {where}: {message}")
 
 
 def load(path: str | os.PathLike[str]) -> Certificate:
-    """Read and parse a certificate file (see :func:`loads`)."""
+    """Read and parse a certificate file (see :func:`loads`).
+
+    Raises
+    ------
+    InputFileError
+        If ``path`` is not a readable regular file of at most
+        :data:`MAX_FILE_BYTES` bytes (a FIFO, a device, a directory, …).
+    CertificateFormatError
+        If the content is not a well-formed certificate.
+    """
+    from .._io import read_limited
+
     path = Path(path)
-    return loads(path.read_bytes(), source=str(path))
+    return loads(read_limited(path, limit=MAX_FILE_BYTES, what="certificate"), source=str(path))
 
 
 # Unambiguous names for the package's top-level API.

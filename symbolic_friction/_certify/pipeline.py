@@ -8,13 +8,14 @@ is what :func:`check_committed_certificates` relies on to detect stale files.
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import os
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Iterable
 
-from .._errors import CertificateError, CertificateFormatError, ParameterError, SymbolicFrictionError
+from .._errors import CertificateError, CertificateFormatError, InputFileError, ParameterError, SymbolicFrictionError
 from .._parameters import Parameters
 from .certificate import Certificate, atomic_write_text, dumps, load
 from .report import render_markdown
@@ -33,6 +34,8 @@ __all__ = [
     "regenerate",
     "CommittedCertificate",
     "check_committed_certificates",
+    "check_listed_certificates",
+    "write_listed_certificates",
 ]
 
 TABLE_I_LABELS = {"a": "Table I, case (a)", "b": "Table I, case (b)"}
@@ -40,7 +43,9 @@ TABLE_I_FILES: tuple[str, ...] = tuple(f"case_{case}_{mode}.json" for case in TA
 """The committed certificates of ``proofs/`` (both cases of Table I, both modes)."""
 
 
-def certify(params: Parameters, *, mode: str = "tightest", margin: object = None, label: str = "") -> Certificate:
+def certify(
+    params: Parameters, *, mode: str = "tightest", margin: object = None, label: str = "", physical: dict | None = None
+) -> Certificate:
     """Search, round and exactly verify a certificate for ``params``.
 
     Parameters
@@ -55,6 +60,10 @@ def certify(params: Parameters, *, mode: str = "tightest", margin: object = None
         tightest, 1/100 for feasible).
     label : str, keyword-only
         Free text stored in the provenance.
+    physical : dict, keyword-only
+        The physical parameters ``params`` came from (``m``, ``k_p_bar``,
+        ``k_i_bar``, ``k_d_bar``, ``alpha_v``, ``f_c_bar``), recorded in the
+        certificate; the verifier checks that they normalise to ``params``.
 
     Returns
     -------
@@ -84,6 +93,8 @@ def certify(params: Parameters, *, mode: str = "tightest", margin: object = None
         )
     candidate = find_candidate(params, mode=mode, margin=margin)
     certificate = to_certificate(candidate, label=label)
+    if physical is not None:
+        certificate = dataclasses.replace(certificate, physical=physical)
     report = verify_certificate(certificate)
     if not report.proved:
         raise CertificateError(
@@ -172,7 +183,10 @@ def regenerate(certificate: Certificate) -> Certificate:
         raise CertificateFormatError(
             f"provenance.mode is {prov.mode!r}; only {', '.join(MODES)} certificates can be regenerated"
         )
-    return certify(certificate.as_parameters(), mode=prov.mode, margin=check_margin(prov.margin, prov.mode), label=prov.label)
+    return certify(
+        certificate.as_parameters(), mode=prov.mode, margin=check_margin(prov.margin, prov.mode), label=prov.label,
+        physical=certificate.physical,
+    )
 
 
 @dataclass(frozen=True)
@@ -209,16 +223,40 @@ class CommittedCertificate:
     def describe(self) -> str:
         """One line for ``symbolic-friction check``."""
         if self.ok:
-            return f"ok     {self.path} (proved, up to date, κ ≤ {self.report.certificate.overshoot_bound})"  # type: ignore[union-attr]
+            bound = getattr(self.report.certificate, "overshoot_bound", None)  # type: ignore[union-attr]
+            claim = f"κ ≤ {bound}" if bound is not None else "a hunting cycle"
+            return f"ok     {self.path} (proved, up to date, {claim})"
         state = "STALE " if self.stale and self.report is not None and self.report.proved else "FAILED"
         return f"{state} {self.path}: {self.reason}"
 
 
+def _check_hunting(path: Path) -> CommittedCertificate:
+    """A hunting certificate (beyond the paper): its Krawczyk proof re-run on its exact gains and box.
+
+    It has no search to be stale against: the proof is re-decided from the file alone.
+    """
+    from .._hunting._certificate import verify_hunting_file
+
+    try:
+        report = verify_hunting_file(path)
+    except CertificateFormatError as exc:
+        return CommittedCertificate(path, None, True, f"malformed: {exc}")
+    except InputFileError as exc:
+        return CommittedCertificate(path, None, True, f"unreadable: {exc}")
+    return CommittedCertificate(path, report, False, "" if report.proved else report.summary())  # type: ignore[arg-type]
+
+
 def _check_one(path: Path) -> CommittedCertificate:
+    from .._hunting._certificate import is_hunting_file
+
+    if is_hunting_file(path):
+        return _check_hunting(path)
     try:
         report = verify_certificate(load(path), source=str(path))
     except CertificateFormatError as exc:
         return CommittedCertificate(path, None, True, f"malformed: {exc}")
+    except InputFileError as exc:
+        return CommittedCertificate(path, None, True, f"unreadable: {exc}")
     if not report.proved:
         return CommittedCertificate(path, report, False, "; ".join(check.message for check in report.failures))
     try:
@@ -270,3 +308,54 @@ def check_committed_certificates(
         if not path.exists():
             results.append(CommittedCertificate(path, None, True, "missing; run `symbolic-friction certify`"))
     return results
+
+
+def check_listed_certificates(directory: str | os.PathLike[str], names: Iterable[str]) -> list[CommittedCertificate]:
+    """Verify exactly the certificates ``names`` (relative to ``directory``), in order, and detect stale ones.
+
+    A listed file that does not exist is reported as missing (not ok); files
+    of ``directory`` that are not listed are not looked at.
+    """
+    directory = Path(directory)
+    results = []
+    for name in names:
+        path = directory / name
+        if not path.exists():
+            results.append(CommittedCertificate(
+                path, None, True,
+                "missing; create it with `symbolic-friction certify … --out "
+                f"{path.parent} --name {path.stem}` (or `check --write` for Table I's files)",
+            ))
+        else:
+            results.append(_check_one(path))
+    return results
+
+
+def write_listed_certificates(directory: str | os.PathLike[str], names: Iterable[str]) -> list[Path]:
+    """Regenerate the certificates ``names`` under ``directory`` (``check --write``).
+
+    An existing certificate is re-certified from its own provenance (gains,
+    mode, margin, label, physical parameters); a missing file named like one
+    of Table I's (``case_a_tightest.json`` …) is certified for Table I's
+    gains.  A missing file of any other name cannot be created (its gains are
+    unknown) and is left for :func:`check_listed_certificates` to report.
+
+    Returns the written paths (JSON and Markdown, in order).
+    """
+    directory = Path(directory)
+    written: list[Path] = []
+    table_i = {table_i_stem(case, mode) + ".json": (case, mode) for case in TABLE_I_LABELS for mode in MODES}
+    for name in names:
+        path = directory / name
+        fresh = None
+        if path.exists():
+            try:
+                fresh = regenerate(load(path))
+            except (CertificateFormatError, InputFileError):
+                fresh = None
+        if fresh is None and path.name in table_i and path.parent == directory:
+            case, mode = table_i[path.name]
+            fresh = certify(Parameters.table_i(case), mode=mode, label=TABLE_I_LABELS[case])
+        if fresh is not None:
+            written.extend(write_certificate(fresh, path))
+    return written

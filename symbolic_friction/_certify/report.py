@@ -44,6 +44,12 @@ _SECTIONS: tuple[tuple[str, tuple[str, ...], str], ...] = (
         ("prop1.stability_bound",),
         "Eq. (stabState): |x(t)|_𝒜 ≤ √(c₂ĉ₂/(c₁ĉ₁))·|x(0)|_𝒜 for all t ≥ 0; the constant is ≥ 1.",
     ),
+    (
+        "What the certificate says about itself",
+        ("provenance",),
+        "The obligations it lists are ones instantiated above; a label naming Table I carries Table I's gains; "
+        "recorded physical parameters normalise to the gains (paper §II-A).",
+    ),
 )
 
 _ROLES = {
@@ -61,7 +67,10 @@ _ROLES = {
 
 def _approx(q: Fraction) -> str:
     # float formatting is correctly rounded in CPython, hence identical on every machine
-    return f"{float(q):.6g}"
+    try:
+        return f"{float(q):.6g}"
+    except OverflowError:  # beyond float range: say so instead of printing inf
+        return "beyond 1e308" if q > 0 else "below -1e308"
 
 
 def _check_line(check: Check) -> str:
@@ -112,6 +121,10 @@ def render_markdown(report: VerificationReport, *, name: str = "certificate.json
     ]
     for key, value in cert.parameters.items():
         lines.append(f"| {key} | {format_rational(value)} | {_approx(value)} |")
+    if cert.physical is not None:
+        lines += ["", "Given as physical parameters (paper §II-A):", "", "| parameter | exact | ≈ |", "|---|---|---|"]
+        for key, value in cert.physical.items():
+            lines.append(f"| {key} | {format_rational(value)} | {_approx(value)} |")
     lines += ["", "## Constants", "", "| constant | role | exact | ≈ |", "|---|---|---|---|"]
     for key, value in cert.constants.items():
         lines.append(f"| {key} | {_ROLES[key]} | {format_rational(value)} | {_approx(value)} |")
@@ -136,6 +149,7 @@ def render_markdown(report: VerificationReport, *, name: str = "certificate.json
             f"- numerical search: {prov.solver}, status `{prov.solver_status}` (a candidate only; "
             "the verdict above comes from the exact check)",
             f"- proof obligations instantiated: {', '.join(f'`{o}`' for o in prov.obligations)}",
+            *([f"- label: {prov.label}"] if prov.label else []),
             "",
         ]
     return "\n".join(lines).rstrip("\n") + "\n"

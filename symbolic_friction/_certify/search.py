@@ -60,7 +60,7 @@ from typing import Any
 
 from .._errors import InaccurateSolveError, InfeasibleError, ParameterError, SolverError
 from .._parameters import Parameters
-from .._rational import format_rational, to_rational
+from .._rational import short_rational, to_rational
 
 __all__ = ["MODES", "DEFAULT_MARGIN", "Candidate", "Search", "find_candidate", "eigen_bounds_P", "check_mode", "check_margin"]
 
@@ -89,7 +89,7 @@ def check_margin(margin: object, mode: str) -> Fraction:
         return DEFAULT_MARGIN[mode]
     q = to_rational(margin, name="margin")
     if not 0 < q <= 1:
-        raise ParameterError(f"margin must be in (0, 1] (a relative margin); got margin = {format_rational(q)}")
+        raise ParameterError(f"margin must be in (0, 1] (a relative margin); got margin = {short_rational(q)}")
     return q
 
 

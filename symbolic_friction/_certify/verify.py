@@ -37,6 +37,7 @@ from __future__ import annotations
 import dataclasses
 import itertools
 import os
+import re
 from dataclasses import dataclass
 from fractions import Fraction
 from pathlib import Path
@@ -306,7 +307,60 @@ def verify_certificate(certificate: Certificate, *, source: str = "<certificate>
     if not isinstance(certificate, Certificate):
         raise TypeError(f"verify_certificate needs a Certificate; got {type(certificate).__name__}")
     checks = tuple(decide(premise) for premise in premises(_Exact(certificate)))
+    checks += provenance_checks(certificate, checks)
     return VerificationReport(certificate=certificate, checks=checks, source=source)
+
+
+_TABLE_I_LABEL = re.compile(r"Table I\b.*?case \(?([ab])\)?", re.IGNORECASE)
+
+
+def provenance_checks(certificate: Certificate, proved: Sequence[Check]) -> tuple[Check, ...]:
+    """What a certificate says about itself, checked against the proof (exact, like the premises).
+
+    * ``provenance.obligations`` lists only obligations that the premises
+      above instantiate (a certificate cannot claim an obligation it does not
+      prove);
+    * a label naming Table I's case (a) or (b) carries Table I's gains;
+    * recorded physical parameters normalise to the gains (paper §II-A):
+      ``k_p = k̄_p/m``, ``k_i = k̄_i/m``, ``k_v = (k̄_d + α_v)/m``, ``f_c = f̄_c/m``.
+    """
+    out: list[Check] = []
+    prov = certificate.provenance
+    if prov is not None:
+        covered = {c.obligation for c in proved}
+        claimed = list(prov.obligations)
+        unknown = [o for o in claimed if o not in covered]
+        out.append(Check(
+            "provenance", "provenance.obligations ⊆ obligations instantiated",
+            f"{{{', '.join(claimed)}}} ⊆ {{{', '.join(sorted(covered))}}}"
+            + (f" ({', '.join(unknown)} not instantiated)" if unknown else ""),
+            not unknown and bool(claimed),
+        ))
+        match = _TABLE_I_LABEL.search(prov.label)
+        if match is not None:
+            from .._parameters import TABLE_I
+
+            case = match.group(1).lower()
+            table = TABLE_I[case]
+            pairs = [(n, getattr(certificate, n), getattr(table, n)) for n in ("k_p", "k_i", "k_v", "f_c")]
+            out.append(Check(
+                "provenance", f"label {prov.label!r} ⇒ Table I, case ({case}) gains",
+                ", ".join(f"{n} = {_f(got)} {'=' if got == want else '≠'} {_f(want)}" for n, got, want in pairs),
+                all(got == want for _, got, want in pairs),
+            ))
+    phys = certificate.physical
+    if phys is not None:
+        m = phys["m"]
+        expected = {
+            "k_p": phys["k_p_bar"] / m,
+            "k_i": phys["k_i_bar"] / m,
+            "k_v": (phys["k_d_bar"] + phys["alpha_v"]) / m,
+            "f_c": phys["f_c_bar"] / m,
+        }
+        for name, formula in (("k_p", "k_p_bar/m"), ("k_i", "k_i_bar/m"), ("k_v", "(k_d_bar + alpha_v)/m"), ("f_c", "f_c_bar/m")):
+            got = getattr(certificate, name)
+            out.append(Check("provenance", f"{name} = {formula}", f"{_f(got)} = {_f(expected[name])}", got == expected[name]))
+    return tuple(out)
 
 
 class _Exact:

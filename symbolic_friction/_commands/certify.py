@@ -9,7 +9,7 @@ gain set.  Nothing is written unless the exact verifier proves it.
 from __future__ import annotations
 
 import argparse
-import sys
+import json
 import textwrap
 
 from .._errors import ParameterError
@@ -68,8 +68,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "--name",
         default=None,
         metavar="STEM",
-        help="file stem for one gain set (default: certificate_<hash of the gains>_<mode>)",
+        help="file stem for one gain set, a plain name written inside --out (default: certificate_<hash of the gains>_<mode>)",
     )
+    parser.add_argument("--label", default=None, metavar="TEXT",
+                        help="free text kept in the certificate's provenance (e.g. 'slow axis, 2 kg payload')")
+    parser.add_argument("--json", action="store_true",
+                        help="print one JSON object per certificate written (path, gains, mode, kappa) instead of text")
     normalised = parser.add_argument_group("normalised gains (exact: '6.4' is 32/5, '32/5' works too)")
     for name in _NORMALISED:
         normalised.add_argument(_flag(name), dest=name, default=None, metavar="Q", help=_HELP[name])
@@ -107,6 +111,33 @@ def _gains(args: argparse.Namespace):  # -> Parameters | None
     return None
 
 
+def _physical(args: argparse.Namespace) -> dict | None:
+    """The physical parameters as exact rationals (kept in the certificate), or None for normalised gains."""
+    from .._rational import to_rational
+
+    if all(getattr(args, n) is None for n in _PHYSICAL):
+        return None
+    values = {n: to_rational(getattr(args, n), name=_flag(n)) for n in _PHYSICAL}
+    values["alpha_v"] = to_rational(args.alpha_v if args.alpha_v is not None else 0, name="--alpha-v")
+    return {n: values[n] for n in ("m", "k_p_bar", "k_i_bar", "k_d_bar", "alpha_v", "f_c_bar")}
+
+
+_STEM_MAX = 200
+
+
+def check_stem(stem: str) -> str:
+    """A ``--name`` must be a plain file stem: no directory part, no ``..``, printable, not too long."""
+    if not stem or stem in (".", "..") or "/" in stem or "\\" in stem or stem.startswith("."):
+        raise ParameterError(
+            f"--name must be a plain file name without directories (it is written inside --out); got {stem!r}"
+        )
+    if len(stem) > _STEM_MAX:
+        raise ParameterError(f"--name must be at most {_STEM_MAX} characters; got {len(stem)} characters")
+    if not stem.isprintable():
+        raise ParameterError(f"--name must hold printable characters only (no newlines or control characters); got {stem!r}")
+    return stem
+
+
 def run(args: argparse.Namespace) -> int:
     """Certify, verify, write; print one line per certificate written."""
     from pathlib import Path
@@ -114,26 +145,44 @@ def run(args: argparse.Namespace) -> int:
     from .._certify import MODES, certify, default_stem, write_certificate
     from .._certify.pipeline import TABLE_I_LABELS, table_i_stem
     from .._certify.search import check_margin
+    from .._io import ensure_directory
     from .._parameters import Parameters
+    from .._rational import format_rational
+    from .._output import emit
 
     params = _gains(args)
+    physical = _physical(args) if params is not None else None
     out = Path(args.out)
     jobs = []  # (params, mode, label, json path)
     if params is None:
         if args.name is not None:
             raise ParameterError("--name applies to one gain set; Table I files are named case_<a|b>_<mode>")
+        if args.label is not None:
+            raise ParameterError("--label applies to one gain set; Table I's certificates are labelled by their case")
         modes = MODES if args.mode is None else (args.mode,)
         for case, label in TABLE_I_LABELS.items():
             for mode in modes:
                 jobs.append((Parameters.table_i(case), mode, label, out / f"{table_i_stem(case, mode)}.json"))
     else:
         mode = args.mode or "tightest"
-        stem = args.name or default_stem(params, mode)
-        jobs.append((params, mode, "", out / f"{stem}.json"))
+        stem = check_stem(args.name) if args.name is not None else default_stem(params, mode)
+        label = args.label or ""
+        if len(label) > 1000 or not label.isprintable():
+            raise ParameterError(f"--label must be at most 1000 printable characters; got {len(label)} characters")
+        jobs.append((params, mode, label, out / f"{stem}.json"))
     for _, mode, _, _ in jobs:  # validate before writing anything
         check_margin(args.margin, mode)
+    ensure_directory(out)  # an unusable --out fails now, not after the search
     for params, mode, label, path in jobs:
-        cert = certify(params, mode=mode, margin=args.margin, label=label)
+        cert = certify(params, mode=mode, margin=args.margin, label=label, physical=physical)
         json_path, md_path = write_certificate(cert, path)
-        print(f"wrote {json_path} and {md_path.name} ({mode}): |x(t)|_A <= {cert.overshoot_bound}·|x(0)|_A", file=sys.stdout)
+        if args.json:
+            emit(json.dumps({
+                "file": str(json_path), "report": str(md_path), "mode": mode, "label": label,
+                "parameters": {k: format_rational(v) for k, v in cert.parameters.items()},
+                "physical": None if cert.physical is None else {k: format_rational(v) for k, v in cert.physical.items()},
+                "overshoot_bound": cert.overshoot_bound, "proved": True,
+            }, ensure_ascii=False))
+        else:
+            emit(f"wrote {json_path} and {md_path.name} ({mode}): |x(t)|_A <= {cert.overshoot_bound}·|x(0)|_A")
     return 0

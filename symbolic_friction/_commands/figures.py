@@ -21,12 +21,24 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    """Draw each figure, printing every file as it is written (a progress bar on a terminal)."""
     from .._figures import available_figures, make_figures
+    from .._io import ensure_directory
+    from .._output import emit
+    from .._progress import Progress
 
+    figures = available_figures()
     if args.list:
-        for spec in available_figures().values():
-            print(f"{spec.name:10s} {spec.description}")
+        for spec in figures.values():
+            emit(f"{spec.name:10s} {spec.description}", level=0)
         return 0
-    for path in make_figures(args.out, args.only):
-        print(f"wrote {path}")
+    names = list(args.only) if args.only else list(figures)
+    unknown = [n for n in names if n not in figures]
+    if unknown:
+        make_figures(args.out, unknown)  # raises, naming them and the available figures, before any drawing
+    ensure_directory(args.out)  # an unusable --out fails now, not after drawing
+    with Progress(len(names), desc="figures") as bar:
+        for name in names:
+            make_figures(args.out, [name], on_written=lambda path: bar.write(f"wrote {path}", level=0))
+            bar.update()
     return 0

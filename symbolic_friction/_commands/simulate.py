@@ -8,7 +8,6 @@ module imports only the standard library at top level (Standard 6).
 from __future__ import annotations
 
 import argparse
-import sys
 
 HELP = "simulate a scene (TOML file or built-in name) and write CSV/NPZ (and PNG) outputs"
 
@@ -20,27 +19,47 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--format", choices=("csv", "npz"), default=None, help="output format (default: the scene's)")
     parser.add_argument("--png", action="store_true", help="also write a PNG of the solutions (needs matplotlib)")
     parser.add_argument("--list", action="store_true", help="list the built-in scenes and exit")
+    parser.add_argument("--json", action="store_true",
+                        help="print one JSON object (scene, trajectories, events, status, files written) instead of text")
 
 
 def run(args: argparse.Namespace) -> int:
+    import json
+
     from .._errors import SceneError
+    from .._io import ensure_directory
+    from .._output import emit
     from .._scenes import builtin_scenes, load_scene
 
     if args.list:
-        for name in builtin_scenes():
-            scene = load_scene(name)
-            print(f"{name:20s} {scene.description}")
+        scenes = {name: load_scene(name).description for name in builtin_scenes()}
+        if args.json:
+            emit(json.dumps({"scenes": scenes}, indent=2, ensure_ascii=False), level=0)
+        else:
+            for name, description in scenes.items():
+                emit(f"{name:20s} {description}", level=0)
         return 0
     if args.scene is None:
         raise SceneError("no scene given; pass a .toml path or one of: " + ", ".join(builtin_scenes()))
     scene = load_scene(args.scene)
-    print(scene.summary())
+    ensure_directory(args.out)  # an unusable --out fails now, not after the simulation
+    if not args.json:
+        emit(scene.summary())
     result = scene.run()
+    trajectories = []
     for i, sol in enumerate(result.solutions):
-        z0 = ", ".join(f"{float(c):g}" for c in scene.initial_states[i])
-        print(f"  trajectory {i}: z0 = ({z0}), {sol.t.size} samples, {len(sol.events)} events, {sol.status}")
+        z0 = [float(c) for c in scene.initial_states[i]]
+        trajectories.append({"index": i, "z0": z0, "samples": int(sol.t.size), "events": len(sol.events),
+                             "status": str(sol.status)})
+        if not args.json:
+            emit(f"  trajectory {i}: z0 = ({', '.join(f'{c:g}' for c in z0)}), {sol.t.size} samples, "
+                 f"{len(sol.events)} events, {sol.status}")
     files = result.write(args.out, fmt=args.format, png=args.png)
-    for path in files:
-        print(f"wrote {path}")
-    sys.stdout.flush()
+    if args.json:
+        emit(json.dumps({"scene": scene.name, "method": scene.method, "summary": scene.summary(),
+                         "trajectories": trajectories, "files": [str(p) for p in files]}, indent=2, ensure_ascii=False),
+             level=0)
+    else:
+        for path in files:
+            emit(f"wrote {path}", level=0)
     return 0

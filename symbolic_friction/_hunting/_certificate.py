@@ -35,7 +35,7 @@ from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
-from .._errors import CertificateFormatError, SymbolicFrictionError
+from .._errors import CertificateFormatError, InputFileError, SymbolicFrictionError
 from .._parameters import Parameters
 from ._proof import PRECISION, Box, CycleProof, prove_cycle
 
@@ -72,6 +72,10 @@ class HuntingCertificate:
     precision_bits: int = PRECISION
     verdict: str = "proved"
     cycle: dict | None = None
+
+    def gains_text(self) -> str:
+        """The exact gains, as ``check`` and ``verify`` print them."""
+        return ", ".join(f"{name} = {value}" for name, value in self.params.as_strings().items())
 
     def to_dict(self) -> dict[str, Any]:
         def s(q: Fraction) -> str:
@@ -174,12 +178,24 @@ def verify_hunting(certificate: HuntingCertificate, *, source: str = "<certifica
     return HuntingReport(source=source, certificate=certificate, proof=proof)
 
 
-def load_hunting(path: str | os.PathLike[str]) -> HuntingCertificate:
-    text = Path(path).read_text(encoding="utf-8")
+def _read_json(path: str | os.PathLike[str]) -> object:
+    """The JSON in ``path``, read with the package's bounds (a FIFO, a device or a huge file is refused)."""
+    from .._certify.certificate import MAX_FILE_BYTES
+    from .._io import read_limited
+
+    raw = read_limited(path, limit=MAX_FILE_BYTES, what="certificate")
     try:
-        data = json.loads(text)
+        return json.loads(raw.decode("utf-8"))
+    except UnicodeDecodeError as exc:
+        raise CertificateFormatError(f"{path}: not valid JSON: not UTF-8 ({exc.reason} at byte {exc.start})") from None
     except json.JSONDecodeError as exc:
         raise CertificateFormatError(f"{path}: not JSON ({exc})") from None
+    except RecursionError:
+        raise CertificateFormatError(f"{path}: not a certificate: JSON nested too deeply") from None
+
+
+def load_hunting(path: str | os.PathLike[str]) -> HuntingCertificate:
+    data = _read_json(path)
     try:
         return HuntingCertificate.from_dict(data)
     except CertificateFormatError as exc:
@@ -205,7 +221,7 @@ def write_hunting(certificate: HuntingCertificate, path: str | os.PathLike[str])
 def is_hunting_file(path: str | os.PathLike[str]) -> bool:
     """Whether ``path`` is a JSON object whose ``schema`` is the hunting one (for the ``verify`` dispatch)."""
     try:
-        data = json.loads(Path(path).read_text(encoding="utf-8"))
-    except (OSError, ValueError):
-        return False
+        data = _read_json(path)
+    except (CertificateFormatError, InputFileError):
+        return False  # the certificate loader says what is wrong with it
     return isinstance(data, dict) and data.get("schema") == SCHEMA

@@ -140,3 +140,19 @@ def test_default_stem_is_deterministic_and_distinguishes_gains():
     assert a == default_stem(Parameters(k_p="3", k_i="4.0", k_v="32/5"), "tightest")
     assert a.startswith("certificate_") and a.endswith("_tightest") and len(a) == len("certificate_") + 12 + 9
     assert a != default_stem(Parameters.table_i("b"), "tightest")
+
+
+def test_write_listed_certificates_regenerates_from_provenance_and_never_invents_gains(tmp_path):
+    import shutil
+    from pathlib import Path
+
+    from symbolic_friction._certify import check_listed_certificates, write_listed_certificates
+
+    repo = Path(__file__).resolve().parents[2]
+    shutil.copy(repo / "proofs" / "case_b_feasible.json", tmp_path / "mine.json")
+    written = write_listed_certificates(tmp_path, ["mine.json", "absent.json"])
+    assert [p.name for p in written] == ["mine.json", "mine.md"]
+    assert (tmp_path / "mine.json").read_bytes() == (repo / "proofs" / "case_b_feasible.json").read_bytes()
+    entries = check_listed_certificates(tmp_path, ["mine.json", "absent.json"])
+    assert [e.ok for e in entries] == [True, False]
+    assert entries[1].reason.startswith("missing; create it with `symbolic-friction certify")

@@ -14,7 +14,7 @@ def test_report_shows_gains_constants_every_inequality_and_kappa():
     report = verify_certificate(cert)
     text = render_markdown(report, name="case_a_tightest.json")
     assert text.startswith("# Stability certificate: Table I, case (a) (tightest)\n")
-    assert "**Verdict: PROVED.** All 27 inequalities" in text
+    assert "**Verdict: PROVED.** All 29 inequalities" in text
     assert f"≤ **{cert.overshoot_bound}**" in text
     assert "| k_v | 32/5 | 6.4 |" in text
     assert "| c | decrease rate, 2(k_v k_p − k_i) | 152/5 | 30.4 |" in text

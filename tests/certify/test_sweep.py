@@ -62,7 +62,7 @@ def test_progress_bar_only_when_asked_or_on_a_terminal():
     loud = io.StringIO()
     certify_many(GAINS[:2], progress=True, stream=loud, chunksize=1)
     text = loud.getvalue()
-    assert "\r[" in text and "2/2 certify (tightest)" in text and text.endswith("\n")
+    assert "certify (tightest)" in text and "2/2" in text and text.endswith("\n")  # drawn by tqdm
 
 
 def test_invalid_sweep_arguments():

@@ -57,7 +57,10 @@ def test_every_obligation_holds(full_run):
 
 def test_json_schema(full_run):
     _, payload, _, _ = full_run
-    assert set(payload) == {"obligations", "errata", "certificates", "crosscheck_self_test", "passed", "counts"}
+    assert set(payload) == {"obligations", "errata", "certificates", "crosscheck_self_test", "passed", "counts",
+                            "configuration"}
+    assert payload["configuration"]["source"].endswith("pyproject.toml") and payload["configuration"]["report"] is True
+    assert len(payload["configuration"]["certificates"]) == 4 and payload["configuration"]["only"] is None
     assert payload["passed"] is True
     assert payload["counts"]["selftest_ok"] == payload["counts"]["selftest_rows"] == 14
     assert payload["counts"]["obligations"] == payload["counts"]["obligations_hold"] == len(payload["obligations"])
@@ -268,7 +271,7 @@ def test_sections_can_be_appended(fake, tmp_path, capsys, monkeypatch):
     assert main(["check", "--json", "--write", "--proofs", str(tmp_path)]) == 1
     captured = capsys.readouterr()
     payload = json.loads(captured.out)
-    assert set(payload) == {"obligations", "errata", "certificates", "passed", "counts"}
+    assert set(payload) == {"obligations", "errata", "certificates", "passed", "counts", "configuration"}
     assert payload["passed"] is False
     assert captured.err.strip().splitlines()[-1].startswith("check: FAILED — Certificates; 1 of 1 obligations hold")
 
@@ -377,3 +380,77 @@ def check_args(proofs, *, write=False):
     import argparse
 
     return argparse.Namespace(proofs=str(proofs), write=write, json=False, no_certificates=False)
+
+
+# --------------------------------------------------------------------------- --only, --junit-xml, configuration
+
+
+def test_only_rederives_one_part_and_compares_nothing_else(tmp_path, capsys):
+    import xml.etree.ElementTree as ET
+
+    report = tmp_path / "r.xml"
+    assert main(["check", "--only", "lemma2", "--proofs", str(tmp_path), "--junit-xml", str(report)]) == 0
+    out = capsys.readouterr().out
+    last = out.strip().splitlines()[-1]
+    assert last.startswith("check: PASSED — 3 of 3 obligations hold (only lemma2)")
+    names = [c.get("name") for c in ET.parse(report).getroot().iter("testcase")]
+    assert names == ["lemma2.P", "lemma2.lower_bound", "lemma2.dVdt"]
+
+
+def test_only_unknown_part_is_a_usage_error(capsys):
+    assert main(["check", "--only", "lemma9"]) == 2
+    err = capsys.readouterr().err
+    assert "--only lemma9 selects no obligation" in err and "lemma3" in err
+
+
+def test_junit_report_has_a_failure_per_failing_obligation(fake, tmp_path, capsys):
+    import xml.etree.ElementTree as ET
+
+    fake(_Holds, _Fails)
+    report = tmp_path / "r.xml"
+    assert main(["check", "--write", "--proofs", str(tmp_path), "--junit-xml", str(report)]) == 1
+    cases = {c.get("name"): c for c in ET.parse(report).getroot().iter("testcase")}
+    failing = [n for n, c in cases.items() if c.find("failure") is not None]
+    assert failing == [_Fails.id]
+
+
+def test_stale_report_closing_line_agrees_with_the_exit_code(fake, tmp_path, capsys):
+    """The closing line names what is stale first, and says FAILED exactly when the exit code is 1."""
+    fake(_Holds)
+    assert main(["check", "--write", "--proofs", str(tmp_path)]) == 0
+    (tmp_path / "obligations.md").write_text("edited", encoding="utf-8")
+    capsys.readouterr()
+    code = main(["check", "--proofs", str(tmp_path)])
+    last = capsys.readouterr().out.strip().splitlines()[-1]
+    assert code == 1 and last.startswith("check: FAILED — ") and "STALE" in last
+
+
+def test_proofs_dir_without_configuration_checks_every_certificate_in_it(tmp_path, monkeypatch, capsys):
+    import shutil
+
+    mine = tmp_path / "mine"
+    mine.mkdir()
+    for name in ("case_b_feasible.json", "case_b_feasible.md"):
+        shutil.copy(REPO / "proofs" / name, mine / name)
+    (tmp_path / ".git").mkdir()  # a repository of its own: the checkout's configuration is not found
+    monkeypatch.chdir(tmp_path)
+    args = check_args(mine)
+    target = check.resolve_target(args)
+    assert target.certificates is None and target.report is False  # no obligations.md, no Table I demanded
+    section = check.certificates_section(args)
+    assert section.ok and [Path(row[0]).name for row in section.rows] == ["case_b_feasible.json"]
+
+
+def test_a_crashing_section_is_an_error_in_the_junit_report(fake, tmp_path, capsys, monkeypatch):
+    import xml.etree.ElementTree as ET
+
+    fake(_Holds)
+
+    def broken(args):
+        raise RuntimeError("boom")
+
+    monkeypatch.setattr(check, "SECTIONS", [check.obligations_section, broken])
+    report = tmp_path / "r.xml"
+    assert main(["check", "--write", "--proofs", str(tmp_path), "--junit-xml", str(report)]) == 1
+    errors = [c for c in ET.parse(report).getroot().iter("testcase") if c.find("error") is not None]
+    assert [c.get("name") for c in errors] == ["broken"] and "RuntimeError: boom" in errors[0].find("error").text

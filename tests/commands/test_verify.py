@@ -37,7 +37,7 @@ def test_verbose_prints_every_inequality(capsys):
     assert main(["verify", "-v", str(PROOFS / "case_b_tightest.json")]) == 0
     out = capsys.readouterr().out
     assert "  ✓ k3 > k2: " in out and "[lemma3.hatV_derivative]" in out
-    assert out.count("  ✓ ") == 27
+    assert out.count("  ✓ ") == 29  # 27 inequalities of the proof, 2 provenance checks (obligations, Table I label)
 
 
 # -- failed inequalities: exit 1, the message names the inequality -----------------------
@@ -102,7 +102,7 @@ def test_non_json_exits_2(tmp_path, capsys):
 
 def test_missing_file_exits_2(tmp_path, capsys):
     assert main(["verify", str(tmp_path / "nope.json")]) == 2
-    assert "No such file or directory" in capsys.readouterr().err
+    assert "no such file or directory" in capsys.readouterr().err
 
 
 def test_every_file_is_checked_and_the_worst_status_wins(tmp_path, capsys):

@@ -44,7 +44,7 @@ def test_verify_dispatches_on_the_schema(cert_file, capsys):
     assert main(["verify", str(cert_file), str(PROOFS / "case_a_tightest.json")]) == 0
     out = capsys.readouterr().out.splitlines()
     assert out[0].startswith("PROVED ") and "hunting cycle" in out[0]
-    assert out[1].startswith("PROVED ") and "27 inequalities" in out[1]
+    assert out[1].startswith("PROVED ") and "29 inequalities" in out[1]
 
 
 def _shift_sigma(d):
@@ -101,3 +101,22 @@ def test_the_committed_hunting_certificates_verify():
     assert len(COMMITTED) >= 5
     for path in COMMITTED:
         assert verify_hunting_file(path).proved, path
+
+
+def test_check_verifies_a_listed_hunting_certificate_and_catches_a_moved_box(cert_file, tmp_path):
+    from symbolic_friction._certify.pipeline import check_listed_certificates
+
+    good = edited(tmp_path, cert_file, lambda d: None)
+    (entry,) = check_listed_certificates(tmp_path, [good.name])
+    assert entry.ok and "a hunting cycle" in entry.describe()
+    bad = edited(tmp_path, cert_file, _shift_sigma)
+    (entry,) = check_listed_certificates(tmp_path, [bad.name])
+    assert not entry.ok and entry.describe().startswith("FAILED") and "NOT PROVED" in entry.reason
+
+
+def test_crosscheck_leaves_hunting_certificates_to_verify(cert_file, tmp_path, monkeypatch):
+    # with no files crosscheck takes the configured certificates: the hunting ones are not its business
+    (tmp_path / "proofs").mkdir()
+    edited(tmp_path / "proofs", cert_file, lambda d: None)
+    monkeypatch.chdir(tmp_path)
+    assert main(["crosscheck"]) == 2  # refused as "no certificate", not fed to the stability checks

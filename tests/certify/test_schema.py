@@ -1,0 +1,82 @@
+"""The certificate's JSON Schema: shipped in the package, used on every read, agreeing with the parser."""
+
+from __future__ import annotations
+
+import copy
+import json
+from pathlib import Path
+
+import pytest
+
+from symbolic_friction._certify.certificate import json_schema, loads, validate_schema
+from symbolic_friction._errors import CertificateFormatError
+
+REPO = Path(__file__).resolve().parents[2]
+PROOFS = sorted((REPO / "proofs").glob("*.json"))
+
+
+def test_committed_certificates_match_the_schema():
+    assert len(PROOFS) == 4
+    for path in PROOFS:
+        validate_schema(json.loads(path.read_text(encoding="utf-8")))
+
+
+def test_the_schema_is_a_valid_draft_2020_12_schema():
+    import jsonschema
+
+    jsonschema.Draft202012Validator.check_schema(json_schema())
+
+
+def _base():
+    return json.loads(PROOFS[0].read_text(encoding="utf-8"))
+
+
+def _set(data, path, value):
+    obj = data
+    for key in path[:-1]:
+        obj = obj[key]
+    if value is KeyError:
+        del obj[path[-1]]
+    else:
+        obj[path[-1]] = value
+    return data
+
+
+BAD = [
+    (("parameters", "k_p"), "0"),
+    (("parameters", "k_p"), "-3"),
+    (("parameters", "k_p"), "٣"),
+    (("parameters", "k_p"), 3),
+    (("constants", "k1"), "1.5"),
+    (("constants", "k1"), "1" * 20_001),
+    (("constants", "c"), KeyError),
+    (("overshoot_bound",), "３.5"),
+    (("schema",), "symbolic-friction/certificate/v2"),
+    (("extra",), "x"),
+    (("provenance", "obligations"), "lemma2.P"),
+    (("physical",), {"m": "1"}),
+]
+
+
+@pytest.mark.parametrize("path, value", BAD, ids=[".".join(p) + "=" + repr(v)[:12] for p, v in BAD])
+def test_schema_and_parser_both_refuse(path, value):
+    data = _set(copy.deepcopy(_base()), path, value)
+    with pytest.raises(CertificateFormatError):
+        validate_schema(data)  # the schema alone refuses it
+    with pytest.raises(CertificateFormatError):
+        loads(json.dumps(data))  # and so does reading it
+
+
+def test_physical_parameters_round_trip(tmp_path):
+    data = _base()
+    data["physical"] = {"m": "2", "k_p_bar": "6", "k_i_bar": "8", "k_d_bar": "61/5", "alpha_v": "1/5", "f_c_bar": "2"}
+    validate_schema(data)
+    cert = loads(json.dumps(data))
+    assert cert.physical["k_d_bar"] * 5 == 61 and "m=2" in cert.gains_text()
+
+
+def test_readme_publishes_the_shipped_schema():
+    readme = (REPO / "README.md").read_text(encoding="utf-8")
+    block = readme.split("<!-- certificate schema -->", 2)[1]
+    text = block.split("```json", 1)[1].split("```", 1)[0]
+    assert json.loads(text) == json_schema()

@@ -1,0 +1,198 @@
+"""A user's own proofs in CI, end to end, outside this checkout.
+
+In a throw-away git repository a user certifies two gain sets of their own
+(one normalised, one given as physical parameters, with a label), names them
+in ``[tool.symbolic-friction]`` of their ``pyproject.toml``, and runs the
+pre-commit hook exactly as ``.pre-commit-hooks.yaml`` declares it, plus
+``check --junit-xml``: everything passes, the JUnit XML has one test case per
+obligation and certificate.  Editing one constant makes the hook and ``check``
+fail, naming the inequality.  (``pre-commit try-repo`` would build a fresh
+environment with cvxpy and numba from the network; the hook's entry command is
+run directly instead, in a subprocess with this checkout on ``PYTHONPATH``, and
+once more as the console script of a copy installed into a fresh virtual
+environment.)
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import shlex
+import subprocess
+import sys
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parents[1]
+pytestmark = pytest.mark.slow
+
+
+def _hook_entry(hook_id: str) -> list[str]:
+    """The hook's ``entry`` from ``.pre-commit-hooks.yaml``, with the console script run as ``python -m``."""
+    text = (REPO / ".pre-commit-hooks.yaml").read_text(encoding="utf-8")
+    block = re.split(rf"^- id: {re.escape(hook_id)}$", text, flags=re.MULTILINE)[1].split("\n- id:", 1)[0]
+    entry = shlex.split(re.search(r"^\s*entry:\s*(.+)$", block, re.MULTILINE).group(1))
+    assert entry[0] == "symbolic-friction"
+    assert re.search(r"^\s*language:\s*python\s*$", block, re.MULTILINE)
+    return [sys.executable, "-m", "symbolic_friction", *entry[1:]]
+
+
+def _run(cmd: list[str], cwd: Path) -> subprocess.CompletedProcess:
+    env = dict(os.environ, PYTHONPATH=str(REPO))
+    env.pop("COLUMNS", None)
+    return subprocess.run(cmd, cwd=cwd, env=env, capture_output=True, text=True, timeout=600)
+
+
+def _cli(*args: str) -> list[str]:
+    return [sys.executable, "-m", "symbolic_friction", *args]
+
+
+@pytest.fixture(scope="module")
+def project(tmp_path_factory):
+    root = tmp_path_factory.mktemp("user-project")
+    subprocess.run(["git", "init", "-q", str(root)], check=True)
+    one = _run(_cli("certify", "--k-p", "3", "--k-i", "4", "--k-v", "6.4", "--f-c", "1", "--mode", "feasible",
+                    "--out", "proofs", "--name", "slow_axis", "--label", "slow axis"), root)
+    assert one.returncode == 0, one.stderr
+    two = _run(_cli("certify", "--m", "2", "--k-p-bar", "1.32", "--k-i-bar", "0.16", "--k-d-bar", "2.5",
+                    "--alpha-v", "0.5", "--f-c-bar", "2", "--mode", "feasible", "--out", "proofs",
+                    "--name", "fast_axis", "--label", "fast axis, 2 kg"), root)
+    assert two.returncode == 0, two.stderr
+    (root / "pyproject.toml").write_text(
+        '[project]\nname = "my-controller"\nversion = "0"\n\n'
+        '[tool.symbolic-friction]\nproofs = "proofs"\ncertificates = ["slow_axis.json", "fast_axis.json"]\n',
+        encoding="utf-8",
+    )
+    subprocess.run(["git", "-C", str(root), "add", "."], check=True)
+    subprocess.run(["git", "-C", str(root), "-c", "user.name=u", "-c", "user.email=u@example.org", "commit", "-qm", "proofs"],
+                   check=True)
+    return root
+
+
+def test_certificates_keep_physical_gains_and_label(project):
+    data = json.loads((project / "proofs" / "fast_axis.json").read_text(encoding="utf-8"))
+    assert data["physical"] == {"m": "2", "k_p_bar": "33/25", "k_i_bar": "4/25", "k_d_bar": "5/2", "alpha_v": "1/2",
+                                "f_c_bar": "2"}
+    assert data["parameters"] == {"k_p": "33/50", "k_i": "2/25", "k_v": "3/2", "f_c": "1"}
+    assert data["provenance"]["label"] == "fast axis, 2 kg"
+
+
+def test_hook_and_check_pass_then_fail_on_an_edited_constant(project, tmp_path):
+    hook = _run(_hook_entry("symbolic-friction-check"), project)
+    assert hook.returncode == 0, hook.stdout + hook.stderr
+    assert hook.stdout.strip().splitlines()[-1].startswith("check: PASSED")
+    assert "2 of 2 certificates proved exactly, 2 of 2 up to date" in hook.stdout
+
+    report = tmp_path / "check.xml"
+    check = _run(_cli("check", "--junit-xml", str(report)), project)
+    assert check.returncode == 0, check.stdout + check.stderr
+    root = ET.parse(report).getroot()
+    assert root.tag == "testsuites" and root.get("failures") == "0" and root.get("errors") == "0"
+    cases = root.findall("./testsuite/testcase")
+    assert int(root.get("tests")) == len(cases)
+    by_class: dict[str, list[str]] = {}
+    for case in cases:
+        by_class.setdefault(case.get("classname"), []).append(case.get("name"))
+    assert by_class["check.certificates"] == [str(Path("proofs") / "slow_axis.json"), str(Path("proofs") / "fast_axis.json")]
+    assert "lemma3.hatV_derivative" in by_class["check.obligations"] and len(by_class["check.obligations"]) >= 30
+    assert "check.report" not in by_class  # the user's project keeps no obligations.md
+
+    verify_hook = _run(_hook_entry("symbolic-friction-verify") + ["proofs/slow_axis.json", "proofs/fast_axis.json"], project)
+    assert verify_hook.returncode == 0, verify_hook.stderr
+
+    # edit one constant: k3 = k2 breaks Lemma 3's condition k3 > k2
+    path = project / "proofs" / "slow_axis.json"
+    original = path.read_text(encoding="utf-8")
+    data = json.loads(original)
+    data["constants"]["k3"] = data["constants"]["k2"]
+    path.write_text(json.dumps(data, indent=2, sort_keys=True) + "\n", encoding="utf-8")
+    try:
+        hook = _run(_hook_entry("symbolic-friction-check"), project)
+        assert hook.returncode == 1
+        assert "k3 > k2" in hook.stdout and "slow_axis.json" in hook.stdout
+        assert hook.stdout.strip().splitlines()[-1].startswith("check: FAILED — 1 of 2 certificates proved exactly")
+        check = _run(_cli("check", "--junit-xml", str(report)), project)
+        assert check.returncode == 1 and "k3 > k2" in check.stdout
+        failed = [c for c in ET.parse(report).getroot().iter("testcase") if c.find("failure") is not None]
+        assert [c.get("name") for c in failed] == [str(Path("proofs") / "slow_axis.json")]
+        assert "k3 > k2" in failed[0].find("failure").text
+        verify_hook = _run(_hook_entry("symbolic-friction-verify") + ["proofs/slow_axis.json"], project)
+        assert verify_hook.returncode == 1 and "k3 > k2" in verify_hook.stdout
+    finally:
+        path.write_text(original, encoding="utf-8")
+
+
+def test_a_listed_certificate_that_is_missing_fails(project, tmp_path):
+    (project / "symbolic-friction.toml").write_text('certificates = ["slow_axis.json", "gone.json"]\n', encoding="utf-8")
+    try:
+        check = _run(_cli("check", "--json"), project)
+        assert check.returncode == 1
+        payload = json.loads(check.stdout)
+        assert [(Path(c["file"]).name, c["proved"]) for c in payload["certificates"]] == [("slow_axis.json", True), ("gone.json", False)]
+        assert "gone.json: missing" in check.stderr
+        assert "fast_axis.json" in check.stderr and "not listed" in check.stderr  # not checked, but said
+    finally:
+        (project / "symbolic-friction.toml").unlink()
+
+
+def test_without_configuration_outside_the_checkout_check_refuses(tmp_path):
+    subprocess.run(["git", "init", "-q", str(tmp_path)], check=True)
+    check = _run(_cli("check"), tmp_path)
+    assert check.returncode == 2
+    assert check.stderr.count("\n") == 1 and "no configuration found" in check.stderr
+
+
+def test_in_a_fresh_virtual_environment_the_installed_hook_passes(project, tmp_path):
+    """The package installed (not imported from this checkout) into a fresh virtual environment: its console
+    script, run exactly as the hook's entry says, passes in the user's repository (the shipped JSON Schema and
+    the configuration search work from an installed copy).  The dependencies come from the running
+    environment through a ``.pth`` file; the build backend is fetched by pip (skipped if it cannot be)."""
+    import shutil
+    import sysconfig
+
+    source = tmp_path / "src"
+    source.mkdir()
+    shutil.copytree(REPO / "symbolic_friction", source / "symbolic_friction",
+                    ignore=shutil.ignore_patterns("__pycache__"))
+    for name in ("pyproject.toml", "README.md"):
+        shutil.copy(REPO / name, source / name)
+    venv = tmp_path / "venv"
+    subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(venv)], check=True)
+    python = venv / "bin" / "python"
+    purelib = subprocess.run([str(python), "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
+                             capture_output=True, text=True, check=True).stdout.strip()
+    Path(purelib, "dependencies.pth").write_text(sysconfig.get_paths()["purelib"] + "\n", encoding="utf-8")
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "COLUMNS")}
+    install = subprocess.run([sys.executable, "-m", "pip", "--python", str(python), "install", "--quiet", "--no-deps",
+                              str(source)], capture_output=True, text=True, env=env, timeout=600)
+    if install.returncode != 0:
+        pytest.skip(f"could not build the package here: {install.stderr.strip().splitlines()[-1:]}")
+    where = subprocess.run([str(python), "-c", "import symbolic_friction; print(symbolic_friction.__file__)"],
+                           capture_output=True, text=True, env=env, cwd=project, check=True).stdout
+    assert where.startswith(purelib)  # the installed copy, not this checkout
+    entry = _hook_entry("symbolic-friction-check")[3:]  # the arguments after the console script
+    hook = subprocess.run([str(venv / "bin" / "symbolic-friction"), *entry], capture_output=True, text=True,
+                          env=env, cwd=project, timeout=600)
+    assert hook.returncode == 0, hook.stdout + hook.stderr
+    assert hook.stdout.strip().splitlines()[-1].startswith("check: PASSED")
+    verify = subprocess.run([str(venv / "bin" / "symbolic-friction"), *_hook_entry("symbolic-friction-verify")[3:],
+                             "proofs/fast_axis.json"], capture_output=True, text=True, env=env, cwd=project)
+    assert verify.returncode == 0 and "PROVED" in verify.stdout, verify.stderr
+
+
+def _hook_files(hook_id: str) -> re.Pattern:
+    text = (REPO / ".pre-commit-hooks.yaml").read_text(encoding="utf-8")
+    block = re.split(rf"^- id: {re.escape(hook_id)}$", text, flags=re.MULTILINE)[1].split("\n- id:", 1)[0]
+    return re.compile(re.search(r"^\s*files:\s*'(.+)'\s*$", block, re.MULTILINE).group(1))
+
+
+def test_hooks_run_when_a_certificate_or_the_configuration_changes():
+    check, verify = _hook_files("symbolic-friction-check"), _hook_files("symbolic-friction-verify")
+    for path in ("proofs/slow_axis.json", "proofs/slow_axis.md", "pyproject.toml", "sub/symbolic-friction.toml"):
+        assert check.search(path), path
+    for path in ("README.md", "src/data.json", "package.json"):
+        assert not check.search(path) and not verify.search(path), path
+    assert verify.search("proofs/slow_axis.json") and not verify.search("proofs/slow_axis.md")
