@@ -79,6 +79,8 @@ def test_the_checkout_configures_table_i_and_the_report():
 
     config = load_config(Path(__file__).resolve().parents[1] / "pyproject.toml")
     assert config.report is True
+    hunting = sorted(p.relative_to(config.proofs).as_posix() for p in (config.proofs / "hunting").glob("*.json"))
+    assert len(hunting) == 5
     assert sorted(config.certificates) == sorted(
-        f"case_{c}_{m}.json" for c in "ab" for m in ("feasible", "tightest")
+        [f"case_{c}_{m}.json" for c in "ab" for m in ("feasible", "tightest")] + hunting
     )

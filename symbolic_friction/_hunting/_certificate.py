@@ -192,6 +192,8 @@ def _read_json(path: str | os.PathLike[str]) -> object:
         raise CertificateFormatError(f"{path}: not JSON ({exc})") from None
     except RecursionError:
         raise CertificateFormatError(f"{path}: not a certificate: JSON nested too deeply") from None
+    except ValueError as exc:  # e.g. an integer beyond Python's digit limit
+        raise CertificateFormatError(f"{path}: not a certificate: {exc}") from None
 
 
 def load_hunting(path: str | os.PathLike[str]) -> HuntingCertificate:

@@ -42,6 +42,7 @@ MY_IDS = (
 def full_run(tmp_path_factory):
     """``check --json --write`` on every obligation, run once for this module."""
     proofs = tmp_path_factory.mktemp("proofs")
+    _copy_hunting(proofs)  # listed too, and `--write` cannot invent their gains
     out, err = io.StringIO(), io.StringIO()
     with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
         rc = main(["check", "--json", "--write", "--proofs", str(proofs)])
@@ -60,12 +61,12 @@ def test_json_schema(full_run):
     assert set(payload) == {"obligations", "errata", "certificates", "crosscheck_self_test", "passed", "counts",
                             "configuration"}
     assert payload["configuration"]["source"].endswith("pyproject.toml") and payload["configuration"]["report"] is True
-    assert len(payload["configuration"]["certificates"]) == 4 and payload["configuration"]["only"] is None
+    assert len(payload["configuration"]["certificates"]) == 9 and payload["configuration"]["only"] is None
     assert payload["passed"] is True
     assert payload["counts"]["selftest_ok"] == payload["counts"]["selftest_rows"] == 14
     assert payload["counts"]["obligations"] == payload["counts"]["obligations_hold"] == len(payload["obligations"])
-    assert payload["counts"]["certificates"] == payload["counts"]["certificates_proved"] == 4
-    assert [c["proved"] and not c["stale"] for c in payload["certificates"]] == [True] * 4
+    assert payload["counts"]["certificates"] == payload["counts"]["certificates_proved"] == 9
+    assert [c["proved"] and not c["stale"] for c in payload["certificates"]] == [True] * 9
     ids = [o["id"] for o in payload["obligations"]]
     assert len(ids) == len(set(ids))
     assert [i for i in ids if i in MY_IDS] == list(MY_IDS)  # all present, in paper order
@@ -95,6 +96,7 @@ def test_write_reports_every_obligation_with_latex(full_run):
 def test_write_is_deterministic_across_processes(full_run, tmp_path):
     """A second process (other hash seed) writes the same bytes."""
     _, _, _, report = full_run
+    _copy_hunting(tmp_path)
     env = dict(os.environ, PYTHONHASHSEED="12345")
     proc = subprocess.run(
         [sys.executable, "-m", "symbolic_friction", "check", "--write", "--proofs", str(tmp_path)],
@@ -311,8 +313,8 @@ def test_no_certificates_flag_and_empty_directory(tmp_path, capsys):
     assert section.ok and section.summary == "certificates not checked (--no-certificates)"
     args.no_certificates = False
     section = check.certificates_section(args)
-    assert not section.ok  # Table I's files are required and missing
-    assert section.summary.startswith("0 of 4 certificates proved exactly")
+    assert not section.ok  # Table I's files (and the hunting ones) are required and missing
+    assert section.summary.startswith("0 of 9 certificates proved exactly")
 
 
 # --------------------------------------------------------------------------- start-up cost
@@ -343,6 +345,12 @@ def test_check_help_does_not_import_sympy():
 # --------------------------------------------------------------------------- the certificates section
 
 
+def _copy_hunting(proofs):
+    import shutil
+
+    shutil.copytree(REPO / "proofs" / "hunting", proofs / "hunting")
+
+
 def _copy_proofs(tmp_path):
     import shutil
 
@@ -353,7 +361,7 @@ def _copy_proofs(tmp_path):
 
 def test_certificates_section_passes_on_committed_proofs(tmp_path):
     section = check.certificates_section(check_args(_copy_proofs(tmp_path)))
-    assert section.ok and len(section.rows) == 4
+    assert section.ok and len(section.rows) == 9
     assert all(row[1:3] == ("yes", "yes") for row in section.rows)
 
 
