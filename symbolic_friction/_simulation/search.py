@@ -54,6 +54,10 @@ __all__ = ["SlipModel", "slip_model", "first_zero", "p_norm", "UNDERFLOW"]
 # state on x*_k, an equilibrium.
 UNDERFLOW = 1e-280
 
+# The cached length of a slip that leaves a stick is searched over at most this many scan
+# windows of the gain set's table (see _pack): a bounded cost, whatever the spread of the roots.
+STICK_SLIP_WINDOWS = 256
+
 
 @dataclass(frozen=True, eq=False)
 class SlipModel:
@@ -121,10 +125,12 @@ def _pack(
     K[k.I_T : k.I_T + 9] = np.array(coc_entries(expm.k_p, expm.k_i), dtype=float).reshape(-1)
     # The length of a slip that leaves a stick: the first zero of w (the slip from y0 = e₁),
     # searched once, as the kernel would, over 60 time constants of the slowest root (a
-    # later zero would come when the state has decayed by e⁻⁶⁰; past that the kernel searches).
+    # later zero would come when the state has decayed by e⁻⁶⁰; past that the kernel searches),
+    # but over at most STICK_SLIP_WINDOWS scan windows: with roots spread 10⁶ those 60 time
+    # constants are millions of windows, and the kernel's own search covers what lies beyond.
     beta = math.sqrt(abs(expm.beta2))
     slowest = min(abs(expm.r), abs(expm.alpha) - beta if expm.beta2 > 0 else abs(expm.alpha))
-    K[k.I_STICK_SLIP_H] = 60.0 / slowest
+    K[k.I_STICK_SLIP_H] = min(60.0 / slowest, STICK_SLIP_WINDOWS * table.window)
     K[k.I_STICK_SLIP_T] = math.inf  # not used while searching for it
     found, tau, *_ = k.first_zero(K.tolist(), table.values.tolist(), table.noise.tolist(), 1.0, 0.0, 0.0, 1, K[k.I_STICK_SLIP_H])
     K[k.I_STICK_SLIP_T] = tau if found else math.inf
