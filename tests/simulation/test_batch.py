@@ -13,7 +13,7 @@ from symbolic_friction._simulation import Trajectories
 from symbolic_friction._simulation.batch import iter_batches, simulate_batch
 
 from ..tolerance import relative_error
-from .reference import Reference
+from symbolic_friction._reference import Reference
 
 CASES = {
     "a": Parameters.table_i("a"),
