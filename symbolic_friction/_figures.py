@@ -80,14 +80,20 @@ def available_figures() -> dict[str, FigureSpec]:
     return dict(FIGURES)
 
 
-def make_figures(out_dir: str | Path, names: Sequence[str] | None = None) -> list[Path]:
+def make_figures(out_dir: str | Path, names: Sequence[str] | None = None, *, formats: Sequence[str] = ("png",)) -> list[Path]:
     """Write the figures ``names`` (default: all) into ``out_dir``; return the files.
+
+    Each figure is written as PNG and, if ``formats`` asks for it, as PDF and/or SVG too.
 
     Raises
     ------
     SymbolicFrictionError
-        If a name is not a registered figure.
+        If a name is not a registered figure, or a format is not one of png, pdf, svg.
     """
+    global _FORMATS
+    bad = [f for f in formats if f not in FIGURE_FORMATS]
+    if bad:
+        raise SymbolicFrictionError(f"unknown figure format(s) {', '.join(map(repr, bad))}; expected some of {', '.join(FIGURE_FORMATS)}")
     figures = available_figures()
     chosen = list(figures) if names is None else list(names)
     unknown = [n for n in chosen if n not in figures]
@@ -98,8 +104,15 @@ def make_figures(out_dir: str | Path, names: Sequence[str] | None = None) -> lis
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     written: list[Path] = []
-    for name in chosen:
-        written += figures[name].function(out)
+    previous, _FORMATS = _FORMATS, tuple(dict.fromkeys(("png", *formats)))
+    try:
+        for name in chosen:
+            for path in figures[name].function(out):
+                written.append(path)
+                if path.suffix == ".png":  # the same figure in the other formats asked for
+                    written += [path.with_suffix(f".{fmt}") for fmt in _FORMATS[1:] if path.with_suffix(f".{fmt}").exists()]
+    finally:
+        _FORMATS = previous
     return written
 
 
@@ -113,10 +126,30 @@ def _pyplot() -> Any:
     return plt
 
 
-def _save(fig: Any, path: Path) -> Path:
-    """Save atomically with fixed metadata, so reruns give the same bytes."""
-    atomic_write(path, lambda fh: fig.savefig(fh, format="png", dpi=130, metadata={"Software": None}))
+FIGURE_FORMATS = ("png", "pdf", "svg")
+# the formats the figure being drawn is written in (set by make_figures for the duration of a call)
+_FORMATS: tuple[str, ...] = ("png",)
+# metadata that would change from run to run (dates, versions) is left out, so reruns give the same bytes
+_METADATA = {"png": {"Software": None}, "pdf": {"Creator": None, "Producer": None, "CreationDate": None}, "svg": {"Date": None, "Creator": None}}
+
+
+def save_figure(fig: Any, stem: Path, formats: Sequence[str] = ("png",)) -> list[Path]:
+    """Write ``fig`` as ``stem.png`` and as ``stem.pdf`` / ``stem.svg`` if asked; close it; return the files."""
+    import matplotlib
+
+    written = []
+    for fmt in dict.fromkeys(formats):
+        path = stem.parent / f"{stem.name}.{fmt}"
+        with matplotlib.rc_context({"svg.hashsalt": "symbolic_friction"}):
+            atomic_write(path, lambda fh, fmt=fmt: fig.savefig(fh, format=fmt, dpi=130, metadata=_METADATA[fmt]))
+        written.append(path)
     _pyplot().close(fig)
+    return written
+
+
+def _save(fig: Any, path: Path) -> Path:
+    """Save atomically (PNG, plus the other formats :func:`make_figures` was asked for); return the PNG."""
+    save_figure(fig, path.with_suffix(""), _FORMATS)
     return path
 
 
