@@ -18,7 +18,7 @@ from collections.abc import Sequence
 
 __all__ = ["main", "build_parser"]
 
-COMMANDS = ("check", "certify", "verify", "simulate", "figures", "crosscheck", "tradeoff")
+COMMANDS = ("check", "certify", "verify", "simulate", "figures", "crosscheck", "tradeoff", "extremes")
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -25,6 +25,15 @@ rtol, atol : float
 integrator : {"Radau", "BDF", "LSODA"}
     The stiff solver (default ``"Radau"``).
 
+Valid range
+-----------
+Besides an ``ε`` float64 cannot resolve, the method refuses a horizon
+longer than two *creep times* ``sqrt(f_c/(k_i ε))`` (:func:`creep_time`)
+when the set 𝒜 is not negligible against the state: the regularized system
+has the origin as its only equilibrium, so where the inclusion sticks its
+solution drifts across 𝒜 and, over long horizons, ends far from the exact
+one without any integrator noticing.
+
 Output
 ------
 Without ``t_eval`` the samples are the integrator's steps; with ``t_eval``
@@ -47,13 +56,17 @@ from .._errors import SimulationError
 from .._parameters import Parameters
 from ._base import SimulationMethod, Solution, Status, check_rtol, finite_or_raise
 
-__all__ = ["Regularized", "LAWS", "INTEGRATORS", "vector_field"]
+__all__ = ["Regularized", "LAWS", "INTEGRATORS", "vector_field", "creep_time"]
 
 LAWS = ("tanh", "sat")
 INTEGRATORS = ("Radau", "BDF", "LSODA")
 _LAYER = {"tanh": 3.0, "sat": 1.0}
 # ε below this multiple of the state's scale is not resolved by float64 (module doc of _solve)
 _RESOLVABLE = 1e3 * 2.220446049250313e-16
+# the creep inside 𝒜 (creep_time) is refused beyond this many creep times, when 𝒜 is at least this
+# fraction of the state's size
+CREEP_FACTOR = 2.0
+CREEP_SIZE = 1e-2
 
 
 def _positive_number(options: dict[str, Any], name: str, meaning: str) -> None:
@@ -62,6 +75,44 @@ def _positive_number(options: dict[str, Any], name: str, meaning: str) -> None:
         raise SimulationError(f"option {name} ({meaning}) must be a number > 0; got {value!r}")
     if not (math.isfinite(float(value)) and float(value) > 0):
         raise SimulationError(f"option {name} ({meaning}) must be finite and > 0; got {name} = {value!r}")
+
+
+def creep_time(params: Parameters, epsilon: float) -> float:
+    """``sqrt(f_c / (k_i ε))``: the time scale on which the regularized solution creeps inside 𝒜.
+
+    Inside the boundary layer the law is ``f_c v/ε`` (both laws), so the
+    regularized system there is linear with characteristic polynomial
+    ``s³ + (k_v + f_c/ε) s² + k_p s + k_i``, whose slow roots are about
+    ``± i sqrt(k_i ε / f_c)``: where the inclusion sticks (``v = 0``, ``s``
+    constant), the regularized solution drifts on this time scale towards
+    its only equilibrium, the origin, across the set 𝒜 of eq. (Aph).
+    """
+    k_p, k_i, k_v, f_c = params.as_floats()
+    return math.sqrt(f_c / (k_i * float(epsilon)))
+
+
+def _check_creep(params: Parameters, z0: np.ndarray, t_end: float, eps: float) -> None:
+    """Refuse a horizon over which the creep inside 𝒜 is no longer small.
+
+    The drift is bounded by the size of 𝒜, ``f_c/k_i`` in ``e_i``; it matters
+    when that is more than ``CREEP_SIZE`` of the state's size, and then only a
+    horizon within ``CREEP_FACTOR`` creep times keeps it a small fraction of
+    ``f_c/k_i`` (measured by ``symbolic-friction extremes``: 30 s of Table I
+    case (a) at ε = 1e-4, 0.6 creep times, 0.3 % error; 300 s, 6 creep times,
+    34 %; case (b) over 1000 s, 2.8 creep times, 197 %).
+    """
+    k_p, k_i, k_v, f_c = params.as_floats()
+    size = f_c / k_i
+    if size <= CREEP_SIZE * float(np.max(np.abs(z0))):
+        return
+    limit = CREEP_FACTOR * creep_time(params, eps)
+    if t_end > limit:
+        raise SimulationError(
+            f"t_end = {t_end:g} exceeds {CREEP_FACTOR:g} creep times sqrt(f_c/(k_i epsilon)) = {limit:.3g} at "
+            f"epsilon = {eps:g}: where the inclusion sticks, the regularized solution drifts across the set of "
+            f"equilibria (|e_i| <= f_c/k_i = {size:.3g}) towards the origin; use t_end <= {limit:.3g} or "
+            f"epsilon <= {eps * (t_end / limit) ** -2:.3g}"
+        )
 
 
 def vector_field(params: Parameters, epsilon: float, law: str) -> tuple[Any, Any]:
@@ -141,6 +192,7 @@ class Regularized(SimulationMethod):
                 f"option epsilon = {eps:.3g} is below what float64 can resolve for this state "
                 f"(|z0|, f_c up to {scale:.3g}); use epsilon ≥ {_RESOLVABLE * scale:.3g}"
             )
+        _check_creep(params, z0, t_end, eps)
         layer = _LAYER[law] * eps
         rhs, jac = vector_field(params, eps, law)
 
