@@ -346,7 +346,7 @@ def extremes_figure(result: Extremes, path: Path, formats: Sequence[str] = ("png
         for j, c in enumerate(cols):
             o = result.get(r, c)
             if o.outcome == OK:
-                txt, color = f"{o.error:.0e}", "white" if o.error < 1e-6 else "black"
+                txt, color = ("0 (exact)" if o.error == 0 else f"{o.error:.0e}"), "white" if o.error < 1e-6 else "black"
             elif o.outcome == PROVED:
                 ax.add_patch(plt.Rectangle((j - 0.5, i - 0.5), 1, 1, color="tab:green", alpha=0.55, lw=0))
                 txt, color = "proved", "black"
@@ -361,7 +361,7 @@ def extremes_figure(result: Extremes, path: Path, formats: Sequence[str] = ("png
                 txt, color = "WRONG", "white"
             ax.text(j, i, txt, ha="center", va="center", fontsize=6.5, color=color)
     ax.set_xticks(range(len(cols)))
-    ax.set_xticklabels(cols, fontsize=7.5)
+    ax.set_xticklabels([c.replace("(", "\n").rstrip(")") for c in cols], fontsize=7.5)
     ax.xaxis.tick_top()
     ax.set_yticks(range(len(rows)))
     ax.set_yticklabels([f"{c.group}: {c.label}" for c in result.cells], fontsize=7)
