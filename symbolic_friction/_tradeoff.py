@@ -510,6 +510,7 @@ class CostPoint:
     seconds: float
     seconds_min: float
     seconds_max: float
+    kernel: str = ""  # event only: "python" or "numba", the kernel variant the run used
 
 
 def measure_cost(
@@ -561,13 +562,18 @@ def measure_cost(
             if last is not None and last[1] * n / last[0] > 4 * budget:
                 break  # the cost grows about linearly in N: the next size would far exceed the budget
             Z = np.asarray(z0, dtype=float) * rng.uniform(0.5, 1.5, size=(n, 1))
+            kernel = ""
             if type(method).name == "event":
+                from ._simulation._jit import variant
+
                 run = lambda Z=Z: simulate_batch(params, Z, t_batch, t_eval=ts)  # noqa: E731
             else:
                 run = lambda Z=Z, method=method: [simulate(params, z, t_batch, method=method, t_eval=ts) for z in Z]  # noqa: E731
             run()
             per = _timed(run, repeats, budget)
-            out.append(CostPoint(_config(method), "N", t_batch, int(n), statistics.median(per), min(per), max(per)))
+            if type(method).name == "event":  # the tier the timed runs used (plain Python for small work)
+                kernel = variant(work=n * (samples + 64))
+            out.append(CostPoint(_config(method), "N", t_batch, int(n), statistics.median(per), min(per), max(per), kernel))
             last = (n, statistics.median(per))
     return tuple(out)
 
@@ -590,6 +596,10 @@ _STYLE = {
 }
 
 
+# where each curve writes its knob values, so that neighbouring curves do not overwrite each other
+_OFFSET = {"regularized tanh": (-6, 5), "regularized sat": (6, -9)}
+
+
 def tradeoff_figures(result: Tradeoff, out: Path, stem: str, formats: Sequence[str] = ("png",)) -> list[Path]:
     """The Pareto figure and (when measured) the cost figure; returns the files written."""
     from ._figures import _pyplot, save_figure
@@ -609,10 +619,12 @@ def tradeoff_figures(result: Tradeoff, out: Path, stem: str, formats: Sequence[s
         ax.errorbar([p.time_median for p in pts], [max(p.error_state, 1e-17) for p in pts],
                     xerr=[[p.time_median - p.time_min for p in pts], [p.time_max - p.time_median for p in pts]],
                     fmt="none", ecolor=color, elinewidth=0.8, capsize=2)
+        offset = _OFFSET.get(c.label, (4, 3))
         for p in pts:
             if p.knob is not None and p in (pts[0], pts[-1]):
                 ax.annotate(f"{p.knob}={p.value:g}", (p.time_median, max(p.error_state, 1e-17)), fontsize=6,
-                            textcoords="offset points", xytext=(4, 3), color=color)
+                            textcoords="offset points", xytext=offset, color=color,
+                            ha="left" if offset[0] > 0 else "right")
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("wall time per trajectory [s] (median; bars: fastest–slowest of the repeats)")
@@ -635,6 +647,10 @@ def tradeoff_figures(result: Tradeoff, out: Path, stem: str, formats: Sequence[s
                 if pts:
                     xs = [c.t_end if axis == "T" else c.n for c in pts]
                     ax.plot(xs, [c.seconds for c in pts], color=color, marker=marker, label=config)
+                    plain = [c for c in pts if c.kernel == "python"]
+                    if plain:
+                        ax.plot([c.n for c in plain], [c.seconds for c in plain], ls="none", marker="o", ms=11,
+                                mfc="none", mec=color, label="event: plain-Python kernel (the package's tier for small work)")
         n_batch = next((c.t_end for c in result.cost if c.axis == "N"), 0)
         ax1.set_xlabel("horizon $T$ [s]")
         ax1.set_ylabel("wall time, one trajectory [s]")

@@ -115,7 +115,8 @@ def run(args: argparse.Namespace) -> int:
             print("cost against the horizon T (one trajectory) and the batch size N (median of repeats):")
             for c in result.cost:
                 what = f"T = {c.t_end:g}" if c.axis == "T" else f"N = {c.n} (T = {c.t_end:g})"
-                print(f"  {c.config:32s} {what:22s} {c.seconds:10.4f} s")
+                kernel = f" ({c.kernel} kernel)" if c.kernel else ""
+                print(f"  {c.config:34s} {what:22s} {c.seconds:10.4f} s{kernel}")
         print()
         print(result.note())
         for f in files:
