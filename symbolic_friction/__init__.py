@@ -125,6 +125,13 @@ _LAZY: dict[str, str] = {
     "Moreau": "._simulation.moreau",
     "Regularized": "._simulation.regularized",
     "IvpEvents": "._simulation.ivp_events",
+    # measured against the independent 50-digit reference: speed/accuracy and the extremes
+    "Reference": "._reference",
+    "measure_tradeoff": "._tradeoff",
+    "measure_cost": "._tradeoff",
+    "Tradeoff": "._tradeoff",
+    "run_extremes": "._extremes",
+    "Extremes": "._extremes",
 }
 
 __all__ = [
