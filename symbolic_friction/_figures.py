@@ -326,7 +326,7 @@ def _fig3(case: str, out: Path) -> list[Path]:
 
     log_time = FIG3_LOG_TIME[case]
     t_min = 1e-3 if log_time else 0.0
-    fig, ax = plt.subplots(figsize=(7.5, 4.6))
+    fig, ax = plt.subplots(figsize=(7.5, 5.2))
     for idx, pieces in enumerate(runs):
         color, lw, zo = _COLORS[idx % len(_COLORS)], (2.2 if idx == 0 else 1.0), (3 if idx == 0 else 2)
         for j, p in enumerate(pieces):
@@ -352,7 +352,8 @@ def _fig3(case: str, out: Path) -> list[Path]:
                for i, z0 in enumerate(FIG3_INITIAL_STATES[case])]
     handles += [Line2D([], [], color="grey", lw=0.7, ls=":", marker="o", ms=3, label="jump of $V$ at a switch (dot: value after)"),
                 Patch(color="0.88", label="stick phases of the black solution")]
-    ax.legend(handles=handles, fontsize=7, ncol=2, loc="lower left")
+    # below the axes, so that it never hides a curve
+    ax.legend(handles=handles, fontsize=7, ncol=3, loc="upper center", bbox_to_anchor=(0.5, -0.16), frameon=False)
     ax.set_title(f"Fig. 3, bottom — $V$ along the solutions, case {label}\n"
                  "nonincreasing, flat during stick, dotted: downward jumps at switching times", fontsize=9)
     fig.tight_layout()
