@@ -662,8 +662,10 @@ def tradeoff_figures(result: Tradeoff, out: Path, stem: str, formats: Sequence[s
             ax.set_xscale("log")
             ax.set_yscale("log")
             ax.grid(alpha=0.3, which="both")
-            ax.legend(fontsize=7)
+        # one legend below both panels, so that it hides no data
+        handles, labels = ax2.get_legend_handles_labels()
+        fig.legend(handles, labels, loc="lower center", ncol=3, fontsize=7.5, frameon=False)
         fig.suptitle(f"Cost growth, {result.label} (median of repeats)", fontsize=10)
-        fig.tight_layout()
+        fig.tight_layout(rect=(0, 0.1, 1, 1))
         written += save_figure(fig, out / f"{stem}_cost", formats)
     return written
