@@ -108,3 +108,27 @@ def test_claims():
     assert claimed_error(Moreau(h=1e-3)) == pytest.approx(0.1)
     assert claimed_error(Moreau(h=1e-6)) == pytest.approx(1e-3)
     assert math.isclose(claimed_error(default_methods()[0]), 1e-9)
+
+
+def test_cli_writes_report_and_heat_map(tmp_path, capsys):
+    from symbolic_friction.cli import main
+
+    assert main(["extremes", "--only", "f_c", "--out", str(tmp_path), "--format", "svg"]) == 0
+    out = capsys.readouterr().out
+    assert "| f_c | case (a), f_c = 1e9 |" in out and "refused: option epsilon" in out
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["extremes.md", "extremes_heatmap.png", "extremes_heatmap.svg"]
+
+
+def test_cli_fails_on_a_silently_wrong_cell(tmp_path, monkeypatch, capsys):
+    import symbolic_friction._extremes as ex
+    from symbolic_friction.cli import main
+
+    real = ex.classify_run
+
+    def broken(method, cell, ref):
+        o = real(method, cell, ref)
+        return ex.Outcome(o.cell, o.method, WRONG, 0.5, o.claim, "made wrong on purpose") if o.method == "event" else o
+
+    monkeypatch.setattr(ex, "classify_run", broken)
+    assert main(["extremes", "--only", "case (a), f_c = 1e3", "--out", str(tmp_path)]) == 1
+    assert "**WRONG** made wrong on purpose" in capsys.readouterr().out
