@@ -32,7 +32,9 @@ longer than two *creep times* ``sqrt(f_c/(k_i ε))`` (:func:`creep_time`)
 when the set 𝒜 is not negligible against the state: the regularized system
 has the origin as its only equilibrium, so where the inclusion sticks its
 solution drifts across 𝒜 and, over long horizons, ends far from the exact
-one without any integrator noticing.
+one without any integrator noticing.  After the run, the longest stay in
+the boundary layer gives an estimate of that drift (:func:`drift_estimate`);
+a result whose drift may exceed 10 % of the solution's size is refused.
 
 Output
 ------
@@ -56,7 +58,7 @@ from .._errors import SimulationError
 from .._parameters import Parameters
 from ._base import SimulationMethod, Solution, Status, check_rtol, finite_or_raise
 
-__all__ = ["Regularized", "LAWS", "INTEGRATORS", "vector_field", "creep_time"]
+__all__ = ["Regularized", "LAWS", "INTEGRATORS", "vector_field", "creep_time", "drift_estimate"]
 
 LAWS = ("tanh", "sat")
 INTEGRATORS = ("Radau", "BDF", "LSODA")
@@ -67,6 +69,8 @@ _RESOLVABLE = 1e3 * 2.220446049250313e-16
 # fraction of the state's size
 CREEP_FACTOR = 2.0
 CREEP_SIZE = 1e-2
+# a result whose estimated drift across 𝒜 (drift_estimate) exceeds this fraction of its size is refused
+DRIFT_TOLERANCE = 0.1
 
 
 def _positive_number(options: dict[str, Any], name: str, meaning: str) -> None:
@@ -112,6 +116,46 @@ def _check_creep(params: Parameters, z0: np.ndarray, t_end: float, eps: float) -
             f"epsilon = {eps:g}: where the inclusion sticks, the regularized solution drifts across the set of "
             f"equilibria (|e_i| <= f_c/k_i = {size:.3g}) towards the origin; use t_end <= {limit:.3g} or "
             f"epsilon <= {eps * (t_end / limit) ** -2:.3g}"
+        )
+
+
+def drift_estimate(params: Parameters, epsilon: float, longest: float, size: float) -> float:
+    """Relative drift across 𝒜 after ``longest`` seconds in the boundary layer, for a solution of ``size``.
+
+    Inside the layer the regularized solution turns towards the origin on
+    the creep time scale ``τ = creep_time``, so ``e_i`` moves by about
+    ``A (1 - cos(t/τ)) ≤ A min(2, (t/τ)²/2)`` where the inclusion keeps it
+    still, ``A = min(f_c/k_i, size)`` (the drift goes no further than 𝒜, nor
+    than the state itself).  Relative to ``size``.
+    """
+    k_p, k_i, k_v, f_c = params.as_floats()
+    ratio = longest / creep_time(params, epsilon)
+    return min(f_c / k_i, size) / size * min(2.0, ratio * ratio / 2.0)
+
+
+def _check_drift(
+    params: Parameters, z0: np.ndarray, z: np.ndarray, t_end: float, eps: float, initial: int, events: list
+) -> None:
+    """Refuse a result that spent so long in the boundary layer that its drift (:func:`drift_estimate`) is large.
+
+    ``initial`` is the mode at ``t = 0`` (0: inside the layer), ``events`` the layer crossings.
+    """
+    start, longest = (0.0 if initial == 0 else None), 0.0
+    for te, before, after in events:
+        if after == 0:
+            start = te
+        elif before == 0 and start is not None:
+            longest, start = max(longest, te - start), None
+    if start is not None:
+        longest = max(longest, t_end - start)
+    size = float(max(np.max(np.abs(z)), np.max(np.abs(z0)))) or 1.0
+    drift = drift_estimate(params, eps, longest, size)
+    if drift > DRIFT_TOLERANCE:
+        raise SimulationError(
+            f"the regularized solution spent {longest:.3g} s in its boundary layer |v| <= epsilon-scale, "
+            f"{longest / creep_time(params, eps):.2g} creep times sqrt(f_c/(k_i epsilon)) = {creep_time(params, eps):.3g}: "
+            f"where the inclusion sticks it drifts across the set of equilibria by up to {drift:.2g} of the "
+            f"solution's size (more than {DRIFT_TOLERANCE:g}); use a smaller epsilon or a shorter horizon"
         )
 
 
@@ -237,13 +281,14 @@ class Regularized(SimulationMethod):
         crossings = [(float(te), +1) for te in result.t_events[0]] + [(float(te), -1) for te in result.t_events[1]]
         crossings.sort()
         events: list[tuple[float, int, int]] = []
-        current = int(mode_of(np.array([z0[2]]))[0])
+        current = initial = int(mode_of(np.array([z0[2]]))[0])
         for te, side in crossings:
             # Crossing v = +w switches between 0 and +1; v = -w between 0 and -1.
             after = 0 if current == side else side
             if after != current:
                 events.append((te, current, after))
                 current = after
+        _check_drift(params, z0, z, t_end, eps, initial, events)
         return Solution.from_samples(
             params=params,
             method=self.name,

@@ -100,3 +100,17 @@ def test_refuses_a_horizon_beyond_two_creep_times():
     assert simulate(params, (0.0, 1.0, 0.0), 90.0, method="regularized", epsilon=1e-4, t_eval=[0.0, 90.0]).complete
     tiny = Parameters(k_p=3, k_i=4, k_v="6.4", f_c="1e-9")
     assert simulate(tiny, (0.0, 1.0, 0.0), 300.0, method="regularized", epsilon=1e-4, t_eval=[0.0, 300.0]).complete
+
+
+def test_refuses_a_result_that_drifted_in_its_boundary_layer():
+    # case (b) from (0, 3, 0) over 60 s at ε = 0.01: within two creep times (70.7 s), but 48 s in the
+    # layer; the result was 75 % off the reference before this check
+    from symbolic_friction._simulation.regularized import drift_estimate
+
+    params = Parameters.table_i("b")
+    with pytest.raises(SimulationError, match=r"spent 4\d\.\d s in its boundary layer .* creep times .*\(more than 0\.1\)"):
+        simulate(params, (0.0, 3.0, 0.0), 60.0, method="regularized", epsilon=1e-2, rtol=1e-10, atol=1e-12)
+    # the same over 20 s is within 2 % of the reference, and is accepted
+    assert simulate(params, (0.0, 3.0, 0.0), 20.0, method="regularized", epsilon=1e-2, t_eval=[0.0, 20.0]).complete
+    assert drift_estimate(params, 1e-2, 0.0, 1.0) == 0.0
+    assert drift_estimate(params, 1e-2, 1e6, 100.0) == pytest.approx(2 * 12.5 / 100)  # capped: at most across 𝒜
