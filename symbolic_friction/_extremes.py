@@ -227,6 +227,11 @@ def classify_certify(cell: Cell, ref: _Ref, cache: dict) -> Outcome:
     return Outcome(cell.label, "certify", PROVED, ratio, 1.0, f"kappa = {kappa:.4g}", seconds)
 
 
+def _md(text: str) -> str:
+    """A Markdown table cell: ``|`` (as in ``|z0|``) escaped."""
+    return text.replace("|", "\\|")
+
+
 def _name(method: Any) -> str:
     knob = type(method).knob
     return type(method).name if knob is None else f"{type(method).name}({knob}={getattr(method, knob):g})"
@@ -290,7 +295,8 @@ class Extremes:
                     entries.append(f"no answer: {o.reason}")
                 else:
                     entries.append(f"**WRONG** {o.reason}")
-            lines.append(f"| {cell.group} | {cell.label} | " + " | ".join(entries) + " |")
+            cols_md = [_md(cell.group), _md(cell.label), *map(_md, entries)]
+            lines.append("| " + " | ".join(cols_md) + " |")
         counts = ", ".join(f"{v} {k}" for k, v in sorted(self.counts().items()))
         lines += ["", f"{len(self.cells)} cells x {len(cols)} columns: {counts}; "
                       f"{self.seconds:.1f} s in all ({self.reference_seconds:.1f} s for the references)."]
