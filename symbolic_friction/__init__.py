@@ -135,6 +135,13 @@ _LAZY: dict[str, str] = {
     "prove_cycle": "._hunting",
     "HuntingCertificate": "._hunting",
     "verify_hunting": "._hunting",
+    # measured against the independent 50-digit reference: speed/accuracy and the extremes
+    "Reference": "._reference",
+    "measure_tradeoff": "._tradeoff",
+    "measure_cost": "._tradeoff",
+    "Tradeoff": "._tradeoff",
+    "run_extremes": "._extremes",
+    "Extremes": "._extremes",
 }
 
 # public submodules (imported lazily): name -> private module

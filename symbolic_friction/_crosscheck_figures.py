@@ -62,15 +62,17 @@ def table_i_certificates(directory: str | Path = "proofs") -> list[Any]:
     return out
 
 
-def plot_tightness(checks: Sequence[Any], path: str | Path) -> Path:
+def plot_tightness(checks: Sequence[Any], path: str | Path, *, labels: Sequence[str] | None = None) -> Path:
     """Draw the tightness figure from :class:`~._crosscheck.CertificateCheck` results.
 
     One panel per gain set: each dot is a trajectory, at ``(|x(0)|_𝒜,
-    observed overshoot)``; horizontal lines are the κ of the certificates.
+    observed overshoot)``; horizontal lines are the κ of the certificates,
+    named by ``labels`` (one per check; default: each check's label).
     """
     import numpy as np
 
     plt = _pyplot()
+    names = dict(zip(map(id, checks), labels)) if labels is not None else {}
     groups: dict[Any, list[Any]] = {}
     for c in checks:
         groups.setdefault(c.claims.params, []).append(c)
@@ -79,6 +81,10 @@ def plot_tightness(checks: Sequence[Any], path: str | Path) -> Path:
         first = members[0]
         ov, d0, modes = first.overshoots, first.initial_distance, first.modes
         ok = np.isfinite(ov) & (d0 > 0)
+        # states on 𝒜 up to rounding (|x(0)|_𝒜 below 1e-12 of the largest) would stretch the log axis
+        # over ten empty decades: counted in the title instead of drawn
+        on_a = ok & (d0 < 1e-12 * (d0[ok].max() if np.any(ok) else 1.0))
+        ok &= ~on_a
         for mode, (color, marker) in _MODE_STYLE.items():
             m = ok & (modes == mode)
             if np.any(m):
@@ -86,15 +92,21 @@ def plot_tightness(checks: Sequence[Any], path: str | Path) -> Path:
                            linewidths=0.7, label=f"{mode} (max {ov[m].max():.3f})")
         for c, ls in zip(members, ("-", "--", ":", "-.")):
             ax.axhline(c.claims.kappa, color="black", ls=ls, lw=1.2,
-                       label=f"κ {c.label}: {c.claims.kappa:.4g} (ratio {c.tightness.get('all', float('nan')):.3f})")
+                       label=f"κ {names.get(id(c), c.label)}: {c.claims.kappa:.4g} "
+                             f"(ratio {c.tightness.get('all', float('nan')):.3f})")
         ax.axhline(1.0, color="grey", lw=0.6)
         ax.set_xscale("log")
+        top = max(c.claims.kappa for c in members)
+        shown = ok & (ov <= 1.15 * top)
+        if np.any(shown):  # fit the axis to the trajectories drawn
+            ax.set_xlim(d0[shown].min() / 2, d0[shown].max() * 2)
         ax.set_xlabel(r"$|x(0)|_{\mathcal{A}}$")
         ax.set_ylabel(r"observed $\sup_t |x(t)|_{\mathcal{A}} / |x(0)|_{\mathcal{A}}$")
         ax.set_title(
             f"k_p={float(params.k_p):g}, k_i={float(params.k_i):g}, k_v={float(params.k_v):g}, "
             f"f_c={float(params.f_c):g}: "
-            f"{first.trajectories} trajectories",
+            f"{first.trajectories} trajectories"
+            + (f"\n({int(on_a.sum())} on $\\mathcal{{A}}$ up to rounding, not drawn)" if on_a.any() else ""),
             fontsize=9,
         )
         ax.legend(fontsize=7, loc="upper right")
@@ -155,7 +167,12 @@ def figure_tightness(out: Path) -> list[Path]:
     from ._crosscheck import crosscheck
 
     report = crosscheck(table_i_certificates(), trajectories=TIGHTNESS_TRAJECTORIES, progress=False)
-    return [plot_tightness(report.checks, Path(out) / "crosscheck_tightness.png")]
+    # named by case and mode, whether the certificates came from proofs/ or were certified now
+    # (so the legend does not depend on the working directory)
+    labels = [f"({case}) {mode}" for case in ("a", "b") for mode in ("feasible", "tightest")]
+    if len(report.checks) != len(labels):
+        labels = None
+    return [plot_tightness(report.checks, Path(out) / "crosscheck_tightness.png", labels=labels)]
 
 
 @register("crosscheck_iss", "Cross-check: empirical ISS gain gamma(rho) of Corollary 1 (Table I cases)")

@@ -56,7 +56,11 @@ class FigureSpec:
 FIGURES: dict[str, FigureSpec] = {}
 """Registered figures, in registration order."""
 
-FIGURE_MODULES: tuple[str, ...] = ("symbolic_friction._figures", "symbolic_friction._crosscheck_figures")
+FIGURE_MODULES: tuple[str, ...] = (
+    "symbolic_friction._figures",
+    "symbolic_friction._crosscheck_figures",
+    "symbolic_friction._extremes",
+)
 """Modules imported by :func:`available_figures` so that they register their figures.
 Add a module here (e.g. the cross-check's figures) to extend ``symbolic-friction figures``."""
 
@@ -81,18 +85,23 @@ def available_figures() -> dict[str, FigureSpec]:
 
 
 def make_figures(
-    out_dir: str | Path, names: Sequence[str] | None = None, *, on_written: Any = None
+    out_dir: str | Path, names: Sequence[str] | None = None, *, formats: Sequence[str] = ("png",), on_written: Any = None
 ) -> list[Path]:
     """Write the figures ``names`` (default: all) into ``out_dir``; return the files.
 
+    Each figure is written as PNG and, if ``formats`` asks for it, as PDF and/or SVG too.
     ``on_written(path)``, if given, is called as soon as each file is written
     (the command line prints it at once instead of after every figure).
 
     Raises
     ------
     SymbolicFrictionError
-        If a name is not a registered figure.
+        If a name is not a registered figure, or a format is not one of png, pdf, svg.
     """
+    global _FORMATS
+    bad = [f for f in formats if f not in FIGURE_FORMATS]
+    if bad:
+        raise SymbolicFrictionError(f"unknown figure format(s) {', '.join(map(repr, bad))}; expected some of {', '.join(FIGURE_FORMATS)}")
     figures = available_figures()
     chosen = list(figures) if names is None else list(names)
     unknown = [n for n in chosen if n not in figures]
@@ -103,12 +112,19 @@ def make_figures(
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     written: list[Path] = []
-    for name in chosen:
-        paths = figures[name].function(out)
-        written += paths
-        if on_written is not None:
-            for path in paths:
-                on_written(path)
+    previous, _FORMATS = _FORMATS, tuple(dict.fromkeys(("png", *formats)))
+    try:
+        for name in chosen:
+            for path in figures[name].function(out):
+                paths = [path]
+                if path.suffix == ".png":  # the same figure in the other formats asked for
+                    paths += [path.with_suffix(f".{fmt}") for fmt in _FORMATS[1:] if path.with_suffix(f".{fmt}").exists()]
+                written += paths
+                if on_written is not None:
+                    for each in paths:
+                        on_written(each)
+    finally:
+        _FORMATS = previous
     return written
 
 
@@ -122,10 +138,35 @@ def _pyplot() -> Any:
     return plt
 
 
-def _save(fig: Any, path: Path) -> Path:
-    """Save atomically with fixed metadata, so reruns give the same bytes."""
-    atomic_write(path, lambda fh: fig.savefig(fh, format="png", dpi=130, metadata={"Software": None}))
+FIGURE_FORMATS = ("png", "pdf", "svg")
+# the formats the figure being drawn is written in (set by make_figures for the duration of a call)
+_FORMATS: tuple[str, ...] = ("png",)
+# metadata that would change from run to run (dates, versions) is left out, so reruns give the same bytes
+_METADATA = {"png": {"Software": None}, "pdf": {"Creator": None, "Producer": None, "CreationDate": None}, "svg": {"Date": None, "Creator": None}}
+
+
+def _FORMATS_NOW() -> tuple[str, ...]:
+    """The formats :func:`make_figures` is writing in now (for figures saved with :func:`save_figure`)."""
+    return _FORMATS
+
+
+def save_figure(fig: Any, stem: Path, formats: Sequence[str] = ("png",)) -> list[Path]:
+    """Write ``fig`` as ``stem.png`` and as ``stem.pdf`` / ``stem.svg`` if asked; close it; return the files."""
+    import matplotlib
+
+    written = []
+    for fmt in dict.fromkeys(formats):
+        path = stem.parent / f"{stem.name}.{fmt}"
+        with matplotlib.rc_context({"svg.hashsalt": "symbolic_friction"}):
+            atomic_write(path, lambda fh, fmt=fmt: fig.savefig(fh, format=fmt, dpi=130, metadata=_METADATA[fmt]))
+        written.append(path)
     _pyplot().close(fig)
+    return written
+
+
+def _save(fig: Any, path: Path) -> Path:
+    """Save atomically (PNG, plus the other formats :func:`make_figures` was asked for); return the PNG."""
+    save_figure(fig, path.with_suffix(""), _FORMATS)
     return path
 
 
@@ -134,11 +175,15 @@ def _save(fig: Any, path: Path) -> Path:
 # for 0.83, 2.0, 4.6 and 10.2 s (growing), while e_i ramps with slope s;
 # (1, 1, 1) reverses at t ≈ 0.09 s without sticking, where V jumps down.
 # Case (b): each solution sticks at most once, then converges only
-# asymptotically with v ≠ 0 and e_i → ±f_c/k_i = ±12.5.
+# asymptotically with v ≠ 0 and e_i → ±f_c/k_i = ±12.5; the black one,
+# from (0.2, 0, -2), sticks from t ≈ 0.78 to 11.4 s (shaded), the others
+# stick briefly or never.  V jumps within the first second: its plot has a
+# logarithmic time axis.
 FIG3_INITIAL_STATES: dict[str, tuple[tuple[float, float, float], ...]] = {
     "a": ((0.0, 1.0, 0.0), (0.0, -1.5, 0.0), (1.0, 1.0, 1.0), (0.0, 0.0, 2.0), (0.2, 0.0, -1.5)),
-    "b": ((0.0, 3.0, 0.0), (0.0, -2.0, 0.0), (1.0, 1.0, 1.0), (0.0, 0.0, 3.0), (0.2, 0.0, -2.0)),
+    "b": ((0.2, 0.0, -2.0), (0.0, 3.0, 0.0), (0.0, -2.0, 0.0), (1.0, 1.0, 1.0), (0.0, 0.0, 3.0)),
 }
+FIG3_LOG_TIME = {"a": False, "b": True}
 FIG3_HORIZON = {"a": 40.0, "b": 60.0}
 FIG3_METHOD = "event"
 _COLORS = ("black", "tab:blue", "tab:purple", "tab:orange", "tab:green", "tab:red", "tab:brown")
@@ -154,7 +199,7 @@ class _Piece:
     V: Any
 
 
-def _pieces(params: Any, z0: tuple[float, float, float], t_end: float, n: int = 2001) -> list[_Piece]:
+def _pieces(params: Any, z0: tuple[float, float, float], t_end: float, n: int = 2001, log_from: float | None = None) -> list[_Piece]:
     """Sample a solution segment by segment (closed segments, V_k on each).
 
     ``V`` along a solution is ``V_k`` on the segment in mode ``k`` (Claim 1),
@@ -171,6 +216,8 @@ def _pieces(params: Any, z0: tuple[float, float, float], t_end: float, n: int = 
     inner = [(float(te), int(a), int(b)) for te, a, b in first.events if 0.0 < te < t_end]
     switch = [te for te, _, _ in inner]
     grid = np.union1d(np.linspace(0.0, t_end, n), np.array(switch))
+    if log_from is not None:  # also dense on a logarithmic time axis
+        grid = np.union1d(grid, np.geomspace(log_from, t_end, 600))
     sol = simulate(params, z0, t_end, method=FIG3_METHOD, t_eval=grid)
     bounds = [0.0, *switch, t_end]
     # The mode of each segment is the one the next switch leaves (the last one: the one it enters).
@@ -201,6 +248,10 @@ def _clip_polygon(points: list[tuple[float, float]], halfplanes: list[tuple[floa
     return points
 
 
+def _z0_label(z0: tuple[float, float, float]) -> str:
+    return "$z_0$ = (" + ", ".join(f"{float(c):g}" for c in z0) + ")"
+
+
 def _fig3(case: str, out: Path) -> list[Path]:
     import numpy as np
 
@@ -210,7 +261,7 @@ def _fig3(case: str, out: Path) -> list[Path]:
     params = Parameters.table_i(case)
     k_p, k_i, k_v, f_c = params.as_floats()
     t_end = FIG3_HORIZON[case]
-    runs = [_pieces(params, z0, t_end) for z0 in FIG3_INITIAL_STATES[case]]
+    runs = [_pieces(params, z0, t_end, log_from=1e-3 if FIG3_LOG_TIME[case] else None) for z0 in FIG3_INITIAL_STATES[case]]
     label = {"a": "(a): $k_v=6.4$, $k_p=3$, $k_i=4$", "b": "(b): $k_v=1.5$, $k_p=0.66$, $k_i=0.08$"}[case]
     written = []
 
@@ -221,18 +272,21 @@ def _fig3(case: str, out: Path) -> list[Path]:
         t = np.concatenate([p.t for p in pieces])
         z = np.concatenate([p.z for p in pieces])
         for j, ax in enumerate(axes):
-            ax.plot(t, z[:, j], color=color, lw=lw, zorder=zo, label=f"$z_0$ = {tuple(float(c) for c in z0)}" if j == 0 else None)
+            ax.plot(t, z[:, j], color=color, lw=lw, zorder=zo, label=_z0_label(z0) if j == 0 else None)
     bound = f_c / k_i
     axes[0].axhspan(-bound, bound, color="tab:red", alpha=0.12, lw=0, label=r"$|e_i|\leq f_c/k_i$")
     sticks = [(p.t[0], p.t[-1]) for p in runs[0] if p.mode == 0 and p.t[-1] > p.t[0]]
+    if not sticks:  # the highlighted solution is chosen to stick (FIG3_INITIAL_STATES); say so if it stops
+        raise SymbolicFrictionError(f"Fig. 3{case}: the highlighted solution from {FIG3_INITIAL_STATES[case][0]} never sticks")
     for j, (a, b) in enumerate(sticks):
         for ax in axes:
-            ax.axvspan(a, b, color="0.85", lw=0, zorder=0, label="stick phases (black)" if (j == 0 and ax is axes[0]) else None)
+            ax.axvspan(a, b, color="0.85", lw=0, zorder=0, label="stick phases of the black solution" if (j == 0 and ax is axes[0]) else None)
     for ax, name in zip(axes, ("$e_i$", "$s$", "$v$")):
         ax.set_ylabel(name)
         ax.axhline(0.0, color="grey", lw=0.5)
         ax.grid(alpha=0.3)
     axes[-1].set_xlabel("$t$ [s]")
+    axes[-1].set_xlim(0.0, t_end)
     fig.legend(loc="lower center", ncol=4, fontsize=7, frameon=False)
     fig.suptitle(f"Fig. 3, top — solutions, case {label}", fontsize=10)
     fig.tight_layout(rect=(0, 0.07, 1, 1))
@@ -261,6 +315,7 @@ def _fig3(case: str, out: Path) -> list[Path]:
         ax.plot(z[:, 1], z[:, 2], z[:, 0], color=color, lw=lw)
         ax.scatter([z[0, 1]], [z[0, 2]], [z[0, 0]], color=color, s=12)
     ax.plot([0, 0], [0, 0], [-bound, bound], color="tab:red", lw=4, label=r"attractor $\mathcal{A}$")
+    ax.scatter([], [], color="black", s=12, label="initial states $z_0$ (colours as in the top figure)")
     ax.plot([], [], color="tab:cyan", alpha=0.5, lw=6, label=r"stick strip $v=0$, $|k_i e_i+k_p s|\leq f_c$")
     ax.set_xlabel("$s$")
     ax.set_ylabel("$v$")
@@ -274,20 +329,39 @@ def _fig3(case: str, out: Path) -> list[Path]:
     written.append(_save(fig, out / f"fig3{case}_phase.png"))
 
     # Bottom: V along the solutions (V_k on each closed segment: jumps show as gaps).
-    fig, ax = plt.subplots(figsize=(7.5, 4.2))
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
+    log_time = FIG3_LOG_TIME[case]
+    t_min = 1e-3 if log_time else 0.0
+    fig, ax = plt.subplots(figsize=(7.5, 5.2))
     for idx, pieces in enumerate(runs):
         color, lw, zo = _COLORS[idx % len(_COLORS)], (2.2 if idx == 0 else 1.0), (3 if idx == 0 else 2)
         for j, p in enumerate(pieces):
-            ax.plot(p.t, p.V, color=color, lw=lw, zorder=zo, solid_capstyle="butt")
+            keep = p.t >= t_min if log_time else slice(None)
+            ax.plot(p.t[keep], p.V[keep], color=color, lw=lw, zorder=zo, solid_capstyle="butt")
             if j + 1 < len(pieces):
                 nxt = pieces[j + 1]
                 if abs(nxt.V[0] - p.V[-1]) > 1e-9 * max(1.0, abs(p.V[-1])):
                     ax.plot([p.t[-1]] * 2, [p.V[-1], nxt.V[0]], color=color, lw=0.7, ls=":", zorder=zo)
                     ax.plot([p.t[-1]], [nxt.V[0]], "o", color=color, ms=3, zorder=zo)
+    for a, b in sticks:
+        ax.axvspan(max(a, t_min) if log_time else a, b, color="0.88", lw=0, zorder=0)
     ax.set_yscale("log")
-    ax.set_xlabel("$t$ [s]")
+    if log_time:
+        ax.set_xscale("log")
+        ax.set_xlim(t_min, t_end)
+    else:
+        ax.set_xlim(0.0, t_end)
+    ax.set_xlabel("$t$ [s]" + (" (logarithmic: the jumps come early)" if log_time else ""))
     ax.set_ylabel("$V(x(t))$")
     ax.grid(alpha=0.3, which="both")
+    handles = [Line2D([], [], color=_COLORS[i % len(_COLORS)], lw=2.2 if i == 0 else 1.0, label=_z0_label(z0))
+               for i, z0 in enumerate(FIG3_INITIAL_STATES[case])]
+    handles += [Line2D([], [], color="grey", lw=0.7, ls=":", marker="o", ms=3, label="jump of $V$ at a switch (dot: value after)"),
+                Patch(color="0.88", label="stick phases of the black solution")]
+    # below the axes, so that it never hides a curve
+    ax.legend(handles=handles, fontsize=7, ncol=3, loc="upper center", bbox_to_anchor=(0.5, -0.16), frameon=False)
     ax.set_title(f"Fig. 3, bottom — $V$ along the solutions, case {label}\n"
                  "nonincreasing, flat during stick, dotted: downward jumps at switching times", fontsize=9)
     fig.tight_layout()

@@ -19,7 +19,7 @@ from typing import NoReturn
 
 __all__ = ["main", "build_parser"]
 
-COMMANDS = ("check", "certify", "verify", "simulate", "figures", "crosscheck", "hunting")
+COMMANDS = ("check", "certify", "verify", "simulate", "figures", "crosscheck", "hunting", "tradeoff", "extremes")
 
 
 class _Parser(argparse.ArgumentParser):

@@ -10,14 +10,16 @@ from __future__ import annotations
 
 import argparse
 
-HELP = "regenerate the paper's figures (Fig. 2, 3a, 3b, 4, ...) as PNG files"
+HELP = "regenerate the paper's figures (Fig. 2, 3a, 3b, 4, ...) and the extremes heat map as PNG (and PDF/SVG) files"
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    """``--out DIR [--only NAME ...] [--list]``."""
+    """``--out DIR [--only NAME ...] [--format FMT ...] [--list]``."""
     parser.add_argument("--out", default="figures", metavar="DIR", help="output directory (default: ./figures)")
     parser.add_argument("--only", nargs="+", metavar="NAME", help="draw only these figures (see --list)")
     parser.add_argument("--list", action="store_true", help="list the available figures and exit")
+    parser.add_argument("--format", nargs="+", default=["png"], metavar="FMT",
+                        help="also write these formats: pdf, svg (png is always written)")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -39,6 +41,6 @@ def run(args: argparse.Namespace) -> int:
     ensure_directory(args.out)  # an unusable --out fails now, not after drawing
     with Progress(len(names), desc="figures") as bar:
         for name in names:
-            make_figures(args.out, [name], on_written=lambda path: bar.write(f"wrote {path}", level=0))
+            make_figures(args.out, [name], formats=args.format, on_written=lambda path: bar.write(f"wrote {path}", level=0))
             bar.update()
     return 0

@@ -25,6 +25,17 @@ rtol, atol : float
 integrator : {"Radau", "BDF", "LSODA"}
     The stiff solver (default ``"Radau"``).
 
+Valid range
+-----------
+Besides an ``ε`` float64 cannot resolve, the method refuses a horizon
+longer than two *creep times* ``sqrt(f_c/(k_i ε))`` (:func:`creep_time`)
+when the set 𝒜 is not negligible against the state: the regularized system
+has the origin as its only equilibrium, so where the inclusion sticks its
+solution drifts across 𝒜 and, over long horizons, ends far from the exact
+one without any integrator noticing.  After the run, the longest stay in
+the boundary layer gives an estimate of that drift (:func:`drift_estimate`);
+a result whose drift may exceed 10 % of the solution's size is refused.
+
 Output
 ------
 Without ``t_eval`` the samples are the integrator's steps; with ``t_eval``
@@ -48,13 +59,19 @@ from .._coordinates import input_vector_entries, z_system_matrix_entries
 from .._parameters import Parameters
 from ._base import SimulationMethod, Solution, Status, check_rtol, finite_or_raise
 
-__all__ = ["Regularized", "LAWS", "INTEGRATORS", "vector_field"]
+__all__ = ["Regularized", "LAWS", "INTEGRATORS", "vector_field", "creep_time", "drift_estimate"]
 
 LAWS = ("tanh", "sat")
 INTEGRATORS = ("Radau", "BDF", "LSODA")
 _LAYER = {"tanh": 3.0, "sat": 1.0}
 # ε below this multiple of the state's scale is not resolved by float64 (module doc of _solve)
 _RESOLVABLE = 1e3 * 2.220446049250313e-16
+# the creep inside 𝒜 (creep_time) is refused beyond this many creep times, when 𝒜 is at least this
+# fraction of the state's size
+CREEP_FACTOR = 2.0
+CREEP_SIZE = 1e-2
+# a result whose estimated drift across 𝒜 (drift_estimate) exceeds this fraction of its size is refused
+DRIFT_TOLERANCE = 0.1
 
 
 def _positive_number(options: dict[str, Any], name: str, meaning: str) -> None:
@@ -63,6 +80,84 @@ def _positive_number(options: dict[str, Any], name: str, meaning: str) -> None:
         raise SimulationError(f"option {name} ({meaning}) must be a number > 0; got {value!r}")
     if not (math.isfinite(float(value)) and float(value) > 0):
         raise SimulationError(f"option {name} ({meaning}) must be finite and > 0; got {name} = {value!r}")
+
+
+def creep_time(params: Parameters, epsilon: float) -> float:
+    """``sqrt(f_c / (k_i ε))``: the time scale on which the regularized solution creeps inside 𝒜.
+
+    Inside the boundary layer the law is ``f_c v/ε`` (both laws), so the
+    regularized system there is linear with characteristic polynomial
+    ``s³ + (k_v + f_c/ε) s² + k_p s + k_i``, whose slow roots are about
+    ``± i sqrt(k_i ε / f_c)``: where the inclusion sticks (``v = 0``, ``s``
+    constant), the regularized solution drifts on this time scale towards
+    its only equilibrium, the origin, across the set 𝒜 of eq. (Aph).
+    """
+    k_p, k_i, k_v, f_c = params.as_floats()
+    return math.sqrt(f_c / (k_i * float(epsilon)))
+
+
+def _check_creep(params: Parameters, z0: np.ndarray, t_end: float, eps: float) -> None:
+    """Refuse a horizon over which the creep inside 𝒜 is no longer small.
+
+    The drift is bounded by the size of 𝒜, ``f_c/k_i`` in ``e_i``; it matters
+    when that is more than ``CREEP_SIZE`` of the state's size, and then only a
+    horizon within ``CREEP_FACTOR`` creep times keeps it a small fraction of
+    ``f_c/k_i`` (measured by ``symbolic-friction extremes``: 30 s of Table I
+    case (a) at ε = 1e-4, 0.6 creep times, 0.3 % error; 300 s, 6 creep times,
+    34 %; case (b) over 1000 s, 2.8 creep times, 197 %).
+    """
+    k_p, k_i, k_v, f_c = params.as_floats()
+    size = f_c / k_i
+    if size <= CREEP_SIZE * float(np.max(np.abs(z0))):
+        return
+    limit = CREEP_FACTOR * creep_time(params, eps)
+    if t_end > limit:
+        raise SimulationError(
+            f"t_end = {t_end:g} exceeds {CREEP_FACTOR:g} creep times sqrt(f_c/(k_i epsilon)) = {limit:.3g} at "
+            f"epsilon = {eps:g}: where the inclusion sticks, the regularized solution drifts across the set of "
+            f"equilibria (|e_i| <= f_c/k_i = {size:.3g}) towards the origin; use t_end <= {limit:.3g} or "
+            f"epsilon <= {eps * (t_end / limit) ** -2:.3g}"
+        )
+
+
+def drift_estimate(params: Parameters, epsilon: float, longest: float, size: float) -> float:
+    """Relative drift across 𝒜 after ``longest`` seconds in the boundary layer, for a solution of ``size``.
+
+    Inside the layer the regularized solution turns towards the origin on
+    the creep time scale ``τ = creep_time``, so ``e_i`` moves by about
+    ``A (1 - cos(t/τ)) ≤ A min(2, (t/τ)²/2)`` where the inclusion keeps it
+    still, ``A = min(f_c/k_i, size)`` (the drift goes no further than 𝒜, nor
+    than the state itself).  Relative to ``size``.
+    """
+    k_p, k_i, k_v, f_c = params.as_floats()
+    ratio = longest / creep_time(params, epsilon)
+    return min(f_c / k_i, size) / size * min(2.0, ratio * ratio / 2.0)
+
+
+def _check_drift(
+    params: Parameters, z0: np.ndarray, z: np.ndarray, t_end: float, eps: float, initial: int, events: list
+) -> None:
+    """Refuse a result that spent so long in the boundary layer that its drift (:func:`drift_estimate`) is large.
+
+    ``initial`` is the mode at ``t = 0`` (0: inside the layer), ``events`` the layer crossings.
+    """
+    start, longest = (0.0 if initial == 0 else None), 0.0
+    for te, before, after in events:
+        if after == 0:
+            start = te
+        elif before == 0 and start is not None:
+            longest, start = max(longest, te - start), None
+    if start is not None:
+        longest = max(longest, t_end - start)
+    size = float(max(np.max(np.abs(z)), np.max(np.abs(z0)))) or 1.0
+    drift = drift_estimate(params, eps, longest, size)
+    if drift > DRIFT_TOLERANCE:
+        raise SimulationError(
+            f"the regularized solution spent {longest:.3g} s in its boundary layer |v| <= epsilon-scale, "
+            f"{longest / creep_time(params, eps):.2g} creep times sqrt(f_c/(k_i epsilon)) = {creep_time(params, eps):.3g}: "
+            f"where the inclusion sticks it drifts across the set of equilibria by up to {drift:.2g} of the "
+            f"solution's size (more than {DRIFT_TOLERANCE:g}); use a smaller epsilon or a shorter horizon"
+        )
 
 
 def vector_field(params: Parameters, epsilon: float, law: str) -> tuple[Any, Any]:
@@ -147,6 +242,7 @@ class Regularized(SimulationMethod):
                 f"option epsilon = {eps:.3g} is below what float64 can resolve for this state "
                 f"(|z0|, f_c up to {scale:.3g}); use epsilon ≥ {_RESOLVABLE * scale:.3g}"
             )
+        _check_creep(params, z0, t_end, eps)
         layer = _LAYER[law] * eps
         rhs, jac = vector_field(params, eps, law)
 
@@ -191,13 +287,14 @@ class Regularized(SimulationMethod):
         crossings = [(float(te), +1) for te in result.t_events[0]] + [(float(te), -1) for te in result.t_events[1]]
         crossings.sort()
         events: list[tuple[float, int, int]] = []
-        current = int(mode_of(np.array([z0[2]]))[0])
+        current = initial = int(mode_of(np.array([z0[2]]))[0])
         for te, side in crossings:
             # Crossing v = +w switches between 0 and +1; v = -w between 0 and -1.
             after = 0 if current == side else side
             if after != current:
                 events.append((te, current, after))
                 current = after
+        _check_drift(params, z0, z, t_end, eps, initial, events)
         return Solution.from_samples(
             params=params,
             method=self.name,

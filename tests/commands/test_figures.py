@@ -109,3 +109,34 @@ def test_fig3b_converges_without_further_sticking():
         last = pieces[-1]
         assert last.mode != 0 and np.all(last.z[1:, 2] != 0)  # v never returns to 0
         assert abs(abs(last.z[-1, 0]) - bound) < 1e-2 and abs(last.z[-1, 1]) < 1e-3
+
+
+def test_fig3b_highlights_a_solution_that_sticks():
+    # the black (first) solution of Fig. 3b has a stick phase of several seconds, which the figure shades
+    params = Parameters.table_i("b")
+    sticks = _stick_pieces(_pieces(params, FIG3_INITIAL_STATES["b"][0], FIG3_HORIZON["b"]))
+    assert len(sticks) == 1 and sticks[0].t[-1] - sticks[0].t[0] > 5.0
+
+
+def test_fig3b_V_on_a_log_time_axis_shows_the_early_jumps():
+    from symbolic_friction._figures import FIG3_LOG_TIME
+
+    params = Parameters.table_i("b")
+    assert FIG3_LOG_TIME["b"]
+    pieces = _pieces(params, FIG3_INITIAL_STATES["b"][3], FIG3_HORIZON["b"], log_from=1e-3)
+    first = pieces[0]
+    assert first.t[first.t > 0].min() <= 1.1e-3  # sampled densely from 1e-3 s on
+    assert pieces[1].t[0] < 1.0 and pieces[1].V[0] < first.V[-1]  # a jump within the first second
+
+
+def test_other_formats_on_request(tmp_path, capsys):
+    assert main(["figures", "--out", str(tmp_path), "--only", "fig2", "--format", "pdf", "svg"]) == 0
+    names = sorted(p.name for p in tmp_path.iterdir())
+    assert names == ["fig2_region_R.pdf", "fig2_region_R.png", "fig2_region_R.svg"]
+    assert (tmp_path / "fig2_region_R.pdf").read_bytes()[:5] == b"%PDF-"
+    assert b"<svg" in (tmp_path / "fig2_region_R.svg").read_bytes()[:2000]
+    assert capsys.readouterr().out.count("wrote ") == 3
+    again = make_figures(tmp_path / "again", ["fig2"], formats=("svg",))
+    assert (tmp_path / "again" / "fig2_region_R.svg").read_bytes() == (tmp_path / "fig2_region_R.svg").read_bytes()
+    assert main(["figures", "--out", str(tmp_path), "--only", "fig2", "--format", "gif"]) == 2
+    assert "unknown figure format" in capsys.readouterr().err

@@ -12,8 +12,9 @@ from symbolic_friction._simulation import Trajectories
 from symbolic_friction._simulation.batch import iter_batches, simulate_batch
 
 from ..tolerance import relative_error
+from symbolic_friction._reference import Reference
+
 from .gain_sets import GAIN_SETS
-from .reference import Reference
 
 CASES = GAIN_SETS
 

@@ -28,7 +28,7 @@ import pytest
 
 from symbolic_friction import Parameters
 from symbolic_friction._simulation import simulate
-from tests.simulation.reference import Reference
+from symbolic_friction._reference import Reference
 from tests.tolerance import relative_error
 
 T_END = 10.0

@@ -23,7 +23,7 @@ from symbolic_friction._simulation import Status, simulate
 from symbolic_friction._simulation.modes import table_row
 
 from ..tolerance import relative_error
-from .reference import Reference
+from symbolic_friction._reference import Reference
 
 TABLE_A = Parameters.table_i("a")
 TABLE_B = Parameters.table_i("b")

@@ -16,7 +16,7 @@ from symbolic_friction._simulation.modes import (
     table_row,
 )
 
-from .reference import reference_table_mode
+from symbolic_friction._reference import reference_table_mode
 
 F_C = F(3, 2)
 

@@ -8,7 +8,7 @@ import pytest
 
 from symbolic_friction import Parameters
 
-from .reference import Reference, reference_table_mode
+from symbolic_friction._reference import Reference, reference_table_mode
 
 
 def test_the_taylor_step_matrix_is_expm_to_the_working_precision():

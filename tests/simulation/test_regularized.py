@@ -86,3 +86,31 @@ def test_integrator_failure_is_reported(monkeypatch):
     monkeypatch.setattr(scipy.integrate, "solve_ivp", failing)
     with pytest.raises(SimulationError, match=r"the Radau integrator failed at t = 0\.25 \(epsilon = 0\.0001, rtol = 1e-08\): step size too small"):
         simulate(CASE_A, (0.0, 1.0, 0.0), 1.0, method="regularized")
+
+
+def test_refuses_a_horizon_beyond_two_creep_times():
+    # case (a) over 300 s at ε = 1e-4: 6 creep times; it drifted to a 34 % error silently before
+    from symbolic_friction._simulation.regularized import creep_time
+
+    params = Parameters.table_i("a")
+    assert creep_time(params, 1e-4) == pytest.approx(50.0)
+    with pytest.raises(SimulationError, match=r"t_end = 300 exceeds 2 creep times .* = 100 at epsilon = 0.0001.*epsilon <= 1.11e-05"):
+        simulate(params, (0.0, 1.0, 0.0), 300.0, method="regularized", epsilon=1e-4)
+    # within two creep times, or with the set of equilibria negligible against the state, it runs
+    assert simulate(params, (0.0, 1.0, 0.0), 90.0, method="regularized", epsilon=1e-4, t_eval=[0.0, 90.0]).complete
+    tiny = Parameters(k_p=3, k_i=4, k_v="6.4", f_c="1e-9")
+    assert simulate(tiny, (0.0, 1.0, 0.0), 300.0, method="regularized", epsilon=1e-4, t_eval=[0.0, 300.0]).complete
+
+
+def test_refuses_a_result_that_drifted_in_its_boundary_layer():
+    # case (b) from (0, 3, 0) over 60 s at ε = 0.01: within two creep times (70.7 s), but 48 s in the
+    # layer; the result was 75 % off the reference before this check
+    from symbolic_friction._simulation.regularized import drift_estimate
+
+    params = Parameters.table_i("b")
+    with pytest.raises(SimulationError, match=r"spent 4\d\.\d s in its boundary layer .* creep times .*\(more than 0\.1\)"):
+        simulate(params, (0.0, 3.0, 0.0), 60.0, method="regularized", epsilon=1e-2, rtol=1e-10, atol=1e-12)
+    # the same over 20 s is within 2 % of the reference, and is accepted
+    assert simulate(params, (0.0, 3.0, 0.0), 20.0, method="regularized", epsilon=1e-2, t_eval=[0.0, 20.0]).complete
+    assert drift_estimate(params, 1e-2, 0.0, 1.0) == 0.0
+    assert drift_estimate(params, 1e-2, 1e6, 100.0) == pytest.approx(2 * 12.5 / 100)  # capped: at most across 𝒜

@@ -11,7 +11,7 @@ from symbolic_friction._coordinates import x_to_z
 from symbolic_friction._simulation import simulate
 from symbolic_friction._simulation.search import first_zero, slip_model
 
-from .reference import Reference
+from symbolic_friction._reference import Reference
 
 CASE_A = Parameters.table_i("a")
 

@@ -23,7 +23,7 @@ from symbolic_friction._simulation._kernel import mode_after_slip
 from symbolic_friction._simulation.modes import mode_at_rest, select_mode, table_row
 
 from ..tolerance import relative_error
-from .reference import Reference, reference_table_mode
+from symbolic_friction._reference import Reference, reference_table_mode
 
 TOL = 1e-13
 EVENT_TOL = 1e-12

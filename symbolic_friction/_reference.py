@@ -1,7 +1,10 @@
 """An independent high-precision reference solution of the inclusion
-``x' ∈ A x - b SGN(v)`` (eq. xDot), for testing the package's ``event`` method.
+``x' ∈ A x - b SGN(v)`` (eq. xDot, unique by Lemma 1): what the package's
+simulation methods are measured against (``symbolic-friction tradeoff`` and
+``extremes``, and the simulation tests).
 
-Nothing here comes from the package's simulation code: only the exact gains
+Nothing here comes from the package's simulation code (it never calls
+``_simulation``): only the exact gains
 are read from :class:`~symbolic_friction.Parameters`.  Everything is computed
 with mpmath at ``dps`` (default 50) significant digits, by methods chosen to
 be *different* from the package's:
@@ -34,9 +37,8 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Sequence
 
-from mpmath.ctx_mp import MPContext
-
-from symbolic_friction import Parameters
+from ._errors import SimulationError
+from ._parameters import Parameters
 
 __all__ = ["Reference", "reference_table_mode"]
 
@@ -87,7 +89,9 @@ class Reference:
 
     def __init__(self, params: Parameters, z0: Sequence, t_end: float, *, dps: int = 50, max_events: int = 200):
         if dps < 40:
-            raise ValueError("the reference needs at least 40 digits")
+            raise SimulationError(f"the reference needs at least 40 digits; got dps = {dps}")
+        from mpmath.ctx_mp import MPContext  # imported lazily (Standard 7)
+
         ctx = MPContext()
         ctx.dps = dps
         self.ctx = ctx
@@ -270,3 +274,12 @@ class Reference:
     def event_list(self):
         """Events ``(t, mode_before, mode_after)`` with float times."""
         return [(float(t), a, b) for t, a, b in self.events]
+
+    def stick_starts(self):
+        """Times (floats) at which a stick phase starts after a slip, in order."""
+        return [float(t) for t, a, b in self.events if b == 0 and a != 0]
+
+    def scale(self, times) -> float:
+        """``max |z(t)|∞`` over ``times`` and ``t = 0`` (the size errors are measured relative to)."""
+        zs, _ = self.sample(times)
+        return max([max(abs(c) for c in z) for z in zs] + [float(max(abs(c) for c in self.z0))])

@@ -1,0 +1,48 @@
+"""``symbolic-friction extremes``: every simulation method and ``certify`` on a
+fixed matrix of hard cases, each outcome classified against the 50-digit
+reference (:mod:`symbolic_friction._extremes`).  Writes the report
+(Markdown) and the heat map.  This module imports only the standard library
+at top level (Standard 7).
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+HELP = "run every method and certify on a matrix of hard cases; classify each outcome against a 50-digit reference"
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    """``[--out DIR] [--only GROUP ...] [--format FMT ...] [--json]``."""
+    parser.add_argument("--out", default="figures", metavar="DIR", help="directory for extremes.md and the heat map (default: ./figures)")
+    parser.add_argument("--only", nargs="+", metavar="GROUP", help="run only these groups or cells (e.g. 'Routh boundary' f_c)")
+    parser.add_argument("--format", nargs="+", default=["png"], metavar="FMT", help="heat-map formats: png (always), pdf, svg")
+    parser.add_argument("--json", action="store_true", help="print the outcomes as JSON")
+
+
+def run(args: argparse.Namespace) -> int:
+    import json
+    from pathlib import Path
+
+    from .._extremes import WRONG, extremes_figure, run_extremes
+    from .._io import atomic_write
+    from .._tradeoff import check_formats
+
+    formats = check_formats(args.format)
+    result = run_extremes(only=args.only)
+    out = Path(args.out)
+    report = out / "extremes.md"
+    atomic_write(report, lambda fh: fh.write(result.report().encode()))
+    files = [report, *extremes_figure(result, out / "extremes_heatmap.png", formats)]
+    if args.json:
+        print(json.dumps({"seconds": result.seconds, "counts": result.counts(),
+                          "outcomes": [o.__dict__ for o in result.outcomes], "files": [str(f) for f in files]},
+                         indent=1, default=str))
+    else:
+        print(result.report())
+        for f in files:
+            print(f"wrote {f}")
+    sys.stdout.flush()
+    # a silently wrong cell is a failure of the package's contract
+    return 1 if any(o.outcome == WRONG for o in result.outcomes) else 0

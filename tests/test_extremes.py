@@ -1,0 +1,134 @@
+"""The extremes matrix (``_extremes.py``, ``symbolic-friction extremes``).
+
+Every cell is classified against the 50-digit reference, and here each
+classification is checked again, independently: an ``ok`` cell's run is
+repeated and compared with the reference samples; a ``refused`` cell's
+method is run again and must raise or stop early; no cell is ``wrong``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from symbolic_friction._errors import SimulationError
+from symbolic_friction._extremes import (
+    HUNG,
+    OK,
+    PROVED,
+    REFUSED,
+    WRONG,
+    cells,
+    claimed_error,
+    classify_run,
+    default_methods,
+    run_extremes,
+)
+from symbolic_friction._simulation import Moreau, Status, simulate
+
+
+@pytest.fixture(scope="module")
+def result():
+    return run_extremes()
+
+
+def test_matrix_covers_the_hard_cases():
+    labels = [c.label for c in cells()]
+    assert "k_v k_p/k_i = 1+1e-12" in labels
+    assert {c.group for c in cells()} == {"Routh boundary", "repeated roots", "stiff", "f_c", "|z0|", "long horizon"}
+    fcs = [float(c.params.f_c) for c in cells()]
+    assert min(fcs) == 1e-9 and max(fcs) == 1e9
+    sizes = [max(abs(x) for x in c.z0) for c in cells()]
+    assert min(sizes) == 1e-9 and max(sizes) == 1e9
+
+
+def test_every_cell_classified_and_none_silently_wrong(result):
+    cols = len(default_methods()) + 1
+    assert len(result.outcomes) == len(cells()) * cols
+    assert result.silently_wrong == []
+    assert {o.outcome for o in result.outcomes} <= {OK, PROVED, REFUSED, HUNG}
+    assert all(o.reason for o in result.outcomes if o.outcome in (REFUSED, HUNG))
+    assert result.seconds < 120  # the issue's budget, on a shared 2-core machine
+    assert "| stiff |" in result.report()
+
+
+def test_each_classification_agrees_with_the_reference(result):
+    methods = {m: m for m in default_methods()}
+    names = {o.method: m for m in methods for o in result.outcomes if o.method.startswith(type(m).name)}
+    for cell in cells():
+        ref = result.references[cell.label]
+        for name, method in names.items():
+            o = result.get(cell.label, name)
+            if o.outcome == OK:
+                if type(method).name == "regularized" and cell.t_end > 30:
+                    continue  # slow to repeat; its outcome is checked by the run itself
+                sol = simulate(cell.params, cell.z0, cell.t_end, method=method, t_eval=ref.times)
+                err = np.max(np.abs(sol.z - ref.z)) / ref.scale
+                assert err <= claimed_error(method), (cell.label, name, err)
+                assert err == pytest.approx(o.error, rel=1e-6, abs=1e-300)
+            elif o.outcome == REFUSED:
+                try:
+                    sol = simulate(cell.params, cell.z0, cell.t_end, method=method, t_eval=ref.times)
+                except SimulationError:
+                    continue
+                assert sol.status not in Status.COMPLETE, (cell.label, name)
+
+
+def test_certify_bound_is_checked_along_the_reference(result):
+    for cell in cells():
+        o = result.get(cell.label, "certify")
+        assert o.outcome == PROVED and 0 <= o.error <= 1, (cell.label, o)
+
+
+def test_a_silently_wrong_method_is_classified_wrong(result):
+    # a Moreau run whose output is shifted by 1 % of the solution must be caught
+    cell = cells()[0]
+    ref = result.references[cell.label]
+
+    class Shifted(Moreau):
+        def _solve(self, *args, **kw):
+            sol = super()._solve(*args, **kw)
+            sol.trajectories.z[...] += 0.2 * ref.scale
+            return sol
+
+    o = classify_run(Shifted(), cell, ref)
+    assert o.outcome == WRONG and "above its claim" in o.reason and o.error > 0.1
+
+
+def test_only_and_bad_group():
+    res = run_extremes(only=["Routh boundary"], certify=False)
+    assert len(res.cells) == 5 and all(o.method != "certify" for o in res.outcomes)
+    with pytest.raises(SimulationError, match="no extreme cell matches"):
+        run_extremes(only=["nothing"])
+
+
+def test_claims():
+    assert claimed_error(Moreau(h=1e-3)) == pytest.approx(0.1)
+    assert claimed_error(Moreau(h=1e-6)) == pytest.approx(1e-3)
+    assert math.isclose(claimed_error(default_methods()[0]), 1e-9)
+
+
+def test_cli_writes_report_and_heat_map(tmp_path, capsys):
+    from symbolic_friction.cli import main
+
+    assert main(["extremes", "--only", "f_c", "--out", str(tmp_path), "--format", "svg"]) == 0
+    out = capsys.readouterr().out
+    assert "| f_c | case (a), f_c = 1e9 |" in out and "refused: option epsilon" in out
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["extremes.md", "extremes_heatmap.png", "extremes_heatmap.svg"]
+
+
+def test_cli_fails_on_a_silently_wrong_cell(tmp_path, monkeypatch, capsys):
+    import symbolic_friction._extremes as ex
+    from symbolic_friction.cli import main
+
+    real = ex.classify_run
+
+    def broken(method, cell, ref):
+        o = real(method, cell, ref)
+        return ex.Outcome(o.cell, o.method, WRONG, 0.5, o.claim, "made wrong on purpose") if o.method == "event" else o
+
+    monkeypatch.setattr(ex, "classify_run", broken)
+    assert main(["extremes", "--only", "case (a), f_c = 1e3", "--out", str(tmp_path)]) == 1
+    assert "**WRONG** made wrong on purpose" in capsys.readouterr().out
