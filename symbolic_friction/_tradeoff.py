@@ -184,6 +184,7 @@ class Tradeoff:
     reference_sticks: tuple[int, ...]
     reference_seconds: float
     cost: tuple["CostPoint", ...] = field(default=())
+    kernel: str = ""  # the event kernel the timings used: "numba" (compiled) or "python"
 
     @property
     def event(self) -> Point:
@@ -271,7 +272,8 @@ class Tradeoff:
         lines.append("fitted order of accuracy (slope of log state error vs log knob) against the declared one:")
         for c in self.curves:
             if c.knob is None:
-                lines.append(f"  {c.label:18s} exact (no knob), state error {self.event.error_state:.1e}")
+                lines.append(f"  {c.label:18s} exact (no knob), state error {self.event.error_state:.1e}"
+                             + (f", {self.kernel} kernel" if self.kernel else ""))
                 continue
             fitted = "n/a" if c.fitted_order is None else f"{c.fitted_order:.2f}"
             lines.append(f"  {c.label:18s} in {c.knob}: fitted {fitted} over {c.fit_points} points, declared {c.declared_order:g}")
@@ -424,6 +426,12 @@ def measure_tradeoff(
     scale = max(max(abs(c) for c in z) for z in z0s) or 1.0
     if sweeps is None:
         sweeps = default_sweeps(scale, quick=quick)
+    # Steady state: the compiled event kernel when numba is there and allowed (the automatic
+    # choice would run calls this small in plain Python until 3 s were spent there, mid-measurement).
+    from ._simulation import _jit
+
+    if _jit.jit_enabled():
+        _jit.compiled()
     # warm up: compile/import each method once, outside the timings
     for sweep in sweeps:
         try:
@@ -439,6 +447,7 @@ def measure_tradeoff(
         order, n = fit_order([p.value for p in pts if p.ok], [p.error_state for p in pts if p.ok])
         curves.append(Curve(sweep.label, knob, type(sweep.methods[0]).order, tuple(pts), order, n))
     return Tradeoff(
+        kernel=_jit.variant(),
         params=params,
         label=label,
         z0s=z0s,
