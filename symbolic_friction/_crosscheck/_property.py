@@ -30,8 +30,9 @@ A violation is a relative slack below ``-rtol`` (default
 can have on that trajectory: ``L = max_t |x(t)| + f_c`` for distances and
 ``|σ|``, ``coef·L²`` for quadratic forms, ``coef`` the largest coefficient
 involved.  The event-driven simulator matches an independent mpmath
-reference to about ``1e-10`` relative, so a quadratic form errs by about
-``2e-10·|M|L²``; ``rtol = 1e-8`` leaves a safety factor of at least 50,
+reference to about ``1e-14`` relative (``tests/benchmarks/bench_accuracy.py``;
+the tests hold it to ``1e-13``), so a quadratic form errs by far less than
+``1e-12·|M|L²``; ``rtol = 1e-8`` leaves a safety factor of at least ``10⁴``,
 while every genuine violation found by the tests is larger than ``1e-3``.
 """
 
