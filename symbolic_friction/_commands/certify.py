@@ -74,6 +74,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="free text kept in the certificate's provenance (e.g. 'slow axis, 2 kg payload')")
     parser.add_argument("--json", action="store_true",
                         help="print one JSON object per certificate written (path, gains, mode, kappa) instead of text")
+    add_gain_arguments(parser)
+
+
+def add_gain_arguments(parser: argparse.ArgumentParser) -> None:
+    """The gain set, normalised (``--k-p …``) or physical (``--m --k-p-bar …``); read by :func:`_gains`."""
     normalised = parser.add_argument_group("normalised gains (exact: '6.4' is 32/5, '32/5' works too)")
     for name in _NORMALISED:
         normalised.add_argument(_flag(name), dest=name, default=None, metavar="Q", help=_HELP[name])

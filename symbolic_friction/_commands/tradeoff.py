@@ -29,7 +29,7 @@ DEFAULT_T = {"a": 30.0, "b": 60.0}
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Gains (as ``certify``), ``--case``, ``--z0``, ``--t-end``, ``--samples``, ``--repeats``, output options."""
-    from .certify import _HELP, _NORMALISED, _PHYSICAL, _PHYSICAL_OPTIONAL, _flag
+    from .certify import add_gain_arguments
 
     parser.description = textwrap.fill(
         f"{HELP}. For every method (event, moreau across h, regularized across epsilon for tanh and sat, "
@@ -53,12 +53,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--out", default="figures", metavar="DIR", help="directory for the figures (default: ./figures)")
     parser.add_argument("--no-figures", action="store_true", help="write no figure")
     parser.add_argument("--format", nargs="+", default=["png"], metavar="FMT", help="figure formats: png (always), pdf, svg")
-    normalised = parser.add_argument_group("normalised gains (exact: '6.4' is 32/5, '32/5' works too)")
-    for name in _NORMALISED:
-        normalised.add_argument(_flag(name), dest=name, default=None, metavar="Q", help=_HELP[name])
-    physical = parser.add_argument_group("physical parameters (paper §II-A: k_p = k̄_p/m, k_v = (k̄_d + α_v)/m, …)")
-    for name in _PHYSICAL + _PHYSICAL_OPTIONAL:
-        physical.add_argument(_flag(name), dest=name, default=None, metavar="Q", help=_HELP[name])
+    add_gain_arguments(parser)
 
 
 def _state(text: str) -> tuple[float, float, float]:

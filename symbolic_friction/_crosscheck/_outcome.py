@@ -4,12 +4,15 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from .._parameters import Parameters
 from ._results import Counterexample, PropertyResult
+
+if TYPE_CHECKING:  # annotations only
+    from ._claims import Claims
 
 __all__ = ["CertificateCheck", "CrosscheckReport", "SEARCH_MODES", "search_mode", "slowest_root", "default_horizon",
            "sample_times"]

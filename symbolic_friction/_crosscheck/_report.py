@@ -56,7 +56,7 @@ def format_check(check: CertificateCheck) -> str:
         lines.append("  observed ratios: " + "; ".join(ratios))
     tight = check.tightness
     parts = [f"{mode} {check.max_overshoot[mode]:.4f} ({tight[mode]:.3f})" for mode in SEARCH_MODES if mode in tight]
-    lines.append(f"  overshoot max_t |x(t)|_A/|x(0)|_A (observed/kappa): " + "; ".join(parts))
+    lines.append("  overshoot max_t |x(t)|_A/|x(0)|_A (observed/kappa): " + "; ".join(parts))
     if "all" in tight:
         w = check.worst_state
         lines.append(

@@ -188,7 +188,6 @@ def _prove(params: Parameters, box: Box) -> CycleProof:
     if not shape:
         return CycleProof(tuple(checks), False, (float("nan"), float("nan")), None)
     M = _Arb(params)
-    arb = M.arb
     S = M.ball(s_lo, s_hi)
     T = M.ball(t_lo, t_hi)
 

@@ -12,12 +12,15 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from .._errors import SimulationError
 from .._parameters import Parameters
+
+if TYPE_CHECKING:  # annotations only (._base imports this module)
+    from ._base import Solution
 
 __all__ = ["Trajectories", "Status", "AlongStates"]
 

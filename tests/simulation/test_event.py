@@ -1,6 +1,6 @@
 """The exact event-driven method against the independent mpmath reference (issue 4).
 
-Each case is simulated by the package and by :class:`.reference.Reference`
+Each case is simulated by the package and by :class:`symbolic_friction._reference.Reference`
 (50 digits) and compared at 301 sample times: states within 1e-13 relative
 to ``max(1, |z0|)``, the same sequence of events, event times within 1e-12.
 """
@@ -23,7 +23,7 @@ from symbolic_friction._simulation import Status, simulate
 from symbolic_friction._simulation.modes import table_row
 
 from ..tolerance import relative_error
-from symbolic_friction._reference import Reference
+from .against_reference import scale_of, simulate_and_reference
 
 TABLE_A = Parameters.table_i("a")
 TABLE_B = Parameters.table_i("b")
@@ -79,15 +79,7 @@ for _row, _z0 in ROWS.items():
 @functools.lru_cache(maxsize=None)
 def run(name: str):
     params, z0, t_end, _ = CASES[name]
-    t = np.linspace(0.0, t_end, N_SAMPLES)
-    sol = simulate(params, z0, t_end, t_eval=t)
-    ref = Reference(params, z0, t_end)
-    z_ref, mode_ref = ref.sample(t)
-    return sol, ref, np.array(z_ref), np.array(mode_ref)
-
-
-def scale_of(z0) -> float:
-    return max(1.0, float(np.linalg.norm(z0)))
+    return simulate_and_reference(params, z0, t_end, N_SAMPLES)
 
 
 @pytest.mark.parametrize("name", list(CASES))

@@ -23,7 +23,8 @@ from symbolic_friction._simulation._kernel import mode_after_slip
 from symbolic_friction._simulation.modes import mode_at_rest, select_mode, table_row
 
 from ..tolerance import relative_error
-from symbolic_friction._reference import Reference, reference_table_mode
+from symbolic_friction._reference import reference_table_mode
+from .against_reference import scale_of, simulate_and_reference
 
 TOL = 1e-13
 EVENT_TOL = 1e-12
@@ -65,15 +66,7 @@ for _name, (_z0, _row) in REST.items():
 @functools.lru_cache(maxsize=None)
 def run(name: str):
     params, z0, t_end, _ = CASES[name]
-    t = np.linspace(0.0, t_end, N_SAMPLES)
-    sol = simulate(params, z0, t_end, t_eval=t)
-    ref = Reference(params, z0, t_end)
-    z_ref, mode_ref = ref.sample(t)
-    return sol, ref, np.array(z_ref), np.array(mode_ref)
-
-
-def scale_of(z0) -> float:
-    return max(1.0, float(np.linalg.norm(z0)))
+    return simulate_and_reference(params, z0, t_end, N_SAMPLES)
 
 
 @pytest.mark.parametrize("name", list(CASES))
