@@ -1,6 +1,6 @@
 """Atomic file writes: the one way this package writes a file.
 
-Standard 3: a write to ``proofs/`` (or any output) must never leave a
+A write to ``proofs/`` (or any output) must never leave a
 truncated file behind.  Every writer goes through :func:`atomic_write`,
 which writes a temporary file in the target's directory, flushes it to disk
 and renames it over the target with ``os.replace`` (atomic on POSIX and

@@ -1,7 +1,7 @@
 """Exact rational input: the package's single way of turning user numbers into
 :class:`fractions.Fraction`.
 
-Standard 5 of the developers' guide: a gain given as ``"6.4"`` is 32/5, and a
+Exact input stays exact: a gain given as ``"6.4"`` is 32/5, and a
 Python ``float`` is read through its shortest decimal ``repr`` (so ``0.1`` is
 1/10), never through its binary expansion unless ``binary=True`` is asked for.
 """

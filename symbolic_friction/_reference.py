@@ -90,7 +90,7 @@ class Reference:
     def __init__(self, params: Parameters, z0: Sequence, t_end: float, *, dps: int = 50, max_events: int = 200):
         if dps < 40:
             raise SimulationError(f"the reference needs at least 40 digits; got dps = {dps}")
-        from mpmath.ctx_mp import MPContext  # imported lazily (Standard 7)
+        from mpmath.ctx_mp import MPContext  # imported lazily
 
         ctx = MPContext()
         ctx.dps = dps

@@ -1,6 +1,6 @@
 """The ``symbolic-friction`` command line.
 
-Start-up must stay fast (Standard 6): this module and the command modules
+Start-up must stay fast: this module and the command modules
 import only the standard library at top level; each command imports sympy,
 scipy or cvxpy inside its ``run`` function, and only what it needs.
 

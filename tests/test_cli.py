@@ -1,4 +1,4 @@
-"""CLI start-up: fast and free of heavy imports (Standard 6)."""
+"""CLI start-up: fast and free of heavy imports."""
 
 import subprocess
 import sys

@@ -50,7 +50,7 @@ def test_every_cell_classified_and_none_silently_wrong(result):
     assert result.silently_wrong == []
     assert {o.outcome for o in result.outcomes} <= {OK, PROVED, REFUSED, HUNG}
     assert all(o.reason for o in result.outcomes if o.outcome in (REFUSED, HUNG))
-    assert result.seconds < 120  # the budget, on a shared 2-core machine
+    assert result.seconds < 120  # the command's stated budget, on a shared 2-core machine
     assert "| stiff |" in result.report()
 
 

@@ -1,4 +1,4 @@
-"""Atomic writes (Standard 3): nothing is lost when a write fails."""
+"""Atomic writes: nothing is lost when a write fails."""
 
 import os
 

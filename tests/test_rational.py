@@ -1,4 +1,4 @@
-"""Exact parsing of user numbers (Standard 5)."""
+"""Exact parsing of user numbers."""
 
 from decimal import Decimal
 from fractions import Fraction

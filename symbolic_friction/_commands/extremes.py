@@ -2,7 +2,7 @@
 fixed matrix of hard cases, each outcome classified against the 50-digit
 reference (:mod:`symbolic_friction._extremes`).  Writes the report
 (Markdown) and the heat map.  This module imports only the standard library
-at top level (Standard 7).
+at top level.
 """
 
 from __future__ import annotations

@@ -3,7 +3,7 @@ registered figure) as PNG files.
 
 The figures live in a registry (:mod:`symbolic_friction._figures`); matplotlib
 is imported only when a figure is drawn.  This module imports only the
-standard library at top level (Standard 6).
+standard library at top level.
 """
 
 from __future__ import annotations

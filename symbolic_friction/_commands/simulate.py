@@ -2,7 +2,7 @@
 
 Only what the scene asks for is computed and imported: a plain event-driven
 scene imports neither sympy, cvxpy, scipy.integrate nor matplotlib.  This
-module imports only the standard library at top level (Standard 6).
+module imports only the standard library at top level.
 """
 
 from __future__ import annotations

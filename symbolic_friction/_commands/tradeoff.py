@@ -4,7 +4,7 @@ method, measured against the independent 50-digit reference.
 Gains are Table I's case (a) or (b) (``--case``), or the user's own, read
 exactly as ``certify`` reads them (``--k-p --k-i --k-v --f-c`` or the
 physical ``--m --k-p-bar …``).  This module imports only the standard
-library at top level (Standard 7).
+library at top level.
 """
 
 from __future__ import annotations

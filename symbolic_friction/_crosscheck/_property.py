@@ -4,8 +4,7 @@ A *property* is one claim of the paper instantiated with a certificate's
 constants (Lemma 2, Lemma 3, Proposition 1, the Remark after Lemma 2, the
 mode table of the appendix).  Like an
 :class:`~symbolic_friction._obligations._base.Obligation` it keeps its two
-inputs apart so that a test can break either and watch the check fail
-(Standard 3):
+inputs apart so that a test can break either and watch the check fail:
 
 * the **trajectories** (:class:`~symbolic_friction._simulation.Trajectories`),
   read through :func:`~._along.along`, which evaluates the package's one

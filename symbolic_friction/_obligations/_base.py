@@ -2,7 +2,7 @@
 
 An *obligation* is one step of the paper's proof that algebra can decide, for
 symbolic (all-gain) parameters.  It has two halves, kept apart so that tests
-can break the subject and watch the check fail (Standard 2):
+can break the subject and watch the check fail:
 
 * :meth:`Obligation.derive` builds the *subject*: the objects under test
   (``A``, ``P``, ``V_k``, the derived ``k``-conditions, …) taken from the

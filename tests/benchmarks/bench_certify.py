@@ -15,7 +15,7 @@ It prints
 3. a sweep of 1,000 gain sets spread over many decades: amortised time per
    certificate, serially and with ``ProcessPoolExecutor(2)``.
 
-Target (issue 3): under 20 ms per certificate amortised over the sweep.
+Target: under 20 ms per certificate amortised over the sweep.
 """
 
 from __future__ import annotations

@@ -14,7 +14,7 @@ It prints
 2. in a fresh process per repetition: ``derive`` + ``verify`` seconds of each
    obligation (median and max over the repetitions) and their sum.
 
-Target (issue 2): the whole command under 30 s on a 2-core machine.
+Target: the whole command under 30 s on a 2-core machine.
 """
 
 from __future__ import annotations

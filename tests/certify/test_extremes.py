@@ -1,4 +1,4 @@
-"""Extreme gains certify AND verify exactly (issue 3, Done when).
+"""Extreme gains certify AND verify exactly.
 
 * 1,000 random gain sets, k_i from 1e-6 to 1e6 and k_p from 1e-6 to 1e6,
   with k_v k_p / k_i from 1 + 1e-9 to 1e6; one in ten exactly at the Routh

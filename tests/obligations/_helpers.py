@@ -1,4 +1,4 @@
-"""Scaffolding shared by the obligation tests (Standard 2: every check can fail).
+"""Scaffolding shared by the obligation tests.
 
 Each obligation is derived once per test module; a test alters the subject
 (a flipped sign, a perturbed entry, a wrong constant …) and asserts that the

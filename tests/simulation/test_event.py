@@ -1,4 +1,4 @@
-"""The exact event-driven method against the independent mpmath reference (issue 4).
+"""The exact event-driven method against the independent mpmath reference.
 
 Each case is simulated by the package and by :class:`symbolic_friction._reference.Reference`
 (50 digits) and compared at 301 sample times: states within 1e-13 relative

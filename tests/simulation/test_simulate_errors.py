@@ -1,4 +1,4 @@
-"""simulate(): bad input raises SimulationError naming what was wrong (issue 4, Done when)."""
+"""simulate(): bad input raises SimulationError naming what was wrong."""
 
 from __future__ import annotations
 
