@@ -460,14 +460,18 @@ def _no_duplicates(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
     return out
 
 
-def loads(text: str | bytes, *, source: str = "<string>") -> Certificate:
-    """Parse a certificate from its file text, strictly.
+def parse_json(text: str | bytes, *, source: str = "<string>") -> object:
+    """The JSON value of a certificate file's text, read strictly and within bounds.
+
+    Shared by every kind of certificate file (stability certificates here,
+    hunting certificates in :mod:`.._hunting._certificate`): UTF-8 only, at
+    most :data:`MAX_FILE_BYTES`, no duplicate keys, no ``NaN``/``Infinity``,
+    integers within Python's digit limit, nesting within the recursion limit.
 
     Raises
     ------
     CertificateFormatError
-        If ``text`` is not JSON (the message gives ``source``, line and
-        column) or violates the format (see :meth:`Certificate.from_dict`).
+        Naming ``source`` and, for a syntax error, the line and column.
     """
     if isinstance(text, bytes):
         try:
@@ -477,7 +481,7 @@ def loads(text: str | bytes, *, source: str = "<string>") -> Certificate:
     if len(text) > MAX_FILE_BYTES:
         raise CertificateFormatError(f"{source}: {len(text)} characters; a certificate has at most {MAX_FILE_BYTES}")
     try:
-        data = json.loads(
+        return json.loads(
             text, parse_constant=_reject_constant, object_pairs_hook=_no_duplicates,
             parse_int=_json_int,
         )
@@ -489,12 +493,44 @@ def loads(text: str | bytes, *, source: str = "<string>") -> Certificate:
         raise CertificateFormatError(f"{source}: not a certificate: JSON nested too deeply") from None
     except CertificateFormatError as exc:
         raise CertificateFormatError(f"{source}: {exc}") from None
+
+
+def read_json(path: str | os.PathLike[str]) -> object:
+    """Read a certificate file once, with the package's bounds, and :func:`parse_json` it.
+
+    Raises
+    ------
+    InputFileError
+        If ``path`` is not a readable regular file of at most
+        :data:`MAX_FILE_BYTES` bytes (a FIFO, a device, a directory, …).
+    CertificateFormatError
+        If the content is not strict JSON.
+    """
+    from .._io import read_limited
+
+    return parse_json(read_limited(path, limit=MAX_FILE_BYTES, what="certificate"), source=str(path))
+
+
+def from_data(data: object, *, source: str = "<string>") -> Certificate:
+    """The certificate in a parsed JSON value, validated against the format and the shipped schema."""
     try:
         certificate = Certificate.from_dict(data)
         validate_schema(data)
     except CertificateFormatError as exc:
         raise CertificateFormatError(f"{source}: {exc}") from None
     return certificate
+
+
+def loads(text: str | bytes, *, source: str = "<string>") -> Certificate:
+    """Parse a certificate from its file text, strictly.
+
+    Raises
+    ------
+    CertificateFormatError
+        If ``text`` is not JSON (the message gives ``source``, line and
+        column) or violates the format (see :meth:`Certificate.from_dict`).
+    """
+    return from_data(parse_json(text, source=source), source=source)
 
 
 def _json_int(text: str) -> object:
@@ -534,7 +570,7 @@ def validate_schema(data: object) -> None:
 
 
 def load(path: str | os.PathLike[str]) -> Certificate:
-    """Read and parse a certificate file (see :func:`loads`).
+    """Read and parse a certificate file (see :func:`read_json` and :func:`from_data`).
 
     Raises
     ------
@@ -544,10 +580,7 @@ def load(path: str | os.PathLike[str]) -> Certificate:
     CertificateFormatError
         If the content is not a well-formed certificate.
     """
-    from .._io import read_limited
-
-    path = Path(path)
-    return loads(read_limited(path, limit=MAX_FILE_BYTES, what="certificate"), source=str(path))
+    return from_data(read_json(path), source=str(path))
 
 
 # Unambiguous names for the package's top-level API.

@@ -230,33 +230,19 @@ class CommittedCertificate:
         return f"{state} {self.path}: {self.reason}"
 
 
-def _check_hunting(path: Path) -> CommittedCertificate:
-    """A hunting certificate (beyond the paper): its Krawczyk proof re-run on its exact gains and box.
-
-    It has no search to be stale against: the proof is re-decided from the file alone.
-    """
-    from .._hunting._certificate import verify_hunting_file
-
-    try:
-        report = verify_hunting_file(path)
-    except CertificateFormatError as exc:
-        return CommittedCertificate(path, None, True, f"malformed: {exc}")
-    except InputFileError as exc:
-        return CommittedCertificate(path, None, True, f"unreadable: {exc}")
-    return CommittedCertificate(path, report, False, "" if report.proved else report.summary())  # type: ignore[arg-type]
-
-
 def _check_one(path: Path) -> CommittedCertificate:
-    from .._hunting._certificate import is_hunting_file
+    from .._hunting._certificate import verify_any_file
 
-    if is_hunting_file(path):
-        return _check_hunting(path)
     try:
-        report = verify_certificate(load(path), source=str(path))
+        hunting, report = verify_any_file(path)
     except CertificateFormatError as exc:
         return CommittedCertificate(path, None, True, f"malformed: {exc}")
     except InputFileError as exc:
         return CommittedCertificate(path, None, True, f"unreadable: {exc}")
+    if hunting:
+        # a hunting certificate (beyond the paper) has no search to be stale against:
+        # its Krawczyk proof is re-decided from the file alone
+        return CommittedCertificate(path, report, False, "" if report.proved else report.summary())
     if not report.proved:
         return CommittedCertificate(path, report, False, "; ".join(check.message for check in report.failures))
     try:

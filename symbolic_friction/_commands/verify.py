@@ -35,7 +35,7 @@ def run(args: argparse.Namespace) -> int:
     """Verify each file; print one summary line per file, with its gains (and every check with ``--verbose``)."""
     import json
 
-    from .._certify import verify_file
+    from .._rational import format_rational
     from .._errors import CertificateFormatError, InputFileError
     from .._junit import Case, write_junit
     from .._output import emit
@@ -48,13 +48,12 @@ def run(args: argparse.Namespace) -> int:
     malformed: list[Exception] = []
     cases: list = []
     payload: list[dict] = []
-    from .._hunting._certificate import is_hunting_file, verify_hunting_file
+    from .._hunting._certificate import verify_any_file
 
     for name in args.files:
         try:
             # dispatch on the file's schema: a hunting certificate has its own proof
-            hunting = is_hunting_file(name)
-            report = verify_hunting_file(name) if hunting else verify_file(name)
+            hunting, report = verify_any_file(name)
         except (CertificateFormatError, InputFileError) as exc:
             malformed.append(exc)
             cases.append(Case(name=str(name), classname="verify", seconds=0.0, error=str(exc)))
@@ -76,7 +75,7 @@ def run(args: argparse.Namespace) -> int:
         payload.append({
             "file": str(name),
             "status": "proved" if report.proved else "failed",
-            "gains": {k: str(v.numerator) if v.denominator == 1 else f"{v.numerator}/{v.denominator}" for k, v in cert.parameters.items()},
+            "gains": {k: format_rational(v) for k, v in cert.parameters.items()},
             "gains_text": gains,
             "label": cert.provenance.label if cert.provenance is not None else "",
             "overshoot_bound": cert.overshoot_bound,

@@ -39,7 +39,7 @@ from .._errors import CertificateFormatError, InputFileError, SymbolicFrictionEr
 from .._parameters import Parameters
 from ._proof import PRECISION, Box, CycleProof, prove_cycle
 
-__all__ = ["SCHEMA", "HuntingCertificate", "HuntingReport", "verify_hunting", "verify_hunting_file", "write_hunting"]
+__all__ = ["SCHEMA", "HuntingCertificate", "HuntingReport", "verify_hunting", "verify_hunting_file", "verify_any_file", "write_hunting"]
 
 SCHEMA = "symbolic-friction/hunting-certificate/v1"
 CLAIM = "symmetric hunting cycle"
@@ -49,12 +49,10 @@ _PARAMS = ("k_p", "k_i", "k_v", "f_c", "f_s")
 
 
 def _exact(value: object, where: str) -> Fraction:
-    if not isinstance(value, str):
-        raise CertificateFormatError(f"{where} must be an exact rational string like \"6/5\"; got {type(value).__name__} {value!r}")
-    try:
-        return Fraction(value)
-    except (ValueError, ZeroDivisionError):
-        raise CertificateFormatError(f"{where} is not a rational number: {value!r}") from None
+    """An exact rational string of the file format, read as strictly as a stability certificate's."""
+    from .._certify.certificate import _signed_rational_field
+
+    return _signed_rational_field(value, where)
 
 
 def _pair(value: object, where: str) -> tuple[Fraction, Fraction]:
@@ -78,8 +76,7 @@ class HuntingCertificate:
         return ", ".join(f"{name} = {value}" for name, value in self.params.as_strings().items())
 
     def to_dict(self) -> dict[str, Any]:
-        def s(q: Fraction) -> str:
-            return str(q.numerator) if q.denominator == 1 else f"{q.numerator}/{q.denominator}"
+        from .._rational import format_rational as s
 
         p = self.params
         out: dict[str, Any] = {
@@ -178,30 +175,45 @@ def verify_hunting(certificate: HuntingCertificate, *, source: str = "<certifica
     return HuntingReport(source=source, certificate=certificate, proof=proof)
 
 
-def _read_json(path: str | os.PathLike[str]) -> object:
-    """The JSON in ``path``, read with the package's bounds (a FIFO, a device or a huge file is refused)."""
-    from .._certify.certificate import MAX_FILE_BYTES
-    from .._io import read_limited
-
-    raw = read_limited(path, limit=MAX_FILE_BYTES, what="certificate")
-    try:
-        return json.loads(raw.decode("utf-8"))
-    except UnicodeDecodeError as exc:
-        raise CertificateFormatError(f"{path}: not valid JSON: not UTF-8 ({exc.reason} at byte {exc.start})") from None
-    except json.JSONDecodeError as exc:
-        raise CertificateFormatError(f"{path}: not JSON ({exc})") from None
-    except RecursionError:
-        raise CertificateFormatError(f"{path}: not a certificate: JSON nested too deeply") from None
-    except ValueError as exc:  # e.g. an integer beyond Python's digit limit
-        raise CertificateFormatError(f"{path}: not a certificate: {exc}") from None
+def is_hunting(data: object) -> bool:
+    """Whether a parsed certificate file is a hunting certificate (its ``schema``)."""
+    return isinstance(data, dict) and data.get("schema") == SCHEMA
 
 
-def load_hunting(path: str | os.PathLike[str]) -> HuntingCertificate:
-    data = _read_json(path)
+def hunting_from_data(data: object, *, source: str = "<string>") -> HuntingCertificate:
+    """The hunting certificate in a parsed JSON value; :class:`CertificateFormatError` names ``source``."""
     try:
         return HuntingCertificate.from_dict(data)
     except CertificateFormatError as exc:
-        raise CertificateFormatError(f"{path}: {exc}") from None
+        raise CertificateFormatError(f"{source}: {exc}") from None
+
+
+def load_hunting(path: str | os.PathLike[str]) -> HuntingCertificate:
+    """Read (strictly, within the package's bounds) and parse a hunting certificate file."""
+    from .._certify.certificate import read_json
+
+    return hunting_from_data(read_json(path), source=str(path))
+
+
+def verify_any_file(path: str | os.PathLike[str]) -> tuple[bool, Any]:
+    """Read a certificate file once and verify it by the proof its ``schema`` names.
+
+    Returns ``(is_hunting, report)``: a :class:`HuntingReport` (the Krawczyk
+    proof re-run) or a :class:`~.._certify.verify.VerificationReport` (the
+    exact rational verifier).
+
+    Raises
+    ------
+    InputFileError, CertificateFormatError
+        If the file cannot be read or is not a well-formed certificate.
+    """
+    from .._certify.certificate import from_data, read_json
+    from .._certify.verify import verify_certificate
+
+    data, source = read_json(path), str(path)
+    if is_hunting(data):
+        return True, verify_hunting(hunting_from_data(data, source=source), source=source)
+    return False, verify_certificate(from_data(data, source=source), source=source)
 
 
 def verify_hunting_file(path: str | os.PathLike[str]) -> HuntingReport:
@@ -221,9 +233,10 @@ def write_hunting(certificate: HuntingCertificate, path: str | os.PathLike[str])
 
 
 def is_hunting_file(path: str | os.PathLike[str]) -> bool:
-    """Whether ``path`` is a JSON object whose ``schema`` is the hunting one (for the ``verify`` dispatch)."""
+    """Whether ``path`` is a hunting certificate (``crosscheck`` leaves those out of its default list)."""
+    from .._certify.certificate import read_json
+
     try:
-        data = _read_json(path)
+        return is_hunting(read_json(path))
     except (CertificateFormatError, InputFileError):
         return False  # the certificate loader says what is wrong with it
-    return isinstance(data, dict) and data.get("schema") == SCHEMA

@@ -35,6 +35,8 @@ if it holds for every point of the balls): nothing is decided by a float.
 
 from __future__ import annotations
 
+import math
+
 from dataclasses import dataclass
 from fractions import Fraction
 
@@ -64,7 +66,6 @@ class Check:
     name: str
     holds: bool
     detail: str
-    obligation: str = "hunting"
 
     def __str__(self) -> str:
         return f"{'holds' if self.holds else 'FAILS'}  {self.name}: {self.detail}"
@@ -128,15 +129,13 @@ class _Arb:
 
 
 def _lower(x) -> float:
-    return float(x.lower())
+    """A float ≤ every point of the ball (float() rounds to nearest: step one ulp down)."""
+    return math.nextafter(float(x.lower()), -math.inf)
 
 
 def _upper(x) -> float:
-    return float(x.upper())
-
-
-def _fmt(x) -> str:
-    return x.str(5, radius=False) if hasattr(x, "str") else str(x)
+    """A float ≥ every point of the ball."""
+    return math.nextafter(float(x.upper()), math.inf)
 
 
 def _exact_mid(x) -> Fraction:

@@ -79,7 +79,7 @@ def test_tampering_is_rejected(cert_file, tmp_path, capsys, edit):
 @pytest.mark.parametrize(
     "edit, match",
     [
-        (lambda d: d["box"].update(sigma=[0.1, 0.2]), "exact rational string"),
+        (lambda d: d["box"].update(sigma=[0.1, 0.2]), "must be a string holding an exact rational"),
         (lambda d: d.update(extra=1), "unknown keys"),
         (lambda d: d["parameters"].pop("f_s"), "parameters must have exactly"),
         (lambda d: d["parameters"].update(f_s="1/2"), "f_s ≥ f_c"),
@@ -120,3 +120,14 @@ def test_crosscheck_leaves_hunting_certificates_to_verify(cert_file, tmp_path, m
     edited(tmp_path / "proofs", cert_file, lambda d: None)
     monkeypatch.chdir(tmp_path)
     assert main(["crosscheck"]) == 2  # refused as "no certificate", not fed to the stability checks
+
+
+def test_hunting_files_are_read_as_strictly_as_stability_certificates(cert_file, tmp_path):
+    text = Path(cert_file).read_text(encoding="utf-8")
+    duplicate = tmp_path / "dup.json"
+    duplicate.write_text(text.replace('"verdict": "proved"', '"verdict": "proved", "verdict": "proved"'), encoding="utf-8")
+    with pytest.raises(CertificateFormatError, match="duplicate key 'verdict'"):
+        verify_hunting_file(duplicate)
+    loose = edited(tmp_path, cert_file, lambda d: d["parameters"].update(k_p="3.0"))
+    with pytest.raises(CertificateFormatError, match="parameters.k_p must be an exact rational string"):
+        verify_hunting_file(loose)
