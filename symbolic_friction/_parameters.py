@@ -35,7 +35,7 @@ def _float(q: Fraction, name: str) -> float:
         value = float("inf")
     if value == 0.0 or value == float("inf"):
         raise ParameterError(
-            f"{name} = {_fmt(q) if len(_fmt(q)) < 40 else _fmt(q)[:20] + '…'} is outside the range of floating point "
+            f"{name} = {_fmt(q)} is outside the range of floating point "
             "(about 1e-308 to 1e308) that the numerical search and the simulators use"
         )
     return value

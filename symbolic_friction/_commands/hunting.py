@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import argparse
 import hashlib
-import sys
 import textwrap
 from pathlib import Path
 
@@ -60,14 +59,16 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from .._errors import ParameterError
+    from .._output import emit
     from .._parameters import Parameters
 
     params = Parameters(**{name: getattr(args, name) for name in _NAMES})
     if not params.stiction:
-        print(
+        emit(
             f"{params}: f_s = f_c, the paper's model. Proposition 1: 𝒜 is globally asymptotically stable, so no "
             "hunting cycle exists; `symbolic-friction certify` with these gains writes the stability certificate "
-            "that proves it, and the package's existing certificates (proofs/) apply."
+            "that proves it, and the package's existing certificates (proofs/) apply.",
+            level=0,
         )
         return 0
     from fractions import Fraction
@@ -87,60 +88,60 @@ def run(args: argparse.Namespace) -> int:
 
     from .._hunting._map import real_root_escape
 
-    print(f"{params}: ρ = (f_s - f_c)/f_c = {params.rho}")
+    emit(f"{params}: ρ = (f_s - f_c)/f_c = {params.rho}")
     escape = real_root_escape(params)
     if escape is not None:
         lo, hi = escape.root_bracket
         root = f"λ₁ = {lo}" if lo == hi else f"λ₁ ∈ [{float(lo):.15g}, {float(hi):.15g}]"
-        print(
+        emit(
             f"three distinct real roots (discriminant > 0, exact), slowest {root}: a slip from a stick exit with "
             f"|σ| ≥ |λ₁|(f_s - f_c) = {float(escape.bound):.10g} never ends (proof: RealRootEscape), so only solutions "
             "whose stick exits stay below that bound can hunt; above it the mass slips into 𝒜"
         )
-    cycles = [c for c in find_cycles(params) if c.symmetric]
+    cycles = find_cycles(params, general=False)  # only symmetric cycles are certified
     if not cycles:
-        print("no symmetric hunting cycle found (stick exits with σ in [Δ·1e-4, Δ·1e4], Δ = f_s - f_c): nothing certified")
+        emit("no symmetric hunting cycle found (stick exits with σ in [Δ·1e-4, Δ·1e4], Δ = f_s - f_c): nothing certified", level=0)
         return 1
     stem = args.name or "hunting_" + hashlib.sha256(str(params).encode()).hexdigest()[:10]
     failed = False
     for n, cycle in enumerate(cycles, start=1):
         k_i = float(params.k_i)
-        print(f"\ncycle {n}: symmetric, stick exit at φ = ±f_s with σ* = {cycle.sigma:.15g} (s = ∓{cycle.sigma / k_i:.15g})")
-        print(f"  period T = {cycle.period:.12g}; each half: slip {cycle.slip_time:.12g}, stick {cycle.stick_time:.12g}")
-        print(f"  the slip ends at φ = {cycle.phi_end:.12g} (|φ| ≤ f_s: sticks)")
-        print(
+        emit(f"\ncycle {n}: symmetric, stick exit at φ = ±f_s with σ* = {cycle.sigma:.15g} (s = ∓{cycle.sigma / k_i:.15g})")
+        emit(f"  period T = {cycle.period:.12g}; each half: slip {cycle.slip_time:.12g}, stick {cycle.stick_time:.12g}")
+        emit(f"  the slip ends at φ = {cycle.phi_end:.12g} (|φ| ≤ f_s: sticks)")
+        emit(
             f"  amplitude: max |s| = {cycle.amplitude_s:.10g}, max |e_i| = {cycle.amplitude_e_i:.10g}, "
             f"max |z|_𝒜 = {cycle.amplitude_distance:.10g}, max |x|_𝒜 = {cycle.amplitude_distance_x:.10g}"
         )
         stab = "stable (attracts nearby stick exits)" if cycle.stable else "unstable"
-        print(f"  multiplier d(-P)/dσ = {cycle.multiplier:.10g} (P∘P: {cycle.multiplier ** 2:.10g}): {stab}")
+        emit(f"  multiplier d(-P)/dσ = {cycle.multiplier:.10g} (P∘P: {cycle.multiplier ** 2:.10g}): {stab}")
         if escape is not None:
-            print(f"  σ* = {cycle.sigma:.6g} < {float(escape.bound):.6g}: below the escape bound")
+            emit(f"  σ* = {cycle.sigma:.6g} < {float(escape.bound):.6g}: below the escape bound")
         box = box_around(cycle.sigma, cycle.slip_time)
         proof = prove_cycle(params, box)
         for check in proof.checks:
-            print(f"    {check}")
+            emit(f"    {check}")
         if not proof.proved:
-            print("  NOT PROVED: no certificate written")
+            emit("  NOT PROVED: no certificate written", level=0)
             failed = True
             continue
         m_lo, m_hi = proof.multiplier
         stab_proved = {True: "stable (proved |multiplier| < 1)", False: "unstable (proved |multiplier| > 1)", None: "stability undecided"}[proof.stable]
-        print(f"  PROVED: exactly one symmetric cycle with σ* in the box; multiplier ∈ [{m_lo:.10g}, {m_hi:.10g}]: {stab_proved}")
+        emit(f"  PROVED: exactly one symmetric cycle with σ* in the box; multiplier ∈ [{m_lo:.10g}, {m_hi:.10g}]: {stab_proved}", level=0)
         if not args.no_simulation:
             from .._hunting._report import simulation_agreement
 
             agreement = simulation_agreement(cycle)
-            print(f"  {agreement.describe()}: {'agrees to 1e-9' if agreement.holds(1e-9) else 'does NOT agree to 1e-9'}")
+            emit(f"  {agreement.describe()}: {'agrees to 1e-9' if agreement.holds(1e-9) else 'does NOT agree to 1e-9'}")
             lo, hi = box.sigma
             inside = bool(agreement.last_sigmas) and all(lo <= Fraction(x) <= hi for x in agreement.last_sigmas)
-            print(f"  the simulated |σ| at those exits {'lies' if inside else 'does NOT lie'} in the proved box [σ_lo, σ_hi]")
+            emit(f"  the simulated |σ| at those exits {'lies' if inside else 'does NOT lie'} in the proved box [σ_lo, σ_hi]")
         iss = None
         if not args.no_iss:
             from .._hunting._iss import iss_comparison
 
             iss = iss_comparison(cycle)
-            print(f"  {iss.describe()}")
+            emit(f"  {iss.describe()}")
         info = {
             "sigma": f"{cycle.sigma:.17g}",
             "period": f"{cycle.period:.17g}",
@@ -157,20 +158,20 @@ def run(args: argparse.Namespace) -> int:
         cert = HuntingCertificate(params=params, box=box, cycle=info)
         name = stem if len(cycles) == 1 else f"{stem}_{n}"
         path = write_hunting(cert, Path(args.out) / f"{name}.json")
-        print(f"  certificate: {path} (re-check: symbolic-friction verify {path})")
+        emit(f"  certificate: {path} (re-check: symbolic-friction verify {path})", level=0)
     if args.figure:
         from .._hunting._report import amplitude_sweep, hunting_figure
 
         sweep = amplitude_sweep(params, ratios) if ratios else None
         if sweep:
-            print("\nsweep over f_s/f_c (the cycle with the largest σ*):")
+            emit("\nsweep over f_s/f_c (the cycle with the largest σ*):")
             for r, c in sweep:
                 if c is None:
-                    print(f"  f_s/f_c = {r:g}: no symmetric cycle found")
+                    emit(f"  f_s/f_c = {r:g}: no symmetric cycle found")
                 else:
-                    print(f"  f_s/f_c = {r:g}: σ* = {c.sigma:.6g}, max |s| = {c.amplitude_s:.6g}, max |z|_𝒜 = {c.amplitude_distance:.6g}, period {c.period:.6g}")
+                    emit(f"  f_s/f_c = {r:g}: σ* = {c.sigma:.6g}, max |s| = {c.amplitude_s:.6g}, max |z|_𝒜 = {c.amplitude_distance:.6g}, period {c.period:.6g}")
         hunting_figure(cycles[-1], args.figure, sweep=sweep)
-        print(f"figure: {args.figure}")
+        emit(f"figure: {args.figure}")
     elif ratios:
-        print("--sweep is drawn with --figure; pass --figure PNG", file=sys.stderr)
+        emit("--sweep is drawn with --figure; pass --figure PNG", err=True, level=0)
     return 1 if failed else 0

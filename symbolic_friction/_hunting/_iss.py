@@ -20,9 +20,10 @@ lower estimate of ``γ(ρ)``, and that is reported, not hidden.
 
 from __future__ import annotations
 
+import dataclasses
+
 from dataclasses import dataclass
 
-from .._parameters import Parameters
 from ._map import HuntingCycle
 
 __all__ = ["IssComparison", "iss_comparison"]
@@ -75,7 +76,7 @@ def iss_comparison(cycle: HuntingCycle, *, horizon: float = 100.0, h: float = 5e
     from .._crosscheck._iss_search import equilibrium_bound
 
     p = cycle.params
-    coulomb = Parameters(k_p=p.k_p, k_i=p.k_i, k_v=p.k_v, f_c=p.f_c)
+    coulomb = dataclasses.replace(p, f_s=p.f_c)  # the paper's model: Corollary 1 perturbs it
     est = iss_gain(coulomb, [p.rho], laws=("greedy", "stribeck"), horizon=horizon, h=h)
     gamma = {law: float(est.gamma[law][0]) for law in est.laws}
     gamma["rest point"] = float(equilibrium_bound(coulomb, p.rho))

@@ -35,6 +35,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._coordinates import system_matrix, x_to_z
 from .._errors import ParameterError
 from .._parameters import Parameters
 
@@ -105,15 +106,12 @@ class HuntingMap:
         self.f_c = float(params.f_c)
         self.f_s = float(params.f_s)
         self.excess = float(params.f_s - params.f_c)
-        e = self.model.expm
-        beta = math.sqrt(abs(e.beta2))
-        slowest = min(abs(e.r), abs(e.alpha) - beta if e.beta2 > 0 else abs(e.alpha))
-        self.horizon = _TIME_CONSTANTS / slowest
+        self.horizon = _TIME_CONSTANTS / self.model.expm.slowest_rate
 
     def step(self, sigma: float) -> MapStep:
         """Follow the solution from the stick exit with ``σ`` to the next one (or to its end)."""
         from .._simulation._kernel import EPS, SNAP_ULPS, mode_after_slip
-        from .._simulation.search import first_zero
+        from .._simulation.search import UNDERFLOW, first_zero
 
         sigma = float(sigma)
         if sigma == 0.0:
@@ -123,7 +121,7 @@ class HuntingMap:
         s, slips = sigma, []
         for _ in range(_MAX_SLIPS):
             tau, (ys, yp, yv) = first_zero(self.model, (s, p, 0.0), d, self.horizon)
-            if tau is None or max(abs(ys), abs(yp), abs(yv)) <= 1e-250:
+            if tau is None or max(abs(ys), abs(yp), abs(yv)) <= UNDERFLOW:  # decayed onto x*_d ∈ 𝒜, as in the kernel
                 slips.append((d, math.inf, 0.0, d * self.f_c))
                 return MapStep(sigma, tuple(slips), math.nan, math.nan, "slips forever")
             tol = SNAP_ULPS * EPS * max(abs(s), abs(p))
@@ -147,26 +145,23 @@ class HuntingMap:
         """``e^{Aτ}`` (closed form of :class:`.._simulation.affine.MatrixExponential`)."""
         return np.asarray(self.model.expm(float(tau)), dtype=float)
 
-    def derivative(self, sigma: float) -> float:
-        """``P'(σ)`` by implicit differentiation of ``v(τ; σ) = 0`` (one slip, no reversal)."""
-        st = self.step(sigma)
+    def derivative(self, sigma: float, st: MapStep | None = None) -> float:
+        """``P'(σ)`` by implicit differentiation of ``v(τ; σ) = 0`` (one slip, no reversal).
+
+        ``st``: :meth:`step` at ``σ`` when the caller has it already.
+        """
+        st = self.step(sigma) if st is None else st
         if st.reason != "exit" or len(st.slips) != 1:
             return math.nan
         tau = st.slips[0][1]
         d = 1 if sigma > 0 else -1
         E = self.flow_matrix(tau)
-        A = _float_A(self.params)
+        A = system_matrix(self.params)
         y = E @ np.array([sigma, d * self.excess, 0.0])
         dy_dsigma = E[:, 0]
         dy_dtau = A @ y
         dtau = -dy_dsigma[2] / dy_dtau[2]
         return float(dy_dsigma[0] + dy_dtau[0] * dtau)
-
-
-def _float_A(params: Parameters) -> np.ndarray:
-    from .._coordinates import system_matrix_entries
-
-    return np.array(system_matrix_entries(params.k_p, params.k_i, params.k_v), dtype=float)
 
 
 @dataclass(frozen=True)
@@ -221,11 +216,9 @@ class HuntingCycle:
 
     @property
     def exit_state(self) -> tuple[float, float, float]:
-        """``z = (e_i, s, v)`` at the stick exit ``φ = f_s``, ``σ = σ*``."""
-        k_p, k_i = float(self.params.k_p), float(self.params.k_i)
-        s = -self.sigma / k_i
-        e_i = (-float(self.params.f_s) - k_p * s) / k_i
-        return (e_i, s, 0.0)
+        """``z = (e_i, s, v)`` at the stick exit ``x = (σ*, f_s, 0)`` (eq. CoC inverted)."""
+        z = x_to_z(self.params, np.array([self.sigma, float(self.params.f_s), 0.0]))
+        return (float(z[0]), float(z[1]), float(z[2]))
 
 
 def find_cycles(params: Parameters, *, points: int = 240, span: float = 1e4, general: bool = True) -> list[HuntingCycle]:
@@ -276,11 +269,11 @@ def _describe(P: HuntingMap, sigma: float, symmetric: bool) -> HuntingCycle | No
         return None
     if symmetric:
         period = 2.0 * (st.slip_time + st.stick)
-        multiplier = -P.derivative(sigma)
+        multiplier = -P.derivative(sigma, st)
     else:
         st2 = P.step(st.next_sigma)
         period = st.slip_time + st.stick + st2.slip_time + st2.stick
-        multiplier = P.derivative(sigma) * P.derivative(st.next_sigma)
+        multiplier = P.derivative(sigma, st) * P.derivative(st.next_sigma, st2)
     cycle = HuntingCycle(
         params=P.params,
         sigma=sigma,

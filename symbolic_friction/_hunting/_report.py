@@ -10,6 +10,8 @@
 
 from __future__ import annotations
 
+import dataclasses
+
 import math
 from dataclasses import dataclass
 from fractions import Fraction
@@ -23,8 +25,8 @@ __all__ = ["Agreement", "simulation_agreement", "amplitude_sweep", "hunting_figu
 
 
 def with_static(params: Parameters, f_s: object) -> Parameters:
-    """``params`` with the static level ``f_s``."""
-    return Parameters(k_p=params.k_p, k_i=params.k_i, k_v=params.k_v, f_c=params.f_c, f_s=f_s)
+    """``params`` with the static level ``f_s`` (validated again: ``f_s ≥ f_c``)."""
+    return dataclasses.replace(params, f_s=f_s)
 
 
 @dataclass(frozen=True)
@@ -79,10 +81,7 @@ def simulation_agreement(cycle: HuntingCycle, *, start_offset: float = 1e-3, per
         # enough half periods for start_offset·|m|ⁿ to fall below 1e-14 (the transient), plus the tail
         n = 20 if m < 1e-3 else int(math.ceil(math.log(1e-14 / start_offset) / math.log(min(m, 0.999)))) + tail + 4
         periods = max(4, int(math.ceil(n / 2)))
-    k_p, k_i, f_s = float(cycle.params.k_p), float(cycle.params.k_i), float(cycle.params.f_s)
-    sigma0 = cycle.sigma * (1.0 + start_offset)
-    s0 = -sigma0 / k_i
-    z0 = ((-f_s - k_p * s0) / k_i, s0, 0.0)
+    z0 = dataclasses.replace(cycle, sigma=cycle.sigma * (1.0 + start_offset)).exit_state
     t_end = periods * cycle.period
     sol = simulate(cycle.params, z0, t_end, t_eval=[0.0, t_end], max_events=100_000)
     exits = [(t, x) for (t, before, _), x in zip(sol.events, sol.event_x) if before == 0]

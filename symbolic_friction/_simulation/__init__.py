@@ -169,7 +169,7 @@ def simulate(
     if not isinstance(params, Parameters):
         raise SimulationError(f"params must be a Parameters instance; got {type(params).__name__}")
     solver = configure(method, options)
-    if params.stiction and solver.name != "event":
+    if params.stiction and not solver.stiction:
         raise SimulationError(
             f"method {solver.name!r} models Coulomb friction only (f_s = f_c); got f_s = {params.f_s} > f_c = {params.f_c}: "
             "use the event-driven method"

@@ -190,7 +190,9 @@ class SimulationMethod(abc.ABC):
     * Set the class variables ``name`` (the ``method=`` string), ``order``
       (the declared order of accuracy in ``knob``: the error behaves like
       ``knob**order``; ``math.inf`` for an exact method) and ``knob`` (the
-      field that trades speed for accuracy, or ``None``).
+      field that trades speed for accuracy, or ``None``).  Set ``stiction =
+      True`` only if the method models static friction above Coulomb
+      (``f_s > f_c``); ``simulate`` refuses such parameters to the others.
     * Implement :meth:`_validate`, called on construction with
       :attr:`options`, which raises
       :class:`~symbolic_friction.SimulationError` naming the option and the
@@ -206,6 +208,9 @@ class SimulationMethod(abc.ABC):
     name: ClassVar[str]
     order: ClassVar[float]
     knob: ClassVar[str | None]
+    # Whether the method models static friction above Coulomb (``Parameters.f_s > f_c``);
+    # a method that does not is refused such parameters by ``simulate``.
+    stiction: ClassVar[bool] = False
 
     def __post_init__(self) -> None:
         self._validate(self.options)

@@ -170,6 +170,12 @@ class MatrixExponential:
         for name, value in (("r", r), ("alpha", alpha), ("beta2", beta2), ("B1", b1), ("B2", b2)):
             object.__setattr__(self, name, value)
 
+    @property
+    def slowest_rate(self) -> float:
+        """``min |Re λ|`` over the roots of ``det(sI - A)``: the slowest decay of ``e^{At}``."""
+        beta = math.sqrt(abs(self.beta2))
+        return min(abs(self.r), abs(self.alpha) - beta if self.beta2 > 0 else abs(self.alpha))
+
     @classmethod
     def from_params(cls, params: Parameters) -> "MatrixExponential":
         """Build from :class:`Parameters` (floats of the exact gains)."""

@@ -222,6 +222,7 @@ class EventDriven(SimulationMethod):
     grid_points: int = 1001
 
     name: ClassVar[str] = "event"
+    stiction: ClassVar[bool] = True
     order: ClassVar[float] = math.inf
     knob: ClassVar[str | None] = None
 

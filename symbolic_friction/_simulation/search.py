@@ -128,9 +128,7 @@ def _pack(
     # later zero would come when the state has decayed by e⁻⁶⁰; past that the kernel searches),
     # but over at most STICK_SLIP_WINDOWS scan windows: with roots spread 10⁶ those 60 time
     # constants are millions of windows, and the kernel's own search covers what lies beyond.
-    beta = math.sqrt(abs(expm.beta2))
-    slowest = min(abs(expm.r), abs(expm.alpha) - beta if expm.beta2 > 0 else abs(expm.alpha))
-    K[k.I_STICK_SLIP_H] = min(60.0 / slowest, STICK_SLIP_WINDOWS * table.window)
+    K[k.I_STICK_SLIP_H] = min(60.0 / expm.slowest_rate, STICK_SLIP_WINDOWS * table.window)
     K[k.I_STICK_SLIP_T] = math.inf  # not used while searching for it
     found, tau, *_ = k.first_zero(K.tolist(), table.values.tolist(), table.noise.tolist(), 1.0, 0.0, 0.0, 1, K[k.I_STICK_SLIP_H])
     K[k.I_STICK_SLIP_T] = tau if found else math.inf

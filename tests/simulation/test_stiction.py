@@ -10,6 +10,8 @@ a slip that ends with ``|φ|`` in ``(f_c, f_s]`` and sticks.
 
 from __future__ import annotations
 
+import dataclasses
+
 import functools
 from fractions import Fraction as F
 
@@ -32,7 +34,7 @@ N_SAMPLES = 301
 
 
 def with_fs(p: Parameters, f_s) -> Parameters:
-    return Parameters(k_p=p.k_p, k_i=p.k_i, k_v=p.k_v, f_c=p.f_c, f_s=f_s)
+    return dataclasses.replace(p, f_s=f_s)
 
 
 A12 = with_fs(Parameters.table_i("a"), F(6, 5))
