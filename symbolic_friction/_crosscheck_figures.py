@@ -34,7 +34,7 @@ __all__ = [
 ]
 
 TIGHTNESS_TRAJECTORIES = 2000
-"""Trajectories per gain set behind the tightness figure (the CLI default is 10000)."""
+"""Trajectories per gain set behind the tightness figure (the CLI default is 100000)."""
 
 _MODE_STYLE = {
     "random spheres": ("tab:blue", "."),

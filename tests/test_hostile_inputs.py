@@ -278,15 +278,16 @@ def test_huge_f_c_is_certified_and_its_report_has_no_inf(tmp_path):
     assert proc.returncode == 0 and b"PROVED" in proc.stdout
 
 
-def test_valid_certificate_with_1500_digit_denominators_verifies(tmp_path):
+def test_valid_certificate_with_5000_digit_denominators_verifies(tmp_path):
     """Exact arithmetic beyond Python's 4300-digit int/str limit: a valid certificate still verifies (exit 0)."""
     from fractions import Fraction
 
     from symbolic_friction._certify import dumps, load
 
     cert = load(CERT)
-    # shrink c1 and c1_hat and grow c2, c2_hat by a 1500-digit factor: still a proof, with a larger kappa
-    big = 10**1500 + 7
+    # shrink c1 and c1_hat by a 5000-digit factor (integers past Python's 4300-digit str limit):
+    # still a proof, with a larger kappa
+    big = 10**5000 + 7
     import dataclasses
     from math import isqrt
 
@@ -296,7 +297,9 @@ def test_valid_certificate_with_1500_digit_denominators_verifies(tmp_path):
     )
     path = tmp_path / "long.json"
     path.write_text(dumps(loose), encoding="utf-8")
-    assert len(json.loads(path.read_text())["constants"]["c1"]) > 3000
+    assert len(json.loads(path.read_text())["constants"]["c1"]) > 10000
+    back = load(path)  # the exact numbers survive the round trip through the file
+    assert (back.c1, back.c1_hat, back.k4) == (loose.c1, loose.c1_hat, loose.k4)
     proc, _ = run_case(["verify", "-v", str(path)], {}, {}, tmp_path)
     assert proc.returncode == 0, proc.stderr.decode()[-2000:]
     assert b"PROVED" in proc.stdout and b"Traceback" not in proc.stderr

@@ -37,7 +37,6 @@ import os
 import re
 from dataclasses import dataclass, field
 from fractions import Fraction
-from pathlib import Path
 from typing import Any
 
 from .._errors import CertificateFormatError

@@ -17,7 +17,7 @@ from typing import Iterable
 
 from .._errors import CertificateError, CertificateFormatError, InputFileError, ParameterError, SymbolicFrictionError
 from .._parameters import Parameters
-from .certificate import Certificate, atomic_write_text, dumps, load
+from .certificate import MAX_FILE_BYTES, Certificate, atomic_write_text, dumps, load
 from .report import render_markdown
 from .rounding import to_certificate
 from .search import MODES, check_margin, check_mode, find_candidate
@@ -250,13 +250,19 @@ def _check_one(path: Path) -> CommittedCertificate:
         json_text, md_text, _ = render_files(fresh, name=path.name)
     except SymbolicFrictionError as exc:
         return CommittedCertificate(path, report, True, f"cannot be regenerated: {exc}")
+    from .._io import read_limited
+
     md_path = path.with_suffix(".md")
     stale = []
-    if path.read_bytes() != json_text.encode("utf-8"):
+    if read_limited(path, limit=MAX_FILE_BYTES, what="certificate") != json_text.encode("utf-8"):
         stale.append(path.name)
     if not md_path.exists():
         return CommittedCertificate(path, report, True, f"its report {md_path.name} is missing")
-    if md_path.read_bytes() != md_text.encode("utf-8"):
+    try:
+        md_bytes = read_limited(md_path, limit=MAX_FILE_BYTES, what="proof report")
+    except InputFileError as exc:
+        return CommittedCertificate(path, report, True, f"its report is unreadable: {exc}")
+    if md_bytes != md_text.encode("utf-8"):
         stale.append(md_path.name)
     if stale:
         return CommittedCertificate(

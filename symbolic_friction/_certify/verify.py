@@ -311,7 +311,9 @@ def verify_certificate(certificate: Certificate, *, source: str = "<certificate>
     return VerificationReport(certificate=certificate, checks=checks, source=source)
 
 
-_TABLE_I_LABEL = re.compile(r"Table I\b.*?case \(?([ab])\)?", re.IGNORECASE)
+# The labels the package gives Table I's certificates, exactly (free text that merely
+# mentions Table I, e.g. "compared with Table I, case (a)", claims nothing).
+_TABLE_I_LABEL = re.compile(r"Table I, case \(([ab])\)")
 
 
 def provenance_checks(certificate: Certificate, proved: Sequence[Check]) -> tuple[Check, ...]:
@@ -320,7 +322,7 @@ def provenance_checks(certificate: Certificate, proved: Sequence[Check]) -> tupl
     * ``provenance.obligations`` lists only obligations that the premises
       above instantiate (a certificate cannot claim an obligation it does not
       prove);
-    * a label naming Table I's case (a) or (b) carries Table I's gains;
+    * a label that is Table I's (``Table I, case (a)`` or ``(b)``, exactly) carries Table I's gains;
     * recorded physical parameters normalise to the gains (paper §II-A):
       ``k_p = k̄_p/m``, ``k_i = k̄_i/m``, ``k_v = (k̄_d + α_v)/m``, ``f_c = f̄_c/m``.
     """
@@ -336,7 +338,7 @@ def provenance_checks(certificate: Certificate, proved: Sequence[Check]) -> tupl
             + (f" ({', '.join(unknown)} not instantiated)" if unknown else ""),
             not unknown and bool(claimed),
         ))
-        match = _TABLE_I_LABEL.search(prov.label)
+        match = _TABLE_I_LABEL.fullmatch(prov.label)
         if match is not None:
             from .._parameters import TABLE_I
 

@@ -187,7 +187,7 @@ def run(args: argparse.Namespace) -> int:
                 "parameters": {k: format_rational(v) for k, v in cert.parameters.items()},
                 "physical": None if cert.physical is None else {k: format_rational(v) for k, v in cert.physical.items()},
                 "overshoot_bound": cert.overshoot_bound, "proved": True,
-            }, ensure_ascii=False))
+            }, ensure_ascii=False), level=0)
         else:
-            emit(f"wrote {json_path} and {md_path.name} ({mode}): |x(t)|_A <= {cert.overshoot_bound}·|x(0)|_A")
+            emit(f"wrote {json_path} and {md_path.name} ({mode}): |x(t)|_A <= {cert.overshoot_bound}·|x(0)|_A", level=0)
     return 0

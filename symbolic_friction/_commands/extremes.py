@@ -8,7 +8,6 @@ at top level.
 from __future__ import annotations
 
 import argparse
-import sys
 
 HELP = "run every method and certify on a matrix of hard cases; classify each outcome against a 50-digit reference"
 
@@ -23,26 +22,24 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     import json
-    from pathlib import Path
 
-    from .._extremes import WRONG, extremes_figure, run_extremes
-    from .._io import atomic_write
+    from .._extremes import extremes_figure, run_extremes
+    from .._io import atomic_write_text, ensure_directory
+    from .._output import emit
     from .._tradeoff import check_formats
 
     formats = check_formats(args.format)
+    out = ensure_directory(args.out)  # an unusable --out fails now, not after the run
     result = run_extremes(only=args.only)
-    out = Path(args.out)
-    report = out / "extremes.md"
-    atomic_write(report, lambda fh: fh.write(result.report().encode()))
+    report = atomic_write_text(out / "extremes.md", result.report())
     files = [report, *extremes_figure(result, out / "extremes_heatmap.png", formats)]
     if args.json:
-        print(json.dumps({"seconds": result.seconds, "counts": result.counts(),
-                          "outcomes": [o.__dict__ for o in result.outcomes], "files": [str(f) for f in files]},
-                         indent=1, default=str))
+        emit(json.dumps({"seconds": result.seconds, "counts": result.counts(),
+                         "outcomes": [o.__dict__ for o in result.outcomes], "files": [str(f) for f in files]},
+                        indent=1, default=str), level=0)
     else:
-        print(result.report())
+        emit(result.report(), level=0)
         for f in files:
-            print(f"wrote {f}")
-    sys.stdout.flush()
+            emit(f"wrote {f}", level=0)
     # a silently wrong cell is a failure of the package's contract
-    return 1 if any(o.outcome == WRONG for o in result.outcomes) else 0
+    return 1 if result.silently_wrong else 0

@@ -10,8 +10,8 @@ library at top level.
 from __future__ import annotations
 
 import argparse
+import math
 import json
-import sys
 import textwrap
 
 HELP = "measure each simulation method's error (vs a 50-digit reference) against its time, across its accuracy knob"
@@ -73,6 +73,8 @@ def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
     from .._errors import UsageError
+    from .._io import ensure_directory
+    from .._output import emit
     from .._parameters import Parameters
     from .._tradeoff import check_formats, measure_cost, measure_tradeoff, tradeoff_figures
     from .certify import _gains
@@ -88,8 +90,10 @@ def run(args: argparse.Namespace) -> int:
         case, label, stem = None, "user gains", "tradeoff_user"
     z0s = [_state(z) for z in (args.z0 or [DEFAULT_Z0.get(case, "0,1,0")])]
     t_end = args.t_end if args.t_end is not None else DEFAULT_T.get(case, 30.0)
-    if not t_end > 0:
-        raise UsageError(f"--t-end must be > 0; got {t_end}")
+    if not (math.isfinite(t_end) and t_end > 0):
+        raise UsageError(f"--t-end must be finite and > 0; got {t_end}")
+    if not args.no_figures:
+        ensure_directory(args.out)  # an unusable --out fails now, not after the measurements
     result = measure_tradeoff(params, z0s, t_end, label=label, samples=args.samples, repeats=args.repeats, quick=args.quick)
     if not args.no_cost:
         from dataclasses import replace
@@ -102,19 +106,18 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         data = result.as_dict()
         data["files"] = [str(f) for f in files]
-        print(json.dumps(data, indent=1, default=str))
+        emit(json.dumps(data, indent=1, default=str), level=0)
     else:
-        print(result.table())
+        emit(result.table())  # the table and the costs: not under --quiet; the note and the files: always
         if result.cost:
-            print()
-            print("cost against the horizon T (one trajectory) and the batch size N (median of repeats):")
+            emit()
+            emit("cost against the horizon T (one trajectory) and the batch size N (median of repeats):")
             for c in result.cost:
                 what = f"T = {c.t_end:g}" if c.axis == "T" else f"N = {c.n} (T = {c.t_end:g})"
                 kernel = f" ({c.kernel} kernel)" if c.kernel else ""
-                print(f"  {c.config:34s} {what:22s} {c.seconds:10.4f} s{kernel}")
-        print()
-        print(result.note())
+                emit(f"  {c.config:34s} {what:22s} {c.seconds:10.4f} s{kernel}")
+        emit(level=0)
+        emit(result.note(), level=0)
         for f in files:
-            print(f"wrote {f}")
-    sys.stdout.flush()
+            emit(f"wrote {f}", level=0)
     return 0

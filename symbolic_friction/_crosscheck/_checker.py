@@ -231,6 +231,10 @@ class BatchChecker:
         """Observed ``max_t |x(t)|_𝒜/|x(0)|_𝒜`` of every trajectory added so far (NaN if ``x(0) ∈ 𝒜``)."""
         return np.concatenate(self._overshoot) if self._overshoot else np.zeros(0)
 
+    def last_overshoots(self) -> np.ndarray:
+        """The observed overshoot ratios of the batch added last (without joining the whole history)."""
+        return self._overshoot[-1] if self._overshoot else np.zeros(0)
+
     def sources(self) -> np.ndarray:
         """Source label of every trajectory added so far (aligned with :meth:`overshoots`)."""
         return np.concatenate(self._sources) if self._sources else np.zeros(0, dtype=object)

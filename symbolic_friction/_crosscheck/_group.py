@@ -62,7 +62,7 @@ class GroupRun:
             )
             # the simulator starts from z(0); use the x(0) it actually simulated
             self.checker.add(batch, attractivity=attractivity)
-            out.append(self.checker.overshoots()[-part.shape[0]:])
+            out.append(self.checker.last_overshoots())
             self._x0.append(batch.x0)
             self.count += part.shape[0]
             self.bar.update(part.shape[0])

@@ -12,7 +12,6 @@ from __future__ import annotations
 import math
 import os
 import time
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Iterable, Sequence
 
@@ -23,8 +22,7 @@ from .._parameters import Parameters
 from ._claims import Claims
 from ._property import DEFAULT_RTOL, DEFAULT_THETA
 from ._group import GroupRun
-from ._outcome import (SEARCH_MODES, CertificateCheck, CrosscheckReport, default_horizon, sample_times,
-                       search_mode, slowest_root)
+from ._outcome import SEARCH_MODES, CertificateCheck, CrosscheckReport, default_horizon, sample_times, search_mode
 
 __all__ = [
     "CertificateCheck",

@@ -102,7 +102,6 @@ def resolve_attractivity(params: Any, z: np.ndarray, target: np.ndarray, window:
         simulation was incomplete (event limit): neither holds nor fails.
     """
     from .._attractor import distance_x
-    from .._coordinates import x_to_z
     from .._simulation.batch import simulate_batch
     from ._outcome import slowest_root
 
@@ -129,7 +128,7 @@ def resolve_attractivity(params: Any, z: np.ndarray, target: np.ndarray, window:
                 outcome[k] = (True, start + float(t[j]), float(d[row, j]), tuple(float(q) for q in b.x[row, j]))
             else:
                 outcome[k] = (False, start + window, float(d[row, -1]), tuple(float(q) for q in b.x[row, -1]))
-                z[k] = x_to_z(params, b.x[row, -1])
+                z[k] = b.z[row, -1]
                 still.append(k)
         active = np.array(still, dtype=int)
         start += window

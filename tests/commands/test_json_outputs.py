@@ -130,3 +130,11 @@ def test_verify_junit_has_one_case_per_certificate(tmp_path, capsys):
     good, wrong = suite.findall("testcase")
     assert good.find("failure") is None and good.find("system-out").text == "k_p=3, k_i=4, k_v=32/5, f_c=1"
     assert "k3 > k2" in wrong.find("failure").get("message")
+
+
+def test_free_text_that_mentions_table_i_claims_nothing(tmp_path, capsys):
+    data = json.loads((PROOFS / "case_a_feasible.json").read_text(encoding="utf-8"))
+    data["provenance"]["label"] = "compared with Table I, case (b)"
+    (tmp_path / "f.json").write_text(json.dumps(data), encoding="utf-8")
+    assert main(["verify", str(tmp_path / "f.json")]) == 0
+    assert "PROVED" in capsys.readouterr().out
