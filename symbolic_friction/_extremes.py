@@ -78,6 +78,32 @@ def _roots(*r: F, f_c: F = F(1)) -> Parameters:
     return Parameters(k_v=a + b + c, k_p=a * b + b * c + c * a, k_i=a * b * c, f_c=f_c)
 
 
+def _fast_and_pair(fast: F, zeta: F, omega: F) -> Parameters:
+    """Gains with characteristic polynomial ``(s + fast)(s² + 2ζω s + ω²)``."""
+    two_zw = 2 * zeta * omega
+    return Parameters(k_v=fast + two_zw, k_p=fast * two_zw + omega * omega, k_i=fast * omega * omega)
+
+
+# Seeded draws of the admissible gains users reach: k_p, k_i log-uniform over 1e-4..1e4, Routh margin
+# k_v k_p / k_i = 1 + 10^U with U uniform in [-9, 1], |z0| log-uniform over 0.1..100, T = 20.
+RANDOM_SEED, RANDOM_CELLS = 2026, 6
+
+
+def random_cells(seed: int = RANDOM_SEED, n: int = RANDOM_CELLS) -> list[Cell]:
+    """``n`` cells of random admissible gains (three significant digits, exact), labelled by their gains."""
+    rng = np.random.default_rng(seed)
+    out = []
+    for _ in range(n):
+        k_p, k_i = (F(f"{10 ** rng.uniform(-4, 4):.3g}") for _ in range(2))
+        margin = 1 + F(f"{10 ** rng.uniform(-9, 1):.3g}")
+        direction = rng.normal(size=3)
+        z0 = direction / np.linalg.norm(direction) * 10 ** rng.uniform(-1, 2)
+        params = Parameters(k_p=k_p, k_i=k_i, k_v=margin * k_i / k_p)
+        label = f"k_p {float(k_p):.3g}, k_i {float(k_i):.3g}, margin 1+{float(margin - 1):.2g}"
+        out.append(Cell("random admissible", label, params, tuple(float(c) for c in z0), 20.0))
+    return out
+
+
 def cells() -> list[Cell]:
     """The fixed matrix of hard cases (see the module docstring)."""
     a = Parameters.table_i("a")
@@ -89,6 +115,11 @@ def cells() -> list[Cell]:
     out.append(Cell("repeated roots", "triple root (s+1)^3", _roots(F(1), F(1), F(1)), (0.0, 1.0, 0.0), 30.0))
     out.append(Cell("repeated roots", "roots 1e-6 apart", _roots(F(1), 1 + F(1, 10**6), 1 + 2 * F(1, 10**6)), (0.0, 1.0, 0.0), 30.0))
     out.append(Cell("stiff", "roots -1e-3, -1, -1e3", _roots(F(1, 1000), F(1), F(1000)), (0.0, 1.0, 0.0), 5.0))
+    for e in (4, 8):
+        # (s + 10^e)(s² + 0.2 s + 1): a fast root 10^e times the slow pair's frequency
+        p = _fast_and_pair(F(10) ** e, F(1, 10), F(1))
+        out.append(Cell("stiff", f"fast/slow 1e{e}, slow pair zeta 0.1", p, (0.0, 1.0, 0.0), 20.0))
+    out.extend(random_cells())
     for e in (-9, -3, 3, 9):
         p = Parameters(k_p=a.k_p, k_i=a.k_i, k_v=a.k_v, f_c=F(10) ** e)
         out.append(Cell("f_c", f"case (a), f_c = 1e{e}", p, (0.0, 1.0, 0.0), 30.0))

@@ -37,7 +37,14 @@ def result():
 def test_matrix_covers_the_hard_cases():
     labels = [c.label for c in cells()]
     assert "k_v k_p/k_i = 1+1e-12" in labels
-    assert {c.group for c in cells()} == {"Routh boundary", "repeated roots", "stiff", "f_c", "|z0|", "long horizon"}
+    assert {c.group for c in cells()} == {
+        "Routh boundary", "repeated roots", "stiff", "random admissible", "f_c", "|z0|", "long horizon",
+    }
+    # gains over 1e-4..1e4, Routh margins to 1 + 1e-9 and fast/slow ratios to 1e8
+    random = [c for c in cells() if c.group == "random admissible"]
+    assert len(random) >= 6 and all(c.params.k_v * c.params.k_p > c.params.k_i for c in random)
+    assert min(c.params.k_v * c.params.k_p / c.params.k_i for c in random) < 1 + 1e-8
+    assert "fast/slow 1e8, slow pair zeta 0.1" in labels
     fcs = [float(c.params.f_c) for c in cells()]
     assert min(fcs) == 1e-9 and max(fcs) == 1e9
     sizes = [max(abs(x) for x in c.z0) for c in cells()]

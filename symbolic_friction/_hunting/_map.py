@@ -44,6 +44,8 @@ __all__ = ["HuntingMap", "MapStep", "HuntingCycle", "find_cycles", "cycle_orbit"
 # A slip still going after this many time constants of the slowest root has decayed by e^-240
 # (1e-104 relative): it is reported as not ending (the solution converges to a point of 𝒜).
 _TIME_CONSTANTS = 240.0
+# A slip whose offset has decayed to this fraction of its start is on its equilibrium to working precision.
+_DECAYED = 64 * 2.220446049250313e-16
 _MAX_SLIPS = 16
 
 
@@ -121,7 +123,9 @@ class HuntingMap:
         s, slips = sigma, []
         for _ in range(_MAX_SLIPS):
             tau, (ys, yp, yv) = first_zero(self.model, (s, p, 0.0), d, self.horizon)
-            if tau is None or max(abs(ys), abs(yp), abs(yv)) <= UNDERFLOW:  # decayed onto x*_d ∈ 𝒜, as in the kernel
+            # decayed onto x*_d ∈ 𝒜: below underflow, as in the kernel, or below the rounding of the
+            # slip's own start (a zero there is the rounding's, e.g. on a real-root escape bound)
+            if tau is None or max(abs(ys), abs(yp), abs(yv)) <= max(UNDERFLOW, _DECAYED * max(abs(s), abs(p))):
                 slips.append((d, math.inf, 0.0, d * self.f_c))
                 return MapStep(sigma, tuple(slips), math.nan, math.nan, "slips forever")
             tol = SNAP_ULPS * EPS * max(abs(s), abs(p))

@@ -32,15 +32,21 @@ class Status:
     """Why the simulation of one trajectory stopped.
 
     ``T_END`` and ``EQUILIBRIUM`` are *complete*: every sample was computed.
-    The others are *incomplete*: samples after the stop are NaN, never made up.
+    ``FALLBACK`` is complete too, but only exact up to the start of the slip whose
+    end the event kernel could not decide (``UNDECIDED``); from there a stiff
+    integrator (Radau with events) computed the rest, at the tolerance its
+    ``options["fallback"]`` states.  The others are *incomplete*: samples after
+    the stop are NaN, never made up.
     """
 
     T_END = "t_end reached"
     EQUILIBRIUM = "at an equilibrium"
     MAX_EVENTS = "max_events reached"
     NONFINITE = "left the range of float64"
+    UNDECIDED = "end of a slip undecided"
+    FALLBACK = "t_end reached by Radau after an undecided event"
 
-    COMPLETE = (T_END, EQUILIBRIUM)
+    COMPLETE = (T_END, EQUILIBRIUM, FALLBACK)
 
 
 class AlongStates:
@@ -181,7 +187,7 @@ class Trajectories(AlongStates):
 
     @property
     def complete(self) -> np.ndarray:
-        """Per trajectory: every sample was computed (status ``T_END`` or ``EQUILIBRIUM``)."""
+        """Per trajectory: every sample was computed (status ``T_END``, ``EQUILIBRIUM`` or ``FALLBACK``)."""
         return np.isin(self.status, Status.COMPLETE)
 
     @property

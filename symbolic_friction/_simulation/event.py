@@ -12,7 +12,16 @@ The solution is a concatenation of the three affine flows of Claim 1
 * **Slip** (``k = ±1``): the event is the *first* zero of ``v`` after the
   start, bracketed rigorously and refined to machine precision
   (:mod:`.search`: a certified scan plus a certified Taylor march, both
-  resting on ``|x - x*_k|_P`` being nonincreasing with the paper's ``P``).
+  resting on ``|x - x*_k|_P`` being nonincreasing with the paper's ``P``, and
+  on stiff gains on the split of ``v`` into its fast mode and the slow pair,
+  so that the cost is set by the events, not by ``k_v``).
+* If the search cannot decide where a slip ends (its certified march ran out
+  of steps, which no gain set in the tests reaches), the kernel stops at the
+  slip's start with :attr:`Status.UNDECIDED`, and :func:`simulate` finishes
+  the trajectory from there with ``ivp-events`` (Radau, ``rtol = 1e-12``),
+  status :attr:`Status.FALLBACK`, the switch stated in ``options["fallback"]``
+  (with static friction, which that method does not model, it stays
+  incomplete).
 * After a slip, ``v`` is set to exactly 0 and the next mode is selected with
   :func:`._kernel.mode_after_slip`: a tolerance-free clamp (a slip in
   direction ``k`` can only end with ``k·φ ≤ f_c``), then ``φ`` within a few
@@ -61,7 +70,9 @@ __all__ = ["EventDriven", "run"]
 # with more is run again with room for max_events (its kernel call says so).
 _FIRST_ROOM = 32
 # the kernel's status codes (T_END, MAX_EVENTS, EQUILIBRIUM, NONFINITE) as names
-_STATUS_NAMES = np.array([Status.T_END, Status.MAX_EVENTS, Status.EQUILIBRIUM, Status.NONFINITE], dtype=object)
+_STATUS_NAMES = np.array(
+    [Status.T_END, Status.MAX_EVENTS, Status.EQUILIBRIUM, Status.NONFINITE, "buffer full", Status.UNDECIDED], dtype=object
+)
 
 
 def _check_positive_int(name: str, value: Any, minimum: int) -> None:
@@ -235,14 +246,82 @@ class EventDriven(SimulationMethod):
     ) -> Solution:
         max_events = int(options["max_events"])
         if t_eval is not None:
-            return _single(run_one(params, z0, t_end, t_eval, max_events=max_events, options=options))
+            batch = run_one(params, z0, t_end, t_eval, max_events=max_events, options=options)
+            if batch.status[0] == Status.UNDECIDED and not params.stiction:
+                return _fallback(batch, params, z0, t_end, max_events, options, event_samples=False)
+            return _single(batch)
         grid = np.linspace(0.0, t_end, int(options["grid_points"]))
         batch = run_one(params, z0, t_end, grid, max_events=max_events, options=options)
+        if batch.status[0] == Status.UNDECIDED and not params.stiction:
+            return _fallback(batch, params, z0, t_end, max_events, options, event_samples=True)
         if batch.status[0] == Status.MAX_EVENTS:
             # the grid covers what was computed: [0, t_stop]
             grid = np.linspace(0.0, float(batch.t_stop[0]), int(options["grid_points"]))
             batch = run_one(params, z0, t_end, grid, max_events=max_events, options=options)
         return _single(_with_events(batch))
+
+
+# The stiff integrator that finishes a trajectory whose next event the kernel could not decide,
+# and its tolerances (relative; absolute ones scaled by the state's size).
+FALLBACK_INTEGRATOR = "Radau"
+FALLBACK_RTOL = 1e-12
+
+
+def _fallback(
+    batch: Trajectories, params: Parameters, z0: np.ndarray, t_end: float, max_events: int, options: dict,
+    *, event_samples: bool,
+) -> Solution:
+    """Finish ``batch`` (one trajectory, status ``UNDECIDED``) with Radau and events from where it stopped.
+
+    The exact samples and events up to ``t_stop`` (the start of the slip whose
+    end the kernel could not decide) are kept; the rest comes from the
+    ``ivp-events`` method with ``integrator="Radau"`` at ``rtol = 1e-12``.
+    The status says so (:attr:`Status.FALLBACK`), and ``options["fallback"]``
+    states from when, with which integrator and tolerances (the residual
+    of that part: its local error per step, not the kernel's rounding).
+    """
+    from .ivp_events import IvpEvents
+
+    t_stop = float(batch.t_stop[0])
+    # the exact state where the kernel stopped: its sample at t_stop
+    at_stop = run_one(params, z0, t_end, np.array([0.0, t_stop]), max_events=max_events, options=options)
+    z_stop = at_stop.z[0, -1]
+    n = int(batch.n_events[0])
+    keep = batch.t <= t_stop
+    later = batch.t[~keep]
+    scale = max(1.0, float(np.max(np.abs(z_stop))), float(params.f_c) / float(params.k_i))
+    radau = IvpEvents(integrator=FALLBACK_INTEGRATOR, rtol=FALLBACK_RTOL, atol=FALLBACK_RTOL * scale, max_events=max_events)
+    horizon = t_end - t_stop
+    rest = radau._solve(params, z_stop, horizon, np.concatenate([later - t_stop, [horizon]]) if later.size else None, radau.options)
+    rt, rz, rmode = rest.t + t_stop, rest.z, rest.mode
+    if later.size:  # the requested samples only (the last one was added to reach t_end)
+        rt, rz, rmode = rt[:-1], rz[:-1], rmode[:-1]
+    events = tuple((float(batch.event_t[0, j]), int(batch.event_before[0, j]), int(batch.event_after[0, j])) for j in range(n))
+    events += tuple((t + t_stop, a, b) for t, a, b in rest.events)
+    complete = rest.status in Status.COMPLETE
+    fallback = {
+        "from": t_stop,
+        "integrator": FALLBACK_INTEGRATOR,
+        "rtol": FALLBACK_RTOL,
+        "atol": FALLBACK_RTOL * scale,
+        "status": rest.status,
+    }
+    t = np.concatenate([batch.t[keep], rt])
+    z = np.concatenate([batch.z[0, keep], rz])
+    mode = np.concatenate([batch.mode[0, keep], rmode])
+    if event_samples:  # as _with_events: the exact event times among the samples
+        t_ev = np.array([e[0] for e in events[:n]])
+        order = np.argsort(np.concatenate([t, t_ev]), kind="stable")
+        ev_z = x_to_z(params, batch.event_x[0, :n])
+        t = np.concatenate([t, t_ev])[order]
+        z = np.concatenate([z, ev_z])[order]
+        mode = np.concatenate([mode, batch.event_after[0, :n]])[order]
+        unique = np.concatenate([[True], t[1:] != t[:-1]])
+        t, z, mode = t[unique], z[unique], mode[unique]
+    return Solution.from_samples(
+        params=params, method="event", t=t, z=z, mode=mode, events=events,
+        status=Status.FALLBACK if complete else rest.status, options={**options, "fallback": fallback},
+    )
 
 
 def _with_events(batch: Trajectories) -> Trajectories:

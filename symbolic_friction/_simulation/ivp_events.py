@@ -27,7 +27,10 @@ rtol, atol : float
     Tolerances of ``solve_ivp`` (defaults ``1e-8``, ``1e-10``).
 integrator : {"DOP853", "RK45", "Radau", "BDF", "LSODA"}
     The integrator of each segment (default ``"DOP853"``, scipy's
-    recommendation for tight tolerances).
+    recommendation for tight tolerances).  The explicit ones (DOP853, RK45)
+    are refused on stiff gains, when the spectral radius of ``A_δ`` times
+    ``t_end`` exceeds 10⁷ (their steps are bounded by stability to about
+    ``3/ρ``): use Radau or BDF there.
 max_events : int
     Maximum number of mode switches (default ``10_000``).
 
@@ -58,6 +61,9 @@ from .modes import select_mode
 __all__ = ["IvpEvents", "INTEGRATORS"]
 
 INTEGRATORS = ("DOP853", "RK45", "Radau", "BDF", "LSODA")
+EXPLICIT = ("DOP853", "RK45")
+# ρ·t_end above which an explicit integrator is refused (about 3·10⁶ stability-limited steps)
+EXPLICIT_WORK = 1e7
 
 
 def _check_positive(options: dict[str, Any], name: str) -> None:
@@ -102,6 +108,16 @@ class IvpEvents(SimulationMethod):
         rtol, atol = float(options["rtol"]), float(options["atol"])
         integrator = options["integrator"]
         max_events = int(options["max_events"])
+        if integrator in EXPLICIT:
+            # an explicit integrator's steps are bounded by stability to about 3/ρ (ρ the spectral
+            # radius of A_δ): say so rather than run for hours
+            rho = float(np.max(np.abs(np.roots([1.0, k_v, k_p, k_i]))))
+            if rho * t_end > EXPLICIT_WORK:
+                raise SimulationError(
+                    f"stiff gains for the explicit integrator {integrator}: spectral radius {rho:.3g} over t_end = "
+                    f"{t_end:g} needs about {rho * t_end / 3:.2g} steps (more than {EXPLICIT_WORK / 3:.0e}); "
+                    "use integrator='Radau' or 'BDF', or the event method"
+                )
 
         # The package's one model: A_δ and b of eq. (xPhDot), the rows of T (eq. CoC) that give
         # σ = t_σ·z and φ = t_φ·z, and the appendix's table (modes.select_mode).

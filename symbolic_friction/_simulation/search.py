@@ -24,6 +24,24 @@ and ``u = k v``, positive inside the slip.  Two rigorous tools are combined:
    bracket, refines that zero to machine precision.  At an exact tangency
    the steps shrink geometrically and the contact point is returned.
 
+3. **Two time scales** (:class:`.affine.ModalScan`).  On stiff gains the
+   isolated root ``r ≈ -k_v`` is far faster than the pair, and the ``P``-norm
+   bounds above are set by it: the cells of 1 and the steps of 2 would be
+   ``1/|r|`` long over the whole slip, a cost that grows like ``k_v·T``.  So
+   ``v = c e^{rτ} + S(τ)`` is split into the fast part, whose derivatives are
+   bounded by ``|c(0)| |r|ʲ e^{rτ}`` (with ``c(0)`` taken once at the slip's
+   start: recomputing it from a later state would only recover its rounding,
+   amplified by ``|r|ʲ``), and the pair's part ``S``, whose energy
+   ``E = q S² + S'²`` does not increase.  After ``40/|r|`` the scan tabulates
+   ``S`` alone on cells set by the pair and adds the fast part's bound to each
+   cell's slack; the march takes the sharper of the two bounds.  The cost of
+   a slip is then set by the pair, whatever ``k_v``.
+
+The march gives up after a fixed number of steps (a bound too weak to make
+progress); it then says so (``UNDECIDED``), never taking the spent budget for
+a zero: the event loop stops there and :mod:`.event` finishes the trajectory
+with Radau and events, stating it.
+
 The search is written once, for one slip, in the simulation kernel
 (:func:`._kernel.first_zero`, compiled by numba when available); this module
 holds its mathematics, its constants (:func:`slip_model`) and the written-out
@@ -40,10 +58,11 @@ from fractions import Fraction
 
 import numpy as np
 
+from .._errors import SimulationError
 from .._coordinates import coc_entries, coc_inverse_entries, system_matrix_entries
 from .._lyapunov import lyapunov_matrix_entries
 from .._parameters import Parameters
-from .affine import MatrixExponential, ScanTable, SlipBounds  # noqa: F401 (ScanTable in annotations)
+from .affine import MatrixExponential, ModalScan, ScanTable, SlipBounds
 
 __all__ = ["SlipModel", "slip_model", "first_zero", "p_norm", "UNDERFLOW"]
 
@@ -66,6 +85,7 @@ class SlipModel:
     expm: MatrixExponential
     bounds: SlipBounds
     table: ScanTable
+    modal: ModalScan
     f_c: float
     K: np.ndarray = field(repr=False)
     W: np.ndarray = field(repr=False)
@@ -87,17 +107,34 @@ def slip_model(params: Parameters) -> SlipModel:
     expm = MatrixExponential.from_params(params)
     bounds = SlipBounds.from_params(params)
     table = ScanTable.build(expm)
+    modal = ModalScan.build(expm, cells=table.cells)
     f_c = float(params.f_c)
-    K = _pack(expm, bounds, table, f_c, f_s=float(params.f_s), excess=float(params.f_s - params.f_c))
-    W = np.ascontiguousarray(table.values)
-    N = np.ascontiguousarray(table.noise)
+    W, N = _tables(table, modal)
+    K = _pack(expm, bounds, table, modal, f_c, f_s=float(params.f_s), excess=float(params.f_s - params.f_c))
     for a in (K, W, N):
         a.flags.writeable = False
-    return SlipModel(expm=expm, bounds=bounds, table=table, f_c=f_c, K=K, W=W, N=N)
+    return SlipModel(expm=expm, bounds=bounds, table=table, modal=modal, f_c=f_c, K=K, W=W, N=N)
+
+
+def _tables(table: ScanTable, modal: ModalScan) -> tuple[np.ndarray, np.ndarray]:
+    """``W`` and ``N`` of the kernel: the scan table of ``w`` above the slow table of the pair."""
+    from . import _kernel as k
+
+    W = np.ascontiguousarray(np.vstack([table.values, modal.values]))
+    N = np.ascontiguousarray(np.vstack([table.noise, modal.noise]))
+    assert W.shape[0] == k.W_SLOW + 5 and N.shape[0] == k.N_SLOW + 2
+    return W, N
 
 
 def _pack(
-    expm: MatrixExponential, bounds: SlipBounds, table: ScanTable, f_c: float, *, f_s: float | None = None, excess: float = 0.0
+    expm: MatrixExponential,
+    bounds: SlipBounds,
+    table: ScanTable,
+    modal: ModalScan,
+    f_c: float,
+    *,
+    f_s: float | None = None,
+    excess: float = 0.0,
 ) -> np.ndarray:
     """The scalars of :mod:`._kernel` (its ``I_*`` layout), all generated from the package's ``A`` and ``P``.
 
@@ -123,15 +160,26 @@ def _pack(
     K[k.I_GAIN_KP], K[k.I_GAIN_KI] = expm.k_p, expm.k_i
     K[k.I_TINV : k.I_TINV + 9] = np.array(coc_inverse_entries(expm.k_p, expm.k_i), dtype=float).reshape(-1)
     K[k.I_T : k.I_T + 9] = np.array(coc_entries(expm.k_p, expm.k_i), dtype=float).reshape(-1)
+    # The split's bounds serve where the P-norm ones are loose, on stiff gains; elsewhere the
+    # march keeps its P-norm steps, whose outcome at a rounding-level tangency is the reference's.
+    K[k.I_MODAL], K[k.I_STIFF] = float(modal.stiff), float(modal.stiff)
+    K[k.I_MF : k.I_MF + 27] = modal.matrices
+    K[k.I_PQ] = modal.q
+    K[k.I_MU : k.I_MU + 5] = modal.mu
+    K[k.I_SDT], K[k.I_SCELLS], K[k.I_SWINDOW], K[k.I_TFAST] = modal.dt, modal.cells, modal.window, modal.t_fast
     # The length of a slip that leaves a stick: the first zero of w (the slip from y0 = e₁),
     # searched once, as the kernel would, over 60 time constants of the slowest root (a
     # later zero would come when the state has decayed by e⁻⁶⁰; past that the kernel searches),
     # but over at most STICK_SLIP_WINDOWS scan windows: with roots spread 10⁶ those 60 time
     # constants are millions of windows, and the kernel's own search covers what lies beyond.
-    K[k.I_STICK_SLIP_H] = min(60.0 / expm.slowest_rate, STICK_SLIP_WINDOWS * table.window)
+    # (On stiff gains the windows are the slow table's, after the fast part has decayed.)
+    K[k.I_STICK_SLIP_H] = min(60.0 / expm.slowest_rate, STICK_SLIP_WINDOWS * max(table.window, modal.window))
     K[k.I_STICK_SLIP_T] = math.inf  # not used while searching for it
-    found, tau, *_ = k.first_zero(K.tolist(), table.values.tolist(), table.noise.tolist(), 1.0, 0.0, 0.0, 1, K[k.I_STICK_SLIP_H])
-    K[k.I_STICK_SLIP_T] = tau if found else math.inf
+    W, N = _tables(table, modal)
+    code, tau, *_ = k.first_zero(K.tolist(), W.tolist(), N.tolist(), 1.0, 0.0, 0.0, 1, K[k.I_STICK_SLIP_H])
+    if code == k.UNDECIDED:  # not known: the kernel searches each such slip itself
+        K[k.I_STICK_SLIP_H] = 0.0
+    K[k.I_STICK_SLIP_T] = tau if code == k.FOUND else math.inf
     return K
 
 
@@ -197,5 +245,10 @@ def first_zero(
     k = kernel()
     K, W, N = model.constants(k is not plain())
     s, p, v = (float(c) for c in y0)
-    found, tau, ys, yp, yv = k.first_zero(K, W, N, s, p, v, int(direction), float(horizon))
-    return (float(tau) if found else None), (float(ys), float(yp), float(yv))
+    code, tau, ys, yp, yv = k.first_zero(K, W, N, s, p, v, int(direction), float(horizon))
+    if code == k.UNDECIDED:
+        raise SimulationError(
+            f"the end of the slip from y0 = {tuple(y0)!r} could not be decided beyond τ = {float(tau):g} "
+            "(the search's step budget ran out)"
+        )
+    return (float(tau) if code == k.FOUND else None), (float(ys), float(yp), float(yv))

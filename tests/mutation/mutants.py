@@ -166,8 +166,8 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant("cc.tolerance", "cross-check", _PR, "DEFAULT_RTOL = 1e-8", "DEFAULT_RTOL = 1e3", "tolerance made huge"),
     Mutant("cc.accepts_unproved", "cross-check", _R, "            if not report.proved:", "            if False:",
            "unproved certificates are cross-checked instead of refused"),
-    Mutant("cc.hides_event_limit", "cross-check", _SI, "    COMPLETE = (T_END, EQUILIBRIUM)",
-           "    COMPLETE = (T_END, EQUILIBRIUM, MAX_EVENTS)", "trajectories that hit the event limit count as complete"),
+    Mutant("cc.hides_event_limit", "cross-check", _SI, "    COMPLETE = (T_END, EQUILIBRIUM, FALLBACK)",
+           "    COMPLETE = (T_END, EQUILIBRIUM, FALLBACK, MAX_EVENTS)", "trajectories that hit the event limit count as complete"),
 )
 
 FAST: tuple[str, ...] = ("V.at_rest", "verify.drop_c2")

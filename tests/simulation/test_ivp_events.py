@@ -119,3 +119,19 @@ def test_integrator_failure_is_reported(monkeypatch):
     monkeypatch.setattr(scipy.integrate, "solve_ivp", failing)
     with pytest.raises(SimulationError, match=r"the DOP853 integrator failed at t = 0\.5: step size too small"):
         simulate(Parameters.table_i("a"), (0.0, 1.0, 0.0), 1.0, method="ivp-events")
+
+
+def test_an_explicit_integrator_is_refused_on_stiff_gains_with_the_reason():
+    from fractions import Fraction as F
+
+    from symbolic_friction import Parameters
+    from symbolic_friction._errors import SimulationError
+    from symbolic_friction._simulation import IvpEvents, simulate
+
+    # (s + 1e8)(s² + 0.2 s + 1): spectral radius 1e8, 2e9 over t_end = 20
+    stiff = Parameters(k_v=F(10**8) + F(1, 5), k_p=F(2 * 10**7) + 1, k_i=F(10**8))
+    with pytest.raises(SimulationError, match=r"stiff gains for the explicit integrator DOP853.*Radau"):
+        simulate(stiff, (0.0, 1.0, 0.0), 20.0, method=IvpEvents())
+    # an implicit one is not refused (a short horizon keeps the run cheap)
+    sol = simulate(stiff, (0.0, 1.0, 0.0), 1e-3, method=IvpEvents(integrator="Radau"))
+    assert sol.complete

@@ -98,13 +98,23 @@ def test_a_tangency_ends_promptly_and_agrees_with_the_reference(tau0):
     ref = Reference(CASE_A, tuple(z0), 6.0)
     z_ref, _ = ref.sample(t)
     assert np.max(np.abs(sol.z - np.array(z_ref))) / max(1.0, np.linalg.norm(z0)) <= 1e-10
-    # At a tangency the event list is ill-conditioned: v dips to about -1e-15 or stays
-    # above 0 depending on the last bit of x(0) = T z(0), so a rounding-level crossing
-    # may add a stick of a few nanoseconds at the contact (seen at tau0 = 0.8, where a
-    # correctly rounded x(0) dips too).  Every event of the reference must be found, at
-    # its time; any other event must come in such a pair, within 1e-6 of the contact.
+    # At a tangency the event list is ill-conditioned: v dips to about -3e-15 (exactly, from
+    # the rounded x(0) too), below the rounding of v's closed form in double precision
+    # (about 1e-14 here), so whether the dip is seen, and where it starts (|v'| ≈ 1e-7
+    # there: 1e-14/|v'| ≈ 1e-7 s), is decided by the last bits.  Every event of the
+    # reference must be found: at its time to 1e-10 away from the contact, to 1e-6 at it,
+    # with the same modes; any other event must come in such a pair, within 1e-6 of the
+    # contact.  The states above agree to 1e-10 all the same.
     want = ref.event_list()
-    extra = [e for e in sol.events if not any(abs(e[0] - w[0]) <= 1e-10 and e[1:] == w[1:] for w in want)]
+
+    def tol(e):
+        return 1e-6 if abs(e[0] - tau0) <= 1e-6 else 1e-10
+
+    def matched(e, among):
+        return any(abs(e[0] - w[0]) <= max(tol(e), tol(w)) and e[1:] == w[1:] for w in among)
+
+    assert all(matched(w, sol.events) for w in want)
+    extra = [e for e in sol.events if not matched(e, want)]
     assert all(abs(e[0] - tau0) <= 1e-6 for e in extra) and len(extra) % 2 == 0
     assert len(sol.events) - len(extra) == len(want)
 
