@@ -107,7 +107,7 @@ def _round(x: float, digits: int) -> F:
     return F(f"{x:.{digits - 1}e}")
 
 
-def random_case(seed: int, *, digits: int = 3, friction: bool = True):
+def random_case(seed: int, *, digits: int = 3, friction: bool = True, log_margin: tuple[float, float] = (-4.0, 1.0)):
     """A random stiff admissible case ``(params, z0, t_end)`` from ``seed``.
 
     Parameters
@@ -118,12 +118,14 @@ def random_case(seed: int, *, digits: int = 3, friction: bool = True):
     friction : bool
         With ``False`` always ``f_c = 1 = f_s``; with ``True`` one case in four
         has ``f_c`` log-uniform in ``[0.5, 2]`` and one in four ``f_s > f_c``.
+    log_margin : (float, float)
+        The range of ``U`` below (``(-9, -4)``: the Routh boundary's neighbourhood).
 
     Returns
     -------
     params : Parameters
         ``k_p, k_i`` log-uniform in ``[10⁻⁴, 10⁴]``; ``k_v = m k_i/k_p`` exactly,
-        with ``m = 1 + 10^U`` rounded, ``U`` uniform in ``[-4, 1]``, so the
+        with ``m = 1 + 10^U`` rounded, ``U`` uniform in ``log_margin``, so the
         Routh margin of Assumption 1 is exactly ``m > 1``.
     z0 : tuple of 3 floats
         ``|z0|`` log-uniform in ``[0.1, 100]``, direction uniform on the sphere.
@@ -133,7 +135,7 @@ def random_case(seed: int, *, digits: int = 3, friction: bool = True):
     rng = random.Random(seed)
     k_p = _round(10 ** rng.uniform(-4, 4), digits)
     k_i = _round(10 ** rng.uniform(-4, 4), digits)
-    margin = 1 + _round(10 ** rng.uniform(-4, 1), digits)
+    margin = 1 + _round(10 ** rng.uniform(*log_margin), digits)
     k_v = margin * k_i / k_p
     f_c, f_s = F(1), None
     if friction:

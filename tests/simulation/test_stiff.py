@@ -188,10 +188,15 @@ def test_the_regression_cases_match_the_reference(name):
     assert np.abs(sol.z[-1] - z_end).max() <= 1e-10 * np.abs(z_end).max()
 
 
-@pytest.mark.parametrize("seed", range(12))
-def test_random_admissible_gains_complete_and_match_the_reference(seed):
-    """Gains log-uniform over 1e-4..1e4, Routh margin 1 + 1e-4..11, |z0| in [0.1, 100], T = 20."""
-    params, z0, t_end = random_case(seed)
+# Seeds whose reference takes at most a few seconds (2, 103 and 104 have hundreds of events);
+# tests/benchmarks/bench_random_gains.py runs 400 seeds.
+@pytest.mark.parametrize(
+    "seed, log_margin",
+    [(seed, (-4.0, 1.0)) for seed in range(12) if seed != 2] + [(seed, (-9.0, -4.0)) for seed in (100, 101, 102, 105, 106)],
+)
+def test_random_admissible_gains_complete_and_match_the_reference(seed, log_margin):
+    """Gains log-uniform over 1e-4..1e4, Routh margin 1 + 1e-4..11 (and 1 + 1e-9..1e-4), |z0| in [0.1, 100], T = 20."""
+    params, z0, t_end = random_case(seed, log_margin=log_margin)
     sol = simulate(params, z0, t_end)
     assert sol.status in (Status.T_END, Status.EQUILIBRIUM)
     ref = Reference(params, z0, t_end, dps=40, max_events=20_000)
