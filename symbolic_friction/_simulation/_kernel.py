@@ -392,6 +392,17 @@ def _march(K, q, d, a, s, p, v, stop, fast0):
 
 
 @kernel
+def _march_cell(K, q, d, a_w, j, dt, s, p, v, horizon, fast0):
+    """:func:`_march` over cell ``j`` of a window that starts at ``a_w`` with offset ``(s, p, v)``."""
+    a0 = a_w + float(j) * dt
+    if j == 0:
+        ys, yp, yv = s, p, v
+    else:
+        ys, yp, yv = flow(K, q, a0)
+    return _march(K, q, d, a0, ys, yp, yv, min(a0 + dt, horizon), fast0)
+
+
+@kernel
 def _scan_fast(K, W, N, q, d, a_w, s, p, v, horizon, fast0):
     """One window of the scan of ``w`` (:class:`.affine.ScanTable`) from ``a_w``, offset ``(s, p, v)`` there."""
     dt, n_cells = K[I_DT], int(K[I_CELLS])
@@ -414,12 +425,7 @@ def _scan_fast(K, W, N, q, d, a_w, s, p, v, horizon, fast0):
         slack = grow * (max(u2_prev, u2_next) + extra)
         noise = abs_s * N0[j] + abs_p * N1[j] + abs_v * N2[j]
         if not min(u_prev, u_next) > slack + noise:
-            a0 = a_w + float(j) * dt
-            if j == 0:
-                ys, yp, yv = s, p, v
-            else:
-                ys, yp, yv = flow(K, q, a0)
-            code, tau, ys, yp, yv = _march(K, q, d, a0, ys, yp, yv, min(a0 + dt, horizon), fast0)
+            code, tau, ys, yp, yv = _march_cell(K, q, d, a_w, j, dt, s, p, v, horizon, fast0)
             if code != NONE:
                 return code, tau, ys, yp, yv
         u_prev, u2_prev = u_next, u2_next
@@ -456,12 +462,7 @@ def _scan_slow(K, W, N, q, d, a_w, s, p, v, horizon, fast0):
         slack = grow * (max(u2_prev, u2_next) + extra)
         noise = n1 * NC[j] + n2 * ND[j] + ac * WF[j]
         if not min(u_prev, u_next) > slack + noise:
-            a0 = a_w + float(j) * dt
-            if j == 0:
-                ys, yp, yv = s, p, v
-            else:
-                ys, yp, yv = flow(K, q, a0)
-            code, tau, ys, yp, yv = _march(K, q, d, a0, ys, yp, yv, min(a0 + dt, horizon), fast0)
+            code, tau, ys, yp, yv = _march_cell(K, q, d, a_w, j, dt, s, p, v, horizon, fast0)
             if code != NONE:
                 return code, tau, ys, yp, yv
         u_prev, u2_prev = u_next, u2_next

@@ -315,8 +315,25 @@ class SlipBounds:
         return cls(m=tuple(m), e1_norm=math.sqrt(float(p11)) * (1.0 + 1e-12))
 
 
+class _Grid:
+    """A table on the grid ``τ_j = jΔ``, ``j = 0 … G`` (``values`` has ``G + 1`` columns)."""
+
+    dt: float
+    values: np.ndarray
+
+    @property
+    def cells(self) -> int:
+        """Number ``G`` of cells."""
+        return self.values.shape[1] - 1
+
+    @property
+    def window(self) -> float:
+        """Length ``GΔ`` of the grid (``16/ρ`` for :class:`ScanTable`; 0 for a :class:`ModalScan` that is not stiff)."""
+        return self.dt * self.cells
+
+
 @dataclass(frozen=True, eq=False)
-class ScanTable:
+class ScanTable(_Grid):
     r"""``w`` and its first four derivatives on a fine grid, to scan a slip for its event.
 
     Along a slip, from any time ``a`` with offset ``y(a) = (σ, p, v)``,
@@ -347,16 +364,6 @@ class ScanTable:
     values: np.ndarray = field(repr=False)
     noise: np.ndarray = field(repr=False)
 
-    @property
-    def cells(self) -> int:
-        """Number ``G`` of cells."""
-        return self.values.shape[1] - 1
-
-    @property
-    def window(self) -> float:
-        """Length ``GΔ`` of the grid (``16/ρ`` by default)."""
-        return self.dt * self.cells
-
     @classmethod
     def build(cls, expm: MatrixExponential, *, cells: int = 128) -> "ScanTable":
         """Tabulate ``w, …, w⁗`` on ``cells + 1`` points."""
@@ -386,7 +393,7 @@ def _pair_radius(alpha: float, beta2: float) -> float:
 
 
 @dataclass(frozen=True, eq=False)
-class ModalScan:
+class ModalScan(_Grid):
     r"""The two time scales of a slip, to find its event and to flow it at a cost and an accuracy set by the slow one.
 
     With the isolated root ``r`` and the pair ``α ± β`` of :class:`MatrixExponential`,
@@ -501,16 +508,6 @@ class ModalScan:
             usable=usable, stiff=stiff, t_fast=40.0 / abs(r) if stiff else math.inf, matrices=matrices,
             q=q, mu=tuple(mu), dt=dt, values=values, noise=noise,
         )
-
-    @property
-    def cells(self) -> int:
-        """Number ``G`` of cells of the slow table."""
-        return self.values.shape[1] - 1
-
-    @property
-    def window(self) -> float:
-        """Length ``GΔ`` of the slow table (0 when not stiff)."""
-        return self.dt * self.cells
 
 
 def slip_equilibrium(f_c: float, direction: int) -> np.ndarray:
