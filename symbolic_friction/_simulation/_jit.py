@@ -1,8 +1,9 @@
 """Which variant of the kernel runs: compiled by numba, or the same source as Python.
 
-:mod:`._kernel` is written once, in the subset of Python that numba compiles.
-:func:`kernel` returns either that module as it is (the pure-Python
-fallback), or the same file loaded a second time, under the name
+:mod:`._kernel` (with :mod:`._kernel_flow`, which it imports) is written
+once, in the subset of Python that numba compiles.  :func:`kernel` returns
+either that module as it is (the pure-Python fallback), or the same files
+loaded a second time, under the names ``…._kernel_flow_jit`` and
 ``symbolic_friction._simulation._kernel_jit``, with every function compiled
 (``numba.njit(cache=True)``: machine code is cached on disk beside the
 sources, or in numba's user cache when that directory is read-only).
@@ -46,6 +47,8 @@ PLAIN_BUDGET = 3.0
 # A call with this many samples and events (about 1 s in plain Python) loads the compiled kernel.
 LARGE_WORK = 200_000
 _spent = 0.0
+# The kernel's files, each loaded a second time for the compiled variant, in this order.
+_KERNEL_FILES = ("_kernel_flow", "_kernel")
 
 
 def setting() -> str:
@@ -84,18 +87,22 @@ def compiled() -> ModuleType | None:
         import numba  # noqa: F401
     except ImportError:
         return None
-    source = plain().__file__
-    name = f"{__package__}._kernel_jit"
-    spec = importlib.util.spec_from_file_location(name, source)
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    module._JIT = True  # read by the kernel's first lines: decorate with numba.njit
-    sys.modules[name] = module
-    try:
-        spec.loader.exec_module(module)
-    except BaseException:
-        sys.modules.pop(name, None)
-        raise
+    folder = os.path.dirname(plain().__file__)
+    module = None
+    # the closed form and search first: the event loop's compiled variant imports it by this name
+    for stem in _KERNEL_FILES:
+        name = f"{__package__}.{stem}_jit"
+        spec = importlib.util.spec_from_file_location(name, os.path.join(folder, f"{stem}.py"))
+        assert spec is not None and spec.loader is not None
+        module = importlib.util.module_from_spec(spec)
+        module._JIT = True  # read by the file's first lines: decorate with numba.njit
+        sys.modules[name] = module
+        try:
+            spec.loader.exec_module(module)
+        except BaseException:
+            for loaded in _KERNEL_FILES:
+                sys.modules.pop(f"{__package__}.{loaded}_jit", None)
+            raise
     return module
 
 

@@ -24,7 +24,7 @@ and ``u = k v``, positive inside the slip.  Two rigorous tools are combined:
    bracket, refines that zero to machine precision.  At an exact tangency
    the steps shrink geometrically and the contact point is returned.
 
-3. **Two time scales** (:class:`.affine.ModalScan`).  On stiff gains the
+3. **Two time scales** (:class:`.modal.ModalScan`).  On stiff gains the
    isolated root ``r ≈ -k_v`` is far faster than the pair, and the ``P``-norm
    bounds above are set by it: the cells of 1 and the steps of 2 would be
    ``1/|r|`` long over the whole slip, a cost that grows like ``k_v·T``.  So
@@ -43,9 +43,9 @@ a zero: the event loop stops there and :mod:`.event` finishes the trajectory
 with Radau and events, stating it.
 
 The search is written once, for one slip, in the simulation kernel
-(:func:`._kernel.first_zero`, compiled by numba when available); this module
-holds its mathematics, its constants (:func:`slip_model`) and the written-out
-``|y|_P`` it calls.
+(:func:`._kernel_flow.first_zero`, compiled by numba when available, with the
+written-out ``|y|_P`` it calls, :func:`p_norm`); this module holds its
+mathematics and its constants (:func:`slip_model`).
 """
 
 from __future__ import annotations
@@ -62,16 +62,13 @@ from .._errors import SimulationError
 from .._coordinates import coc_entries, coc_inverse_entries, system_matrix_entries
 from .._lyapunov import lyapunov_matrix_entries
 from .._parameters import Parameters
-from .affine import MatrixExponential, ModalScan, ScanTable, SlipBounds
+from .affine import MatrixExponential, ScanTable, SlipBounds
+from ._kernel_flow import p_norm
+from ._kernel_layout import UNDERFLOW
+from .modal import ModalScan
 
 __all__ = ["SlipModel", "slip_model", "first_zero", "p_norm", "UNDERFLOW"]
 
-# A slip that has decayed to within this (absolute) distance of its equilibrium
-# x*_k = (0, k f_c, 0), a point of 𝒜, cannot be followed further in double
-# precision (the closed form's products become subnormal and v = 0 by
-# underflow).  The search reports a zero there, and the event loop puts the
-# state on x*_k, an equilibrium.
-UNDERFLOW = 1e-280
 
 # The cached length of a slip that leaves a stick is searched over at most this many scan
 # windows of the gain set's table (see _pack): a bounded cost, whatever the spread of the roots.
@@ -200,25 +197,12 @@ def v_rows(expm: MatrixExponential) -> tuple[tuple[float, float, float], tuple[f
     return tuple(float(x) for x in row1), tuple(float(x) for x in row2)
 
 
-def p_norm(s: float, p: float, v: float, kv_ki: float, k_p: float) -> float:
-    """``|y|_P`` for ``y = (s, p, v)``, scaled so that squares neither overflow nor underflow.
-
-    Written out for speed (it runs at every step of a certified march); the
-    obligation ``model.P_norm_runtime`` binds it to the package's ``P``.
-    """
-    m = max(abs(s), abs(p), abs(v))
-    if m == 0.0 or not math.isfinite(m):
-        return m
-    s, p, v = s / m, p / m, v / m
-    return m * math.sqrt(max(kv_ki * s * s - 2.0 * s * v + k_p * v * v + p * p, 0.0))
-
-
 def first_zero(
     model: SlipModel, y0: tuple[float, float, float], direction: int, horizon: float
 ) -> tuple[float | None, tuple[float, float, float]]:
     """First ``τ ∈ (0, horizon]`` with ``v(τ) = 0`` along the slip from offset ``y0``.
 
-    The search itself is :func:`._kernel.first_zero` (compiled when numba is
+    The search itself is :func:`._kernel_flow.first_zero` (compiled when numba is
     available); this is its Python face.
 
     Parameters

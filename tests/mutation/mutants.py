@@ -47,6 +47,7 @@ _PR = "symbolic_friction/_crosscheck/_property.py"
 _R = "symbolic_friction/_crosscheck/_run.py"
 _SI = "symbolic_friction/_simulation/_trajectories.py"
 _KER = "symbolic_friction/_simulation/_kernel.py"
+_KF = "symbolic_friction/_simulation/_kernel_flow.py"
 
 MUTANTS: tuple[Mutant, ...] = (
     # ------------------------------------------------------------------ the runtime model
@@ -108,7 +109,7 @@ MUTANTS: tuple[Mutant, ...] = (
            'return "iii" if sigma >= 0 else "iv" if sigma == 0 else "v"', "table_row puts σ = 0 in row (iii)"),
     Mutant("kernel.after_slip_clamp", "model", _KER, "    if direction * offset > 0.0:", "    if direction * offset < 0.0:",
            "the simulator's end-of-slip rule clamps the reachable side of the boundary"),
-    Mutant("search.p_norm", "model", _S, "return m * math.sqrt(max(kv_ki * s * s - 2.0 * s * v + k_p * v * v + p * p, 0.0))",
+    Mutant("search.p_norm", "model", _KF, "return m * math.sqrt(max(kv_ki * s * s - 2.0 * s * v + k_p * v * v + p * p, 0.0))",
            "return m * math.sqrt(max(kv_ki * s * s + 2.0 * s * v + k_p * v * v + p * p, 0.0))",
            "the root search's |y|_P with +2σv (its bracket bound would be wrong)"),
     Mutant("search.p_weights", "model", _S, "    return P[0][0], P[2][2]", "    return P[2][2], P[0][0]",

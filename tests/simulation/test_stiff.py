@@ -12,7 +12,7 @@ import pytest
 
 from symbolic_friction import Parameters
 from symbolic_friction._reference import Reference
-from symbolic_friction._simulation import Status, _kernel, simulate
+from symbolic_friction._simulation import Status, _kernel, _kernel_flow, simulate
 from symbolic_friction._simulation.affine import MatrixExponential, _split_roots
 from symbolic_friction._simulation.search import slip_model
 
@@ -109,10 +109,10 @@ def test_a_spent_step_budget_is_never_taken_for_a_zero(monkeypatch):
     K, W, N = model.constants(False)
     y0 = (1.0, 0.0, 0.0)  # leaving a stick: v = σ w(τ) > 0 up to w's first zero near 4.2
     q = _kernel.slip_q(K, *y0)
-    monkeypatch.setattr(_kernel, "MAX_STEPS", 3)
+    monkeypatch.setattr(_kernel_flow, "MAX_STEPS", 3)
     code, tau, *_ = _kernel._march(K, q, 1, 0.0, *y0, 1.0, math.inf)
     assert code == _kernel.UNDECIDED and 0.0 < tau < 1.0
-    monkeypatch.setattr(_kernel, "MAX_STEPS", 1)
+    monkeypatch.setattr(_kernel_flow, "MAX_STEPS", 1)
     code, tau, *_ = _kernel.first_zero(K, W, N, *y0, 1, 10.0)
     assert code == _kernel.UNDECIDED
 
@@ -121,7 +121,7 @@ def test_an_undecided_event_is_finished_by_radau_and_says_so(monkeypatch):
     params = Parameters.table_i("a")
     z0 = (1.0, 2.0, -3.0)
     monkeypatch.setenv("SYMBOLIC_FRICTION_JIT", "0")
-    monkeypatch.setattr(_kernel, "MAX_STEPS", 1)
+    monkeypatch.setattr(_kernel_flow, "MAX_STEPS", 1)
     # the slip models are cached with the stick exit's slip length, searched when they are built
     slip_model.cache_clear()
     monkeypatch.setattr("symbolic_friction._simulation.search.slip_model", slip_model.__wrapped__)
@@ -147,13 +147,13 @@ def test_the_scan_cost_is_set_by_the_slow_pair(k_v, monkeypatch):
     monkeypatch.setenv("SYMBOLIC_FRICTION_JIT", "0")
     counts = {"fast": 0, "slow": 0}
     for name in ("fast", "slow"):
-        original = getattr(_kernel, f"_scan_{name}")
+        original = getattr(_kernel_flow, f"_scan_{name}")
 
         def counted(*args, _original=original, _name=name):
             counts[_name] += 1
             return _original(*args)
 
-        monkeypatch.setattr(_kernel, f"_scan_{name}", counted)
+        monkeypatch.setattr(_kernel_flow, f"_scan_{name}", counted)
     sol = simulate(family(k_v), (3.0, -5.0, 7.0), 20.0)
     assert sol.status == Status.T_END and len(sol.events) == 3
     assert counts["fast"] + counts["slow"] <= 40, counts
