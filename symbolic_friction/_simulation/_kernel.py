@@ -31,8 +31,6 @@ coordinate change, the split of :class:`.modal.ModalScan`): ``K`` (scalars),
 
 from __future__ import annotations
 
-import math  # noqa: F401 - the loop's math is in the compiled module's namespace too
-
 import numpy as np
 
 from ._kernel_layout import *  # noqa: F403 - the layout of K, W, N and the codes
