@@ -37,8 +37,8 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Sequence
 
-from ._errors import SimulationError
-from ._parameters import Parameters
+from ._infra.errors import SimulationError
+from ._model.parameters import Parameters
 
 __all__ = ["Reference", "reference_table_mode"]
 

@@ -39,9 +39,9 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
 
-from .._errors import CertificateFormatError
-from .._io import atomic_write_text
-from .._rational import format_rational, parse_integer
+from .._infra.errors import CertificateFormatError
+from .._infra.io import atomic_write_text
+from .._infra.rational import format_rational, parse_integer
 
 __all__ = [
     "SCHEMA",
@@ -319,7 +319,7 @@ class Certificate:
             If the certificate's gains violate Assumption 1 (such a
             certificate also fails verification).
         """
-        from .._parameters import Parameters
+        from .._model.parameters import Parameters
 
         return Parameters(k_p=self.k_p, k_i=self.k_i, k_v=self.k_v, f_c=self.f_c)
 
@@ -505,7 +505,7 @@ def read_json(path: str | os.PathLike[str]) -> object:
     CertificateFormatError
         If the content is not strict JSON.
     """
-    from .._io import read_limited
+    from .._infra.io import read_limited
 
     return parse_json(read_limited(path, limit=MAX_FILE_BYTES, what="certificate"), source=str(path))
 

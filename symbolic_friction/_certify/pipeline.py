@@ -15,8 +15,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Iterable
 
-from .._errors import CertificateError, CertificateFormatError, InputFileError, ParameterError, SymbolicFrictionError
-from .._parameters import Parameters
+from .._infra.errors import CertificateError, CertificateFormatError, InputFileError, ParameterError, SymbolicFrictionError
+from .._model.parameters import Parameters
 from .certificate import MAX_FILE_BYTES, Certificate, atomic_write_text, dumps, load
 from .report import render_markdown
 from .rounding import to_certificate
@@ -231,7 +231,7 @@ class CommittedCertificate:
 
 
 def _check_one(path: Path) -> CommittedCertificate:
-    from .._hunting._certificate import verify_any_file
+    from .hunting import verify_any_file
 
     try:
         hunting, report = verify_any_file(path)
@@ -250,7 +250,7 @@ def _check_one(path: Path) -> CommittedCertificate:
         json_text, md_text, _ = render_files(fresh, name=path.name)
     except SymbolicFrictionError as exc:
         return CommittedCertificate(path, report, True, f"cannot be regenerated: {exc}")
-    from .._io import read_limited
+    from .._infra.io import read_limited
 
     md_path = path.with_suffix(".md")
     stale = []

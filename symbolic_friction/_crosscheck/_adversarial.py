@@ -19,7 +19,7 @@ from typing import Callable
 
 import numpy as np
 
-from .._parameters import Parameters
+from .._model.parameters import Parameters
 from ._claims import Claims
 from ._initial import InitialStates, directions_to_x
 
@@ -39,8 +39,8 @@ def _to_x(params: Parameters, U: np.ndarray) -> np.ndarray:
 
 
 def _V_d2(params: Parameters, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    from .._attractor import squared_distance_x
-    from .._lyapunov import V, in_R
+    from .._model.attractor import squared_distance_x
+    from .._model.lyapunov import V, in_R
 
     return V(params, x), squared_distance_x(params, x), in_R(params, x)
 
@@ -48,11 +48,11 @@ def _V_d2(params: Parameters, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np
 def hat_V_rate(params: Parameters, claim: Claims, x: np.ndarray) -> np.ndarray:
     """``V̂°(x)/V̂(x)`` along eq. (xDot) at states ``x`` in ``R̂`` (NaN elsewhere).
 
-    ``V̂°`` is the package's :func:`~symbolic_friction._lyapunov.V_hat_rate`
+    ``V̂°`` is the package's :func:`~symbolic_friction._model.lyapunov.V_hat_rate`
     (eq. hatVdot, the Clarke ``max`` at ``σ = 0``), ``R̂`` its
-    :func:`~symbolic_friction._lyapunov.in_R` complement.
+    :func:`~symbolic_friction._model.lyapunov.in_R` complement.
     """
-    from .._lyapunov import V_hat, V_hat_rate, in_R
+    from .._model.lyapunov import V_hat, V_hat_rate, in_R
 
     rate = V_hat_rate(params, x, claim.k)
     Vh = V_hat(params, x, claim.k)
@@ -102,8 +102,8 @@ def pointwise_extremes(params: Parameters, claims: list[Claims], *, seed: int, m
         "adversarial max V/|x|² on R")
     for j, cl in enumerate(claims):
         def ratio_H(U: np.ndarray, sign: float, cl: Claims = cl) -> np.ndarray:
-            from .._attractor import squared_distance_x
-            from .._lyapunov import V_hat, in_R
+            from .._model.attractor import squared_distance_x
+            from .._model.lyapunov import V_hat, in_R
 
             x = _to_x(params, U)
             d2 = squared_distance_x(params, x)

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._parameters import Parameters
+from .._model.parameters import Parameters
 
 __all__ = ["DecayFit", "decay_fit"]
 
@@ -80,8 +80,8 @@ def decay_fit(params: Parameters, *, trajectories: int = 12, horizon: float = 20
     Initial states are random on the sphere ``|x| = 3 f_c``; samples are
     geometric in ``t`` on ``[1, horizon]``; the tail is ``[horizon/100, horizon]``.
     """
-    from .._attractor import distance_x
-    from .._coordinates import x_to_z
+    from .._model.attractor import distance_x
+    from .._model.coordinates import x_to_z
     from .._simulation.batch import simulate_batch
 
     rng = np.random.default_rng(seed)

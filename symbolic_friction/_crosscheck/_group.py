@@ -6,7 +6,7 @@ from typing import Any
 
 import numpy as np
 
-from .._parameters import Parameters
+from .._model.parameters import Parameters
 from ._checker import BatchChecker
 from ._claims import Claims
 from ._outcome import sample_times
@@ -40,7 +40,7 @@ class GroupRun:
 
     @property
     def d0_all(self) -> np.ndarray:
-        from .._attractor import distance_x
+        from .._model.attractor import distance_x
 
         return distance_x(self.params, self.x0_all) if self._x0 else np.zeros(0)
 
@@ -48,7 +48,7 @@ class GroupRun:
         self, X0: np.ndarray, label: str, *, t: np.ndarray | None = None, attractivity: bool = True
     ) -> np.ndarray:
         """Simulate and check the states ``X0`` (rows, in ``x``); return their overshoots."""
-        from .._coordinates import x_to_z
+        from .._model.coordinates import x_to_z
         from .._simulation.batch import simulate_batch
 
         X0 = np.atleast_2d(np.asarray(X0, dtype=float))

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._parameters import Parameters
+from .._model.parameters import Parameters
 
 __all__ = ["InitialStates", "DEFAULT_RADII", "sphere_states", "grid_states", "special_states", "directions_to_x"]
 
@@ -76,7 +76,7 @@ def grid_states(params: Parameters, n: int, *, half_width: float = 3.0) -> Initi
 
 def special_states(params: Parameters, *, radii=DEFAULT_RADII) -> InitialStates:
     """Axes, eigenvectors of ``P`` and the ends of 𝒜, at every radius (and just outside 𝒜's ends)."""
-    from .._lyapunov import lyapunov_matrix
+    from .._model.lyapunov import lyapunov_matrix
 
     f_c = float(params.f_c)
     _, vecs = np.linalg.eigh(lyapunov_matrix(params))

@@ -40,7 +40,7 @@ from fractions import Fraction
 
 import numpy as np
 
-from .._parameters import Parameters
+from .._model.parameters import Parameters
 
 __all__ = ["IssEstimate", "DEFAULT_RHOS", "iss_gain"]
 
@@ -102,7 +102,7 @@ class IssEstimate:
 
 def default_initial_states(params: Parameters) -> np.ndarray:
     """The two ends and the centre of 𝒜, and three states outside 𝒜 with ``|z(0)|_𝒜`` between 0.5 and 1."""
-    from .._attractor import attractor_bound_z
+    from .._model.attractor import attractor_bound_z
 
     e = float(attractor_bound_z(params))
     return np.array([[e, 0.0, 0.0], [0.0, 0.0, 0.0], [-e, 0.0, 0.0], [e, 0.0, 0.5], [0.0, 0.5, 0.0], [-e, -0.5, 0.5]])
@@ -143,9 +143,9 @@ def iss_gain(
     ParameterError
         If an unknown law is named or a ``ρ`` is negative.
     """
-    from .._attractor import distance_z
-    from .._errors import ParameterError
-    from .._rational import to_rational
+    from .._model.attractor import distance_z
+    from .._infra.errors import ParameterError
+    from .._infra.rational import to_rational
     from .._simulation import simulate
     from .._simulation.friction import InflatedCoulomb, Stribeck
 

@@ -30,7 +30,7 @@ from typing import Any, Callable
 
 import numpy as np
 
-from .._parameters import Parameters
+from .._model.parameters import Parameters
 
 __all__ = ["OvershootSearch", "search_overshoot", "refine_peak", "linear_limit", "DEFAULT_SCALES"]
 
@@ -202,8 +202,8 @@ def refine_peak(params: Parameters, X0: np.ndarray, *, t_eval: np.ndarray | None
     """
     from scipy.optimize import minimize_scalar
 
-    from .._attractor import squared_distance_x
-    from .._coordinates import x_to_z
+    from .._model.attractor import squared_distance_x
+    from .._model.coordinates import x_to_z
     from .._simulation.affine import MatrixExponential
     from .._simulation.batch import simulate_batch
     from ._along import along

@@ -17,8 +17,8 @@ from typing import Any, Iterable, Sequence
 
 import numpy as np
 
-from .._errors import ParameterError, UnprovedCertificateError
-from .._parameters import Parameters
+from .._infra.errors import ParameterError, UnprovedCertificateError
+from .._model.parameters import Parameters
 from ._claims import Claims
 from ._property import DEFAULT_RTOL, DEFAULT_THETA
 from ._group import GroupRun
@@ -145,7 +145,7 @@ def crosscheck(
     UnprovedCertificateError
         If ``require_proved`` and a certificate does not verify exactly.
     """
-    from .._progress import Progress
+    from .._infra.progress import Progress
 
     if isinstance(trajectories, bool) or not isinstance(trajectories, (int, np.integer)) or trajectories < 1:
         raise ParameterError(f"trajectories must be an integer ≥ 1; got {trajectories!r}")

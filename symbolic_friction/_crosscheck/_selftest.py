@@ -71,7 +71,7 @@ class SelfTest:
 
 
 def _lambda_min_P(cert: Any) -> float:
-    from .._lyapunov import lyapunov_matrix
+    from .._model.lyapunov import lyapunov_matrix
 
     return float(np.linalg.eigvalsh(lyapunov_matrix(cert.as_parameters()))[0])
 
@@ -140,7 +140,7 @@ def crosscheck_self_test(certificates: dict[str, Any], *, trajectories: int = 15
 
 def _refusal_row(case: str, cert: Any) -> SelfTestRow:
     """An overshoot bound edited below κ must be refused before any trajectory is run."""
-    from .._errors import UnprovedCertificateError
+    from .._infra.errors import UnprovedCertificateError
     from ._run import crosscheck
 
     forged = dataclasses.replace(cert, overshoot_bound="1.0")  # κ ≥ 1 always (c₁ ≤ c₂, ĉ₁ ≤ ĉ₂): 1 is below it

@@ -35,9 +35,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._coordinates import system_matrix, x_to_z
-from .._errors import ParameterError
-from .._parameters import Parameters
+from .._model.coordinates import system_matrix, x_to_z
+from .._infra.errors import ParameterError
+from .._model.parameters import Parameters
 
 __all__ = ["HuntingMap", "MapStep", "HuntingCycle", "find_cycles", "cycle_orbit", "RealRootEscape", "real_root_escape"]
 
@@ -290,7 +290,7 @@ def _describe(P: HuntingMap, sigma: float, symmetric: bool) -> HuntingCycle | No
 
 
 def _with_amplitudes(cycle: HuntingCycle, orbit) -> HuntingCycle:
-    from .._attractor import distance_z
+    from .._model.attractor import distance_z
 
     z = orbit.z
     values = dict(cycle.__dict__)

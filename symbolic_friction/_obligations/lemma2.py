@@ -20,8 +20,8 @@ from typing import Any
 
 import sympy as sp
 
-from .. import _symbolic
-from .._lyapunov import V_k, quadratic_form
+from .._model import symbolic as _symbolic
+from .._model.lyapunov import V_k, quadratic_form
 from ._base import Erratum, Obligation, Outcome
 from ._statements import lemma2_decrease, lemma2_lower_bound, statement_failure
 from ._decide import G, Undecided, is_zero, latex, minimum_on, phi_classes, pos, resolve_piecewise, sign_of, sign_classes

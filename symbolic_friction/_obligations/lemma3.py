@@ -19,7 +19,7 @@ Three obligations, each for symbolic gains and symbolic ``k₁ … k₄``:
 * ``lemma3.hatV_derivative`` — the conditions on ``k₁ … k₄`` that make
   ``V̂° ≤ 0`` on ``R̂`` (eq. hatVdot) are *derived* from ``V̂`` and ``F`` by an
   exhaustive case split, shown necessary and sufficient, and compared with the
-  list stated in :mod:`symbolic_friction._kconditions` (the paper's list).
+  list stated in :mod:`symbolic_friction._model.kconditions` (the paper's list).
 """
 
 from __future__ import annotations
@@ -32,9 +32,9 @@ from typing import Any
 
 import sympy as sp
 
-from .. import _symbolic
-from .._kconditions import Condition, k_conditions
-from .._lyapunov import R_margin, V_hat, friction_selection
+from .._model import symbolic as _symbolic
+from .._model.kconditions import Condition, k_conditions
+from .._model.lyapunov import R_margin, V_hat, friction_selection
 from ._base import Erratum, Obligation, Outcome
 from ._statements import lemma3_hatV_bounds, lemma3_hatV_nonincreasing, lemma3_V_bounds, statement_failure
 from ._decide import G, Undecided, decide, is_zero, latex, resolve_piecewise, sign_of
@@ -82,7 +82,7 @@ def k_symbols() -> tuple[sp.Symbol, sp.Symbol, sp.Symbol, sp.Symbol]:
 
 
 def vhat_expression(g: _symbolic.Gains, k: tuple[Any, Any, Any, Any]) -> sp.Expr:
-    """The package's ``V̂`` of eq. (Vhat) (:func:`symbolic_friction._lyapunov.V_hat`), for symbolic gains."""
+    """The package's ``V̂`` of eq. (Vhat) (:func:`symbolic_friction._model.lyapunov.V_hat`), for symbolic gains."""
     return V_hat(g, [g.sigma, g.phi, g.v], k)
 
 
@@ -145,7 +145,7 @@ class RSubject:
 
 
 def region_R(g: _symbolic.Gains) -> sp.Expr:
-    """``R = {region_R ≥ 0}``: the package's margin ``v(φ - sign(v) f_c)`` (:func:`symbolic_friction._lyapunov.R_margin`)."""
+    """``R = {region_R ≥ 0}``: the package's margin ``v(φ - sign(v) f_c)`` (:func:`symbolic_friction._model.lyapunov.R_margin`)."""
     return R_margin(g, [g.sigma, g.phi, g.v])
 
 
@@ -482,7 +482,7 @@ class HatVDerivativeSubject:
     K : Matrix
         ``K`` of ``V̂ = ½wᵀKw`` (for the definiteness condition).
     stated : tuple of Condition
-        :func:`symbolic_friction._kconditions.k_conditions` on the symbols.
+        :func:`symbolic_friction._model.kconditions.k_conditions` on the symbols.
     paper_bound : Expr
         The paper's bracketed upper bound of ``V̂°`` on ``R̂_>``.
     paper_pairs : tuple of (Expr, Expr, Expr)

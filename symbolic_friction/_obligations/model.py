@@ -18,8 +18,8 @@ from typing import Any
 
 import sympy as sp
 
-from .. import _symbolic
-from .._attractor import attractor_bound_x, attractor_bound_z, squared_distance_x
+from .._model import symbolic as _symbolic
+from .._model.attractor import attractor_bound_x, attractor_bound_z, squared_distance_x
 from ._base import Erratum, Obligation, Outcome
 from ._decide import (
     G,
@@ -70,7 +70,7 @@ def attractor_z(g: _symbolic.Gains) -> tuple[Any, Any, Any]:
 
 
 def distance_squared(g: _symbolic.Gains) -> sp.Expr:
-    """The package's ``|x|²_𝒜`` (:func:`symbolic_friction._attractor.squared_distance_x`) for symbolic gains (checked by ``distance``)."""
+    """The package's ``|x|²_𝒜`` (:func:`symbolic_friction._model.attractor.squared_distance_x`) for symbolic gains (checked by ``distance``)."""
     return squared_distance_x(g, [g.sigma, g.phi, g.v])
 
 

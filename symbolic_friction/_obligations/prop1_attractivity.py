@@ -21,7 +21,7 @@ from dataclasses import dataclass
 
 import sympy as sp
 
-from .. import _symbolic
+from .._model import symbolic as _symbolic
 from ._base import Obligation, Outcome
 from ._decide import G, Undecided, decide, latex, phi_classes, sign_classes, sign_of
 from .model import attractor_x, sgn_sets

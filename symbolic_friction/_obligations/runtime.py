@@ -1,7 +1,7 @@
 """Binding obligations: the code that runs is the model that is proved.
 
 Every other obligation evaluates the package's model functions in the sympy
-kind (:mod:`symbolic_friction._kinds`).  Certificates, the simulators and the
+kind (:mod:`symbolic_friction._model.kinds`).  Certificates, the simulators and the
 cross-check evaluate the *same* functions on exact rationals and on float
 arrays, and the simulators read the mode table of Claim 1 through their own
 fast code.  The obligations here bind those instantiations to the paper:
@@ -50,11 +50,11 @@ from typing import Any
 import numpy as np
 import sympy as sp
 
-from .. import _symbolic
-from .._attractor import dz, squared_distance_x, squared_distance_z
-from .._coordinates import input_vector, system_matrix, x_to_z, z_to_x
-from .._lyapunov import V, V_hat, V_hat_rate, in_R, lyapunov_matrix, quadratic_form
-from .._parameters import Parameters
+from .._model import symbolic as _symbolic
+from .._model.attractor import dz, squared_distance_x, squared_distance_z
+from .._model.coordinates import input_vector, system_matrix, x_to_z, z_to_x
+from .._model.lyapunov import V, V_hat, V_hat_rate, in_R, lyapunov_matrix, quadratic_form
+from .._model.parameters import Parameters
 from .._simulation._kernel import mode_after_slip
 from .._simulation.modes import mode_at_rest, select_mode, table_row
 from ._base import Obligation, Outcome
@@ -574,7 +574,7 @@ class PNormRuntime(Obligation):
 
 @dataclass(frozen=True)
 class KindsSubject:
-    """The three kinds' non-arithmetic operations (:mod:`symbolic_friction._kinds`)."""
+    """The three kinds' non-arithmetic operations (:mod:`symbolic_friction._model.kinds`)."""
 
     kinds: tuple[Any, ...]
 
@@ -586,7 +586,7 @@ class KindsRuntime(Obligation):
     method = "each operation at -2, -1, -1/2, 0, 1/2, 1, 2 against the definition, compared with =="
 
     def derive(self) -> KindsSubject:
-        from .._kinds import EXACT, FLOAT, SYMPY
+        from .._model.kinds import EXACT, FLOAT, SYMPY
 
         return KindsSubject((EXACT, FLOAT, SYMPY))
 

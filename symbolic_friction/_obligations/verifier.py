@@ -21,7 +21,7 @@ enough, so that a verifier with a premise dropped or weakened fails
   (sign decided exactly), with a strict premise for a strict claim.
 * ``certificate.verifier_decision`` — the verifier's exact decision (its
   comparison table, its semidefiniteness test by principal minors, and
-  :meth:`~symbolic_friction._kconditions.Condition.holds`) on boundary
+  :meth:`~symbolic_friction._model.kconditions.Condition.holds`) on boundary
   instances: ``lhs = rhs`` against strict and non-strict premises, a
   symmetric matrix whose leading minors are all ``≥ 0`` but which is not
   semidefinite, a singular semidefinite matrix.
@@ -39,10 +39,10 @@ from typing import Any
 
 import sympy as sp
 
-from .. import _symbolic
+from .._model import symbolic as _symbolic
 from .._certify import verify as _verify
-from .._kconditions import Condition
-from .._lyapunov import lyapunov_matrix_entries, vhat_matrix_entries
+from .._model.kconditions import Condition
+from .._model.lyapunov import lyapunov_matrix_entries, vhat_matrix_entries
 from ._base import Obligation, Outcome
 from ._decide import G, is_zero, latex, sign_of
 from .lemma2 import decrease_rate
@@ -212,7 +212,7 @@ class CertificateVerifier(Obligation):
 
 @dataclass(frozen=True)
 class DecisionSubject:
-    """The verifier's exact decision procedure and the condition test of :mod:`symbolic_friction._kconditions`."""
+    """The verifier's exact decision procedure and the condition test of :mod:`symbolic_friction._model.kconditions`."""
 
     decide: Callable[[Any], Any]
     inequality: Callable[..., Any]
@@ -246,7 +246,7 @@ class VerifierDecision(Obligation):
     method = "the verifier's own decision code run on 12 boundary comparisons, 4 matrices and 3 k-conditions, each with a known verdict"
 
     def derive(self) -> DecisionSubject:
-        from .._kconditions import k_conditions
+        from .._model.kconditions import k_conditions
 
         def condition(lhs: Fraction, rhs: Fraction) -> Condition:
             cond = k_conditions(1, 1, 1, 1, 1, 1, 1)[5]  # "k3 > k2": a real condition object

@@ -14,8 +14,8 @@ from typing import Any
 
 import numpy as np
 
-from .._errors import SimulationError
-from .._parameters import Parameters
+from .._infra.errors import SimulationError
+from .._model.parameters import Parameters
 from ._base import SimulationMethod, Solution
 from ._trajectories import Status, Trajectories
 

@@ -16,8 +16,8 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from .._errors import SimulationError
-from .._parameters import Parameters
+from .._infra.errors import SimulationError
+from .._model.parameters import Parameters
 from ._trajectories import AlongStates, Status, Trajectories
 
 __all__ = ["Solution", "SimulationMethod", "Status", "RTOL_FLOOR", "check_rtol", "finite_or_raise"]
@@ -95,7 +95,7 @@ class Solution(AlongStates):
         options: dict[str, Any],
     ) -> "Solution":
         """A solution from samples of one trajectory (the time-stepping methods), states at events unknown (NaN)."""
-        from .._coordinates import z_to_x
+        from .._model.coordinates import z_to_x
 
         t = np.asarray(t, dtype=float)
         z = np.asarray(z, dtype=float).reshape(-1, 3)

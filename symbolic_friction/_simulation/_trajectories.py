@@ -16,8 +16,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .._errors import SimulationError
-from .._parameters import Parameters
+from .._infra.errors import SimulationError
+from .._model.parameters import Parameters
 
 if TYPE_CHECKING:  # annotations only (._base imports this module)
     from ._base import Solution
@@ -54,20 +54,20 @@ class AlongStates:
     @cached_property
     def V(self) -> np.ndarray:
         """``V(x(t))`` of eq. (lyapLike)."""
-        from .._lyapunov import V
+        from .._model.lyapunov import V
 
         return V(self.params, self.x)
 
     @cached_property
     def distance(self) -> np.ndarray:
         """``|x(t)|_𝒜`` of eq. (distFromA)."""
-        from .._attractor import distance_x
+        from .._model.attractor import distance_x
 
         return distance_x(self.params, self.x)
 
     def V_hat(self, k: tuple[Any, Any, Any, Any]) -> np.ndarray:
         """``V̂(x(t))`` of eq. (Vhat) for constants ``k = (k1, k2, k3, k4)``."""
-        from .._lyapunov import V_hat
+        from .._model.lyapunov import V_hat
 
         return V_hat(self.params, self.x, k)
 

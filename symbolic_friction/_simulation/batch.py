@@ -14,8 +14,8 @@ from typing import Any, Iterator
 
 import numpy as np
 
-from .._errors import SimulationError
-from .._parameters import Parameters
+from .._infra.errors import SimulationError
+from .._model.parameters import Parameters
 from ._trajectories import Trajectories
 from .event import _check_positive_int, run
 

@@ -41,8 +41,8 @@ from typing import Any, ClassVar, NamedTuple
 
 import numpy as np
 
-from .._errors import ParameterError, SimulationError
-from .._rational import format_rational, to_rational
+from .._infra.errors import ParameterError, SimulationError
+from .._infra.rational import format_rational, to_rational
 
 __all__ = ["Step", "FrictionLaw", "Coulomb", "InflatedCoulomb", "Stribeck", "WORST_CASE"]
 

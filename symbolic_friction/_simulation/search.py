@@ -40,9 +40,9 @@ from fractions import Fraction
 
 import numpy as np
 
-from .._coordinates import coc_entries, coc_inverse_entries, system_matrix_entries
-from .._lyapunov import lyapunov_matrix_entries
-from .._parameters import Parameters
+from .._model.coordinates import coc_entries, coc_inverse_entries, system_matrix_entries
+from .._model.lyapunov import lyapunov_matrix_entries
+from .._model.parameters import Parameters
 from .affine import MatrixExponential, ScanTable, SlipBounds  # noqa: F401 (ScanTable in annotations)
 
 __all__ = ["SlipModel", "slip_model", "first_zero", "p_norm", "UNDERFLOW"]

@@ -11,7 +11,7 @@ import pytest
 from symbolic_friction import CertificateFormatError, Parameters
 from symbolic_friction._hunting import HuntingCertificate, box_around, find_cycles, verify_hunting_file, write_hunting
 from symbolic_friction._hunting._report import with_static
-from symbolic_friction.cli import main
+from symbolic_friction._cli.main import main
 
 A12 = with_static(Parameters.table_i("a"), F(6, 5))
 PROOFS = Path(__file__).resolve().parents[2] / "proofs"

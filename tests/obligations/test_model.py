@@ -214,7 +214,7 @@ def test_distance_holds(distance):
 
 def test_distance_wrong_dead_zone_width_fails(distance):
     ob, subject = distance
-    from symbolic_friction._symbolic import dz
+    from symbolic_friction._model.symbolic import dz
 
     wrong = g.sigma**2 + g.v**2 + dz(g.phi, 2 * g.f_c) ** 2
     assert_fails(ob, dataclasses.replace(subject, formula=wrong), "φ > f_c")

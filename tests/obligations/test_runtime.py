@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from symbolic_friction._attractor import squared_distance_x, squared_distance_z
-from symbolic_friction._lyapunov import V, V_hat, in_R
+from symbolic_friction._model.attractor import squared_distance_x, squared_distance_z
+from symbolic_friction._model.lyapunov import V, V_hat, in_R
 from symbolic_friction._obligations import all_obligations
 from symbolic_friction._obligations._decide import G
 from symbolic_friction._obligations.runtime import (
@@ -144,7 +144,7 @@ def test_R_sign_flip_fails(r_runtime):
 
 def test_R_strict_float_kind_fails(r_runtime):
     ob, s = r_runtime
-    from symbolic_friction._lyapunov import R_margin
+    from symbolic_friction._model.lyapunov import R_margin
 
     assert_fails(ob, dataclasses.replace(s, floats=lambda p, x: R_margin(p, x) > 0), "the float x ∈ R")
 
@@ -183,7 +183,7 @@ def test_distance_z_wrong_bound_fails(distance_z_runtime):
 
 def test_matrices_swapped_gains_fail(matrices_runtime):
     ob, s = matrices_runtime
-    from symbolic_friction._coordinates import system_matrix_entries
+    from symbolic_friction._model.coordinates import system_matrix_entries
 
     swapped = lambda p: np.array(system_matrix_entries(float(p.k_v), float(p.k_i), float(p.k_p)))  # noqa: E731
     assert_fails(ob, dataclasses.replace(s, runtime={**s.runtime, "A": swapped}), "A[")
@@ -250,7 +250,7 @@ def test_hatV_rate_holds(hatv_rate_runtime):
 
 def test_hatV_rate_without_clarke_max_fails(hatv_rate_runtime):
     ob, s = hatv_rate_runtime
-    from symbolic_friction._lyapunov import V_hat_rate
+    from symbolic_friction._model.lyapunov import V_hat_rate
 
     def smooth_only(p, x):  # sign(σ)σ' also at σ = 0, i.e. 0 instead of |σ'|
         value = V_hat_rate(p, x, K_INSTANCE)
@@ -279,7 +279,7 @@ def test_kinds_hold(kinds_runtime):
 @pytest.mark.parametrize("op", ["sign", "clip", "abs", "where"])
 def test_each_broken_kind_operation_fails(kinds_runtime, op):
     ob, s = kinds_runtime
-    from symbolic_friction._kinds import EXACT
+    from symbolic_friction._model.kinds import EXACT
 
     class Broken(type(EXACT)):
         name = "exact"
