@@ -16,7 +16,7 @@ import numpy as np
 
 from .._model.parameters import Parameters
 
-__all__ = ["InitialStates", "DEFAULT_RADII", "sphere_states", "grid_states", "special_states", "directions_to_x"]
+__all__ = ["InitialStates", "default_initial_states", "DEFAULT_RADII", "sphere_states", "grid_states", "special_states", "directions_to_x"]
 
 DEFAULT_RADII: tuple[float, ...] = (0.1, 0.3, 1.0, 3.0, 10.0, 30.0)
 """Sphere radii in units of ``f_c``."""
@@ -94,3 +94,11 @@ def special_states(params: Parameters, *, radii=DEFAULT_RADII) -> InitialStates:
             ends.append([0.0, sgn * f_c, -eps * f_c])
     x = np.concatenate(pts + [np.array(ends)])
     return InitialStates(x, np.full(len(x), "special", dtype=object))
+
+
+def default_initial_states(params: Parameters) -> np.ndarray:
+    """Corollary 1's initial states: the two ends and the centre of 𝒜, and three states outside 𝒜 with ``|z(0)|_𝒜`` between 0.5 and 1."""
+    from .._model.attractor import attractor_bound_z
+
+    e = float(attractor_bound_z(params))
+    return np.array([[e, 0.0, 0.0], [0.0, 0.0, 0.0], [-e, 0.0, 0.0], [e, 0.0, 0.5], [0.0, 0.5, 0.0], [-e, -0.5, 0.5]])

@@ -41,6 +41,7 @@ from fractions import Fraction
 import numpy as np
 
 from .._model.parameters import Parameters
+from ._initial import default_initial_states
 
 __all__ = ["IssEstimate", "DEFAULT_RHOS", "iss_gain"]
 
@@ -98,14 +99,6 @@ class IssEstimate:
             for law in self.laws
             for j, rho in enumerate(self.rhos)
         ]
-
-
-def default_initial_states(params: Parameters) -> np.ndarray:
-    """The two ends and the centre of 𝒜, and three states outside 𝒜 with ``|z(0)|_𝒜`` between 0.5 and 1."""
-    from .._model.attractor import attractor_bound_z
-
-    e = float(attractor_bound_z(params))
-    return np.array([[e, 0.0, 0.0], [0.0, 0.0, 0.0], [-e, 0.0, 0.0], [e, 0.0, 0.5], [0.0, 0.5, 0.0], [-e, -0.5, 0.5]])
 
 
 def iss_gain(

@@ -214,7 +214,7 @@ def worst_found(params: Parameters, rho: object, *, initial_states: Any = None, 
     from .._infra.errors import ParameterError
     from .._infra.rational import to_rational
     from .._simulation.friction import InflatedCoulomb, Stribeck
-    from ._iss import default_initial_states
+    from ._initial import default_initial_states
 
     rq = to_rational(rho, name="rho")
     if rq <= 0:

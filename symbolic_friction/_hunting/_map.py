@@ -12,8 +12,8 @@ number ``σ`` (equivalently ``s = -σ/k_i``).  The *hunting map*
 is computed with the one event-driven model: the slip from
 ``y0 = (σ, ±(f_s - f_c), 0)`` (offset from the slip equilibrium
 ``(0, ±f_c, 0)``) ends at the first zero of ``v`` (the kernel's certified
-search, :func:`.._simulation.search.first_zero`), the kernel's end-of-slip
-rule (:func:`.._simulation._kernel.mode_after_slip`, the mode table with
+search, :func:`.._simulation.slip.first_zero`), the kernel's end-of-slip
+rule (:func:`.._simulation.slip.mode_after_slip`, the mode table with
 ``f_s``) decides stick or reversal, and a stick keeps ``σ`` and ends at
 ``sign(σ) f_s``.
 
@@ -25,7 +25,7 @@ in a stick (no reversal) ``P`` is positively homogeneous in the excess:
 only, so the cycle's amplitude grows linearly from 0 with ``f_s - f_c``.
 
 Fixed points are *found* here (a scan for sign changes and Brent's method on
-the closed form); they are *proved* by :mod:`._proof`.
+the closed form); they are *proved* by :mod:`.._certify.hunting_proof`.
 """
 
 from __future__ import annotations
@@ -99,7 +99,7 @@ class HuntingMap:
                 f"the hunting map needs static friction above Coulomb; got f_s = f_c = {params.f_c} "
                 "(the paper's model: 𝒜 is globally asymptotically stable, Proposition 1, no hunting)"
             )
-        from .._simulation.search import slip_model
+        from .._simulation.slip import slip_model
 
         self.params = params
         self.model = slip_model(params)
@@ -110,8 +110,7 @@ class HuntingMap:
 
     def step(self, sigma: float) -> MapStep:
         """Follow the solution from the stick exit with ``σ`` to the next one (or to its end)."""
-        from .._simulation._kernel import EPS, SNAP_ULPS, mode_after_slip
-        from .._simulation.search import UNDERFLOW, first_zero
+        from .._simulation.slip import EPS, SNAP_ULPS, UNDERFLOW, first_zero, mode_after_slip
 
         sigma = float(sigma)
         if sigma == 0.0:
