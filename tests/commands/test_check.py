@@ -93,6 +93,7 @@ def test_write_reports_every_obligation_with_latex(full_run):
     assert "seconds" not in text and " s)" not in text  # no timings: byte-deterministic
 
 
+@pytest.mark.slow
 def test_write_is_deterministic_across_processes(full_run, tmp_path):
     """A second process (other hash seed) writes the same bytes."""
     _, _, _, report = full_run

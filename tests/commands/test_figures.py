@@ -30,6 +30,7 @@ EXPECTED = [
 ]
 
 
+@pytest.mark.slow
 def test_all_figures_are_written(tmp_path, capsys):
     # the paper's figures; figures registered by other modules may add files
     assert main(["figures", "--out", str(tmp_path), "--only", "fig2", "fig3a", "fig3b", "fig4"]) == 0
