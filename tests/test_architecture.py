@@ -24,8 +24,6 @@ OVER_LIMIT: dict[str, int] = {
     "_simulation/_kernel.py": 650,
     "_certify/certificate.py": 600,
     "_cli/check.py": 620,
-    "_obligations/lemma3.py": 900,
-    "_obligations/runtime.py": 620,
     "_studies/scenes.py": 640,
     "_studies/tradeoff.py": 680,
     "_simulation/friction.py": 510,

@@ -24,7 +24,7 @@ import sympy as sp
 from .._model import symbolic as _symbolic
 from ._base import Obligation, Outcome
 from ._decide import G, Undecided, is_zero, latex, sign_classes, sign_of, vertices
-from .model import sgn_sets
+from ._shared import sgn_sets
 
 __all__ = ["Lemma1Uniqueness", "OBLIGATIONS"]
 

@@ -1,30 +1,4 @@
-"""Proposition 1, item 2 (stability), proved in Section V: the bound
-
-.. math::
-
-    |x(t)|_{\\mathcal A} \\le \\sqrt{\\tfrac{c_2\\hat c_2}{c_1\\hat c_1}}\\,|x(0)|_{\\mathcal A},
-    \\qquad t \\ge 0 \\qquad\\text{(eq. stabState)}
-
-from Lemma 2 and Lemma 3, by the paper's two cases: (i) ``x(t) ∉ R`` for
-all ``t``; (ii) a first time ``t₁`` with ``x(t₁) ∈ R``.
-
-The analytic facts (Lemma 2, Lemma 3 at the relevant points, monotonicity of
-``V`` and ``V̂`` along solutions) are *premises*, each built by the function
-of :mod:`._statements` that the lemma's own obligation checks is what it
-proves; every inequality the paper
-chains from them is a *step* ``lhs ≤ rhs`` with an explicit certificate
-
-.. math::
-
-    \\mathrm{rhs} - \\mathrm{lhs} = \\sum_i m_i\\,(\\text{gap of a used premise or step}) + r,
-
-with multipliers ``m_i ≥ 0`` and remainder ``r ≥ 0`` proved by a
-sign-definite decomposition over positive constants and nonnegative
-distances.  Squared distances keep every step polynomial (no square roots,
-no division by quantities of unknown sign).  Also checked: ``R`` is closed
-(the paper's reason why a *first* time ``t₁`` exists) and the witness points
-that give ``c₁ ≤ c₂`` and ``ĉ₁ ≤ ĉ₂``, hence ``κ ≥ 1``.
-"""
+"""The chain of inequalities behind Proposition 1's stability bound (eq. stabState): premises from Lemma 2 and Lemma 3, steps, the goal, and the checks that the chain is closed and its witnesses hold; used by :mod:`.prop1`."""
 
 from __future__ import annotations
 
@@ -33,14 +7,17 @@ from typing import Any
 
 import sympy as sp
 
-from ._base import Obligation, Outcome
-from ._statements import lemma2_decrease, lemma2_lower_bound, lemma3_hatV_bounds, lemma3_hatV_nonincreasing, lemma3_V_bounds
+from ._statements import (
+    lemma2_decrease,
+    lemma2_lower_bound,
+    lemma3_hatV_bounds,
+    lemma3_hatV_nonincreasing,
+    lemma3_V_bounds,
+)
 from ._decide import G, Undecided, decide, is_zero, latex, resolve_piecewise
-from ._inequalities import Case, case_grid, is_nonneg, phi_cases, sign_cases
+from ._inequalities import Case, case_grid, phi_cases, sign_cases
 from .lemma3 import in_R, region_R
-from .model import distance_squared
-
-__all__ = ["OBLIGATIONS", "StabilityBound", "StabilitySubject", "Ineq", "Premise", "Step", "Goal"]
+from ._shared import distance_squared
 
 
 @dataclass(frozen=True)
@@ -271,89 +248,6 @@ def _subject() -> StabilitySubject:
     )
 
 
-class StabilityBound(Obligation):
-    """``prop1.stability_bound``: eq. (stabState) by the two-case argument, and κ ≥ 1."""
-
-    id = "prop1.stability_bound"
-    paper = "Proposition 1 item 2; proof in Section V, eqs. (stabState), (boundInHatR), (boundInHatRandInR)"
-    statement = (
-        "From Lemma 2 and Lemma 3: |x(t)|_𝒜 ≤ √(c₂ĉ₂/(c₁ĉ₁))|x(0)|_𝒜 for all t ≥ 0 in case (i) and in case (ii) "
-        "(t < t₁, t ≥ t₁, and t₁ = 0), R is closed so t₁ exists, and c₁ ≤ c₂, ĉ₁ ≤ ĉ₂ give κ ≥ 1"
-    )
-    method = (
-        "chain of symbolic implications over positive constants and nonnegative squared distances, each step "
-        "certified by nonnegative multipliers and a sign-definite remainder; exhaustive case split for R's closedness"
-    )
-
-    def derive(self) -> StabilitySubject:
-        return _subject()
-
-    def verify(self, subject: StabilitySubject) -> Outcome:
-        s = subject
-        failures: list[str] = []
-        known: dict[str, Ineq] = {}
-        for p in s.premises:
-            known[p.name] = p.claim
-        rows = []
-        for step in s.steps:
-            missing = [u for u in step.uses if u not in known]
-            if missing:
-                failures.append(f"step {step.name!r} uses unknown or later facts {missing}")
-                continue
-            if len(step.multipliers) != len(step.uses):
-                failures.append(f"step {step.name!r} has {len(step.multipliers)} multipliers for {len(step.uses)} facts")
-                continue
-            bad = [m for m in step.multipliers if not is_nonneg(m)]
-            if bad:
-                failures.append(f"step {step.name!r}: multipliers {bad} are not shown nonnegative")
-                continue
-            remainder = sp.expand(
-                step.claim.gap - sum(sp.sympify(m) * known[u].gap for m, u in zip(step.multipliers, step.uses))
-            )
-            if not is_nonneg(remainder):
-                failures.append(f"step {step.name!r} ({step.claim.lhs} ≤ {step.claim.rhs}) does not follow: remainder {remainder}")
-                continue
-            known[step.name] = step.claim
-            rows.append(
-                (
-                    f"\\text{{{step.name}}}",
-                    f"{step.claim.latex()} \\quad(\\text{{remainder }} {latex(remainder)})",
-                )
-            )
-        c_prod_hat = s.c1 * s.c1_hat
-        c_prod = s.c2 * s.c2_hat
-        for goal in s.goals:
-            claim = known.get(goal.step)
-            want = Ineq(c_prod_hat * goal.distance, c_prod * s.d0)
-            if claim is None:
-                failures.append(f"case {goal.case}: step {goal.step!r} was not proved")
-            elif not is_zero(claim.gap - want.gap):
-                failures.append(f"case {goal.case}: step {goal.step!r} proves {claim.lhs} ≤ {claim.rhs}, not {want.lhs} ≤ {want.rhs}")
-        # κ² c₁ĉ₁ = c₂ĉ₂, so D_t ≤ κ² D₀ ⇔ c₁ĉ₁ D_t ≤ c₂ĉ₂ D₀; sqrt is monotone on [0, ∞)
-        if not (s.kappa.is_positive and is_zero(sp.expand(s.kappa**2 * c_prod_hat) - c_prod)):
-            failures.append(f"κ = {s.kappa} does not satisfy κ > 0 and κ²·c₁ĉ₁ = c₂ĉ₂")
-        kstep = known.get(s.kappa_step)
-        if kstep is None or not is_zero(kstep.gap - (c_prod - c_prod_hat)):
-            failures.append(f"κ ≥ 1 needs a proved step c₁ĉ₁ ≤ c₂ĉ₂; {s.kappa_step!r} is not one")
-        failures += _closedness_failures(s)
-        failures += _witness_failures(s)
-        premise_rows = tuple(
-            (f"\\text{{premise: {p.name}}}", f"{p.claim.latex()} \\quad \\text{{({p.why})}}") for p in s.premises
-        )
-        details = premise_rows + tuple(rows) + (
-            ("\\kappa", latex(s.kappa)),
-            ("R \\text{ (closed)}", r" \cup ".join("\\{" + ",\\ ".join(f"{latex(e)} {_tex_rel(r)} 0" for e, r in part) + "\\}" for part in s.closed_form)),
-        )
-        if failures:
-            return Outcome.fail("; ".join(failures[:6]), details)
-        return Outcome(
-            True,
-            f"{len(s.steps)} steps from {len(s.premises)} premises cover {len(s.goals)} cases; "
-            "t₁ = 0 needs ĉ₁ ≤ ĉ₂, which the paper leaves implicit",
-            details,
-        )
-
-
 def _tex_rel(rel: str) -> str:
     return {"≥": "\\ge", "≤": "\\le", "=": "="}.get(rel, rel)
 
@@ -397,6 +291,3 @@ def _witness_failures(s: StabilitySubject) -> list[str]:
         if not is_zero(dist - 1):
             out.append(f"witness {name} = {point} has |x|²_𝒜 = {dist}, not 1")
     return out
-
-
-OBLIGATIONS = (StabilityBound,)

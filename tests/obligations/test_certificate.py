@@ -7,8 +7,8 @@ import sympy as sp
 
 from symbolic_friction._certify import verify as verify_module
 from symbolic_friction._obligations._decide import G
-from symbolic_friction._obligations.verifier import (
-    Assumption1Encoding,
+from symbolic_friction._obligations.assumption1 import Assumption1Encoding
+from symbolic_friction._obligations.certificate import (
     CertificateVerifier,
     VerifierDecision,
     _premise_rows,

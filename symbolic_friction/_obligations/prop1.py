@@ -1,4 +1,9 @@
-"""Proposition 1, item 1 (global attractivity): the invariance step.
+"""Proposition 1: 𝒜 is globally asymptotically stable.
+
+* ``prop1.invariance`` — item 1 (global attractivity), the invariance step.
+* ``prop1.stability_bound`` — item 2 (stability), proved in Section V.
+
+**Item 1.** Proposition 1, item 1 (global attractivity): the invariance step.
 
 Fact 1 (Ryan's invariance principle) with ``ℓ(x) = v²`` sends every solution
 to the largest forward-invariant subset ``ℳ`` of ``Σ = {ℓ = 0} = {v = 0}``;
@@ -12,6 +17,33 @@ linear part of eq. (xDot) with ``v = 0`` (``σ' = 0``, ``φ' = σ``) and
 into 15 classes (sign of σ × five φ-classes) and decides for each: either it
 consists of equilibria (then it must lie in 𝒜), or ``w(t)`` leaves
 ``[-1, 1]`` (then it is not in ``ℳ`` and must miss 𝒜).
+
+**Item 2.** Proposition 1, item 2 (stability), proved in Section V: the bound
+
+.. math::
+
+    |x(t)|_{\\mathcal A} \\le \\sqrt{\\tfrac{c_2\\hat c_2}{c_1\\hat c_1}}\\,|x(0)|_{\\mathcal A},
+    \\qquad t \\ge 0 \\qquad\\text{(eq. stabState)}
+
+from Lemma 2 and Lemma 3, by the paper's two cases: (i) ``x(t) ∉ R`` for
+all ``t``; (ii) a first time ``t₁`` with ``x(t₁) ∈ R``.
+
+The analytic facts (Lemma 2, Lemma 3 at the relevant points, monotonicity of
+``V`` and ``V̂`` along solutions) are *premises*, each built by the function
+of :mod:`._statements` that the lemma's own obligation checks is what it
+proves; every inequality the paper
+chains from them is a *step* ``lhs ≤ rhs`` with an explicit certificate
+
+.. math::
+
+    \\mathrm{rhs} - \\mathrm{lhs} = \\sum_i m_i\\,(\\text{gap of a used premise or step}) + r,
+
+with multipliers ``m_i ≥ 0`` and remainder ``r ≥ 0`` proved by a
+sign-definite decomposition over positive constants and nonnegative
+distances.  Squared distances keep every step polynomial (no square roots,
+no division by quantities of unknown sign).  Also checked: ``R`` is closed
+(the paper's reason why a *first* time ``t₁`` exists) and the witness points
+that give ``c₁ ≤ c₂`` and ``ĉ₁ ≤ ĉ₂``, hence ``κ ≥ 1``.
 """
 
 from __future__ import annotations
@@ -23,10 +55,12 @@ import sympy as sp
 
 from .._model import symbolic as _symbolic
 from ._base import Obligation, Outcome
-from ._decide import G, Undecided, decide, latex, phi_classes, sign_classes, sign_of
-from .model import attractor_x, sgn_sets
+from ._decide import G, Undecided, decide, is_zero, latex, phi_classes, sign_classes, sign_of
+from ._inequalities import is_nonneg
+from ._shared import attractor_x, sgn_sets
+from ._stability_chain import Ineq, StabilitySubject, _closedness_failures, _subject, _tex_rel, _witness_failures
 
-__all__ = ["Prop1Invariance", "OBLIGATIONS"]
+__all__ = ["Prop1Invariance", "StabilityBound", "OBLIGATIONS"]
 
 
 @dataclass(frozen=True)
@@ -140,4 +174,88 @@ _TEX = {
     "φ": "w(t) \\text{ unbounded} \\Rightarrow \\text{leaves } \\Sigma",
 }
 
-OBLIGATIONS = (Prop1Invariance,)
+
+class StabilityBound(Obligation):
+    """``prop1.stability_bound``: eq. (stabState) by the two-case argument, and κ ≥ 1."""
+
+    id = "prop1.stability_bound"
+    paper = "Proposition 1 item 2; proof in Section V, eqs. (stabState), (boundInHatR), (boundInHatRandInR)"
+    statement = (
+        "From Lemma 2 and Lemma 3: |x(t)|_𝒜 ≤ √(c₂ĉ₂/(c₁ĉ₁))|x(0)|_𝒜 for all t ≥ 0 in case (i) and in case (ii) "
+        "(t < t₁, t ≥ t₁, and t₁ = 0), R is closed so t₁ exists, and c₁ ≤ c₂, ĉ₁ ≤ ĉ₂ give κ ≥ 1"
+    )
+    method = (
+        "chain of symbolic implications over positive constants and nonnegative squared distances, each step "
+        "certified by nonnegative multipliers and a sign-definite remainder; exhaustive case split for R's closedness"
+    )
+
+    def derive(self) -> StabilitySubject:
+        return _subject()
+
+    def verify(self, subject: StabilitySubject) -> Outcome:
+        s = subject
+        failures: list[str] = []
+        known: dict[str, Ineq] = {}
+        for p in s.premises:
+            known[p.name] = p.claim
+        rows = []
+        for step in s.steps:
+            missing = [u for u in step.uses if u not in known]
+            if missing:
+                failures.append(f"step {step.name!r} uses unknown or later facts {missing}")
+                continue
+            if len(step.multipliers) != len(step.uses):
+                failures.append(f"step {step.name!r} has {len(step.multipliers)} multipliers for {len(step.uses)} facts")
+                continue
+            bad = [m for m in step.multipliers if not is_nonneg(m)]
+            if bad:
+                failures.append(f"step {step.name!r}: multipliers {bad} are not shown nonnegative")
+                continue
+            remainder = sp.expand(
+                step.claim.gap - sum(sp.sympify(m) * known[u].gap for m, u in zip(step.multipliers, step.uses))
+            )
+            if not is_nonneg(remainder):
+                failures.append(f"step {step.name!r} ({step.claim.lhs} ≤ {step.claim.rhs}) does not follow: remainder {remainder}")
+                continue
+            known[step.name] = step.claim
+            rows.append(
+                (
+                    f"\\text{{{step.name}}}",
+                    f"{step.claim.latex()} \\quad(\\text{{remainder }} {latex(remainder)})",
+                )
+            )
+        c_prod_hat = s.c1 * s.c1_hat
+        c_prod = s.c2 * s.c2_hat
+        for goal in s.goals:
+            claim = known.get(goal.step)
+            want = Ineq(c_prod_hat * goal.distance, c_prod * s.d0)
+            if claim is None:
+                failures.append(f"case {goal.case}: step {goal.step!r} was not proved")
+            elif not is_zero(claim.gap - want.gap):
+                failures.append(f"case {goal.case}: step {goal.step!r} proves {claim.lhs} ≤ {claim.rhs}, not {want.lhs} ≤ {want.rhs}")
+        # κ² c₁ĉ₁ = c₂ĉ₂, so D_t ≤ κ² D₀ ⇔ c₁ĉ₁ D_t ≤ c₂ĉ₂ D₀; sqrt is monotone on [0, ∞)
+        if not (s.kappa.is_positive and is_zero(sp.expand(s.kappa**2 * c_prod_hat) - c_prod)):
+            failures.append(f"κ = {s.kappa} does not satisfy κ > 0 and κ²·c₁ĉ₁ = c₂ĉ₂")
+        kstep = known.get(s.kappa_step)
+        if kstep is None or not is_zero(kstep.gap - (c_prod - c_prod_hat)):
+            failures.append(f"κ ≥ 1 needs a proved step c₁ĉ₁ ≤ c₂ĉ₂; {s.kappa_step!r} is not one")
+        failures += _closedness_failures(s)
+        failures += _witness_failures(s)
+        premise_rows = tuple(
+            (f"\\text{{premise: {p.name}}}", f"{p.claim.latex()} \\quad \\text{{({p.why})}}") for p in s.premises
+        )
+        details = premise_rows + tuple(rows) + (
+            ("\\kappa", latex(s.kappa)),
+            ("R \\text{ (closed)}", r" \cup ".join("\\{" + ",\\ ".join(f"{latex(e)} {_tex_rel(r)} 0" for e, r in part) + "\\}" for part in s.closed_form)),
+        )
+        if failures:
+            return Outcome.fail("; ".join(failures[:6]), details)
+        return Outcome(
+            True,
+            f"{len(s.steps)} steps from {len(s.premises)} premises cover {len(s.goals)} cases; "
+            "t₁ = 0 needs ĉ₁ ≤ ĉ₂, which the paper leaves implicit",
+            details,
+        )
+
+
+OBLIGATIONS = (Prop1Invariance, StabilityBound)

@@ -1,4 +1,4 @@
-"""The certificate verifier bound to the proof, and Assumption 1's encoding.
+"""The certificate verifier bound to the proof.
 
 A certificate (``symbolic-friction certify``) claims that its constants make
 Lemma 2, Lemma 3 and Proposition 1 hold for its gains, with overshoot bound
@@ -25,9 +25,7 @@ enough, so that a verifier with a premise dropped or weakened fails
   instances: ``lhs = rhs`` against strict and non-strict premises, a
   symmetric matrix whose leading minors are all ``≥ 0`` but which is not
   semidefinite, a singular semidefinite matrix.
-* ``assumption1.encoding`` — the symbolic obligations encode Assumption 1 by
-  ``k_v = (k_i + δ)/k_p`` with ``δ > 0``; under ``k_i, k_p > 0`` this is
-  equivalent to ``k_v k_p > k_i`` (both directions), and keeps ``k_v > 0``.
+(Assumption 1's encoding, ``assumption1.encoding``, is in :mod:`.assumption1`.)
 """
 
 from __future__ import annotations
@@ -39,7 +37,6 @@ from typing import Any
 
 import sympy as sp
 
-from .._model import symbolic as _symbolic
 from .._certify import verify as _verify
 from .._model.kconditions import Condition
 from .._model.lyapunov import lyapunov_matrix_entries, vhat_matrix_entries
@@ -48,7 +45,7 @@ from ._decide import G, is_zero, latex, sign_of
 from .lemma2 import decrease_rate
 from .lemma3 import HatVDerivative, derived_k_conditions, k_symbols
 
-__all__ = ["Claim", "VerifierSubject", "CertificateVerifier", "VerifierDecision", "Assumption1Encoding", "OBLIGATIONS"]
+__all__ = ["Claim", "VerifierSubject", "CertificateVerifier", "VerifierDecision", "OBLIGATIONS"]
 
 
 @dataclass(frozen=True)
@@ -273,44 +270,4 @@ class VerifierDecision(Obligation):
         return Outcome(True, f"{len(_COMPARISONS)} comparisons, {len(_MATRICES)} matrices and 3 k-conditions decided correctly")
 
 
-@dataclass(frozen=True)
-class EncodingSubject:
-    """The substitution the symbolic obligations use for Assumption 1."""
-
-    substitution: dict
-    k_p: sp.Symbol
-    k_i: sp.Symbol
-    k_v: sp.Symbol
-    delta: sp.Symbol
-
-
-class Assumption1Encoding(Obligation):
-    id = "assumption1.encoding"
-    paper = "Assumption 1"
-    statement = "k_v = (k_i + δ)/k_p with δ > 0 is, for k_i, k_p > 0, exactly k_v k_p > k_i (both directions), and keeps k_v > 0"
-    method = "sympy identities: the substitution gives k_v k_p − k_i = δ; its inverse δ = k_v k_p − k_i returns k_v; positivity of (k_i + δ)/k_p by sign"
-
-    def derive(self) -> EncodingSubject:
-        g = G()
-        return EncodingSubject(_symbolic.assumption1_substitution(g), g.k_p, g.k_i, g.k_v, g.delta)
-
-    def verify(self, s: EncodingSubject) -> Outcome:
-        if set(s.substitution) != {s.k_v}:
-            return Outcome.fail(f"the substitution must replace k_v only; it replaces {sorted(map(str, s.substitution))}")
-        image = s.substitution[s.k_v]
-        if image.has(s.k_v):
-            return Outcome.fail(f"k_v = {image} is not explicit")
-        # (⇒) every δ > 0 gives Assumption 1 with margin exactly δ
-        if not is_zero(sp.expand(image * s.k_p - s.k_i - s.delta)):
-            return Outcome.fail(f"with k_v = {image}, k_v k_p − k_i = {sp.simplify(image * s.k_p - s.k_i)}, not δ")
-        if sign_of(image) != 1:
-            return Outcome.fail(f"k_v = {image} is not shown positive for δ, k_i, k_p > 0")
-        # (⇐) every k_v with k_v k_p > k_i is reached, by δ = k_v k_p − k_i > 0
-        kv = sp.Symbol("k_v", real=True)
-        back = image.xreplace({s.delta: kv * s.k_p - s.k_i})
-        if not is_zero(sp.simplify(back - kv)):
-            return Outcome.fail(f"δ = k_v k_p − k_i does not give back k_v: {back}")
-        return Outcome(True, "δ = k_v k_p − k_i > 0 is a bijection onto {k_v : k_v k_p > k_i}", (("k_v", latex(image)),))
-
-
-OBLIGATIONS = (Assumption1Encoding, CertificateVerifier, VerifierDecision)
+OBLIGATIONS = (CertificateVerifier, VerifierDecision)
