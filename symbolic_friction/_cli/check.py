@@ -26,12 +26,19 @@ from __future__ import annotations
 
 import argparse
 import json
-import sys
-import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
-from pathlib import Path
 from typing import Any
+from ._sections import (
+    Section,
+    _crashed,
+    _format_table,
+    _is_verdict,
+    _ObligationLayout,
+    _wrap,
+    closing_line,
+    dataclasses_asdict,
+    resolve_target,
+)
 
 HELP = "re-derive the paper's proof obligations for symbolic gains; exit 0 only if all hold"
 
@@ -75,127 +82,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="also write a JUnit XML report: one test case per obligation, certificate and self-test row")
 
 
-@dataclass(frozen=True)
-class Target:
-    """What ``check`` verifies, resolved from the configuration and the options.
-
-    Attributes
-    ----------
-    proofs : Path
-        The proofs directory.
-    certificates : tuple of str or None
-        Files (relative to ``proofs``) that must exist and verify; None means
-        every ``*.json`` under ``proofs`` (``--proofs DIR`` without a
-        configuration).
-    report : bool
-        Whether ``proofs/obligations.md`` is kept and compared.
-    origin : str
-        Where this came from, for the output (``"pyproject.toml"``, …).
-    """
-
-    proofs: Path
-    certificates: tuple[str, ...] | None
-    report: bool
-    origin: str
-
-
-_NO_CONFIG = (
-    "no configuration found: no symbolic-friction.toml, and no pyproject.toml with [tool.symbolic-friction], "
-    "in {cwd} or above (up to the git root); add one naming your proofs directory and certificates "
-    "(see the README), pass --proofs DIR, or --no-certificates to check only the derivations"
-)
-
-
-def _relative(path: Path) -> Path:
-    """``path`` relative to the working directory when it lies below it (shorter output), else as is."""
-    try:
-        return path.relative_to(Path.cwd().resolve())
-    except ValueError:
-        return path
-
-
-def resolve_target(args: argparse.Namespace) -> Target:
-    """The proofs directory, required certificates and report flag for this run.
-
-    ``--config FILE`` or the first configuration found upwards from the
-    working directory names them; ``--proofs DIR`` overrides the directory.
-    With no configuration, ``--proofs DIR`` checks every certificate in DIR
-    (and ``DIR/obligations.md`` only if it exists); with neither, ``check``
-    refuses (exit 2) unless ``--no-certificates`` asks for the derivations only.
-    """
-    cached = getattr(args, "_target", None)
-    if cached is not None:
-        return cached
-    from .._infra.config import find_config, load_config
-    from .._infra.errors import ConfigError
-
-    config_file = getattr(args, "config", None)
-    config = load_config(config_file) if config_file is not None else find_config()
-    proofs_arg = getattr(args, "proofs", None)
-    if config is not None:
-        proofs = Path(proofs_arg) if proofs_arg is not None else _relative(config.proofs)
-        target = Target(proofs, config.certificates, config.report, str(config.source))
-    elif proofs_arg is not None:
-        proofs = Path(proofs_arg)
-        target = Target(proofs, None, (proofs / "obligations.md").is_file(), "--proofs")
-    elif getattr(args, "no_certificates", False):
-        target = Target(Path("proofs"), (), False, "none")
-    else:
-        raise ConfigError(_NO_CONFIG.format(cwd=Path.cwd()))
-    try:
-        args._target = target
-    except AttributeError:  # pragma: no cover - a frozen namespace
-        pass
-    return target
-
-
-@dataclass
-class Section:
-    """What one part of ``check`` found.
-
-    Attributes
-    ----------
-    title : str
-        Heading of the printed table.
-    columns : tuple of str
-        Column names of the printed table.
-    rows : list of tuple of str
-        Printed rows.
-    json : dict
-        Members merged into the ``--json`` object.
-    ok : bool
-        Whether this section is satisfied.
-    notes : list of str
-        Lines printed after the table (to stderr under ``--json``).
-    summary : str
-        One line saying what was checked, with counts (e.g. ``"27 of 27
-        obligations hold"``); the closing line of ``check`` joins them.
-    counts : dict
-        The numbers behind ``summary`` (``--json``'s ``"counts"``).
-    cases : list of Case
-        One JUnit test case per item checked (``--junit-xml``).
-    streamed : bool
-        True if the rows were already printed while they were decided.
-    """
-
-    title: str
-    columns: tuple[str, ...]
-    rows: list[tuple[str, ...]]
-    json: dict[str, Any]
-    ok: bool
-    notes: list[str] = field(default_factory=list)
-    summary: str = ""
-    counts: dict[str, int] = field(default_factory=dict)
-    cases: list[Any] = field(default_factory=list)
-    streamed: bool = False
-
-
 def obligations_section(args: argparse.Namespace) -> Section:
     """Run every obligation, list the errata and check or write the report."""
-    from .._obligations import all_errata, all_obligations
-    from .._obligations._base import FAILS, Result
-    from .._infra.io import ensure_directory, read_limited
-    from .._obligations._report import render_report, report_path, write_atomic
+    from .._obligations import all_errata, all_obligations, run_checked
+    from .._obligations._report import compare_report, render_report, report_path, write_atomic
+    from .._infra.io import ensure_directory
 
     from .._infra.junit import Case
     from .._infra.output import emit
@@ -208,21 +99,8 @@ def obligations_section(args: argparse.Namespace) -> Section:
         emit(layout.title)
         emit(layout.head)
         emit(layout.rule)
-    results: list[Result] = []
-    for ob in obligations:
-        start = time.perf_counter()
-        try:
-            results.append(ob.run())
-        except Exception as exc:  # a crashing check is reported as failing, never as holding
-            results.append(
-                Result(
-                    id=ob.id, paper=ob.paper, statement=ob.statement, method=ob.method, status=FAILS,
-                    seconds=time.perf_counter() - start, reason=f"error while checking: {type(exc).__name__}: {exc}",
-                )
-            )
-        if stream:
-            r = results[-1]
-            emit(layout.row(r), level=0 if not r.holds else 1)
+    on_result = (lambda r: emit(layout.row(r), level=0 if not r.holds else 1)) if stream else None
+    results = run_checked(obligations, on_result=on_result)
     errata = all_errata()
     notes: list[str] = []
     ok = all(r.holds for r in results)
@@ -252,11 +130,11 @@ def obligations_section(args: argparse.Namespace) -> Section:
         # only reachable with --no-certificates (run() refuses a missing DIR otherwise)
         report_state = "not checked (no such directory)"
         notes.append(f"note: {proofs} does not exist; {target} was not compared")
-    elif not target.is_file():
+    elif (state := compare_report(target, text)) == "missing":
         ok = False
         report_state = "missing"
         notes.append(f"STALE: {target} is missing; run `symbolic-friction check --write` and commit it")
-    elif read_limited(target, limit=50_000_000, what="report") != text.encode("utf-8"):
+    elif state == "stale":
         ok = False
         report_state = "STALE"
         notes.append(f"STALE: {target} differs from what `check` derives now; run `symbolic-friction check --write` and commit it")
@@ -293,31 +171,6 @@ def obligations_section(args: argparse.Namespace) -> Section:
 def _selected(obligation_id: str, only: list[str] | None) -> bool:
     """Whether ``--only`` selects this obligation (its id, or a dotted prefix of it)."""
     return only is None or any(obligation_id == p or obligation_id.startswith(p + ".") for p in only)
-
-
-class _ObligationLayout:
-    """Fixed column widths for the obligations table, fitted to the terminal, so rows print as they are decided."""
-
-    columns = ("id", "paper", "statement", "method", "status", "seconds")
-
-    def __init__(self) -> None:
-        from .._infra.output import terminal_width
-
-        width = terminal_width()
-        fixed = {"id": 24, "status": 6, "seconds": 7}
-        free = max(30, width - sum(fixed.values()) - 2 * (len(self.columns) - 1))
-        # paper : statement : method = 3 : 5 : 3 of what is left (the statement says the most)
-        paper, method = free * 3 // 11, free * 3 // 11
-        self.widths = (fixed["id"], paper, free - paper - method, method, fixed["status"], fixed["seconds"])
-        self.title = "Proof obligations"
-        self.head = "  ".join(c.ljust(w) for c, w in zip(self.columns, self.widths)).rstrip()
-        self.rule = "  ".join("-" * w for w in self.widths)
-
-    def row(self, r: Any) -> str:
-        from .._infra.output import fit
-
-        cells = (r.id, r.paper, r.statement, r.method, r.status, f"{r.seconds:.2f}")
-        return "  ".join(fit(c, w).ljust(w) for c, w in zip(cells, self.widths)).rstrip()
 
 
 def certificates_section(args: argparse.Namespace) -> Section:
@@ -420,27 +273,13 @@ def crosscheck_section(args: argparse.Namespace) -> Section:
     Uses ``DIR/case_{a,b}_tightest.json`` when they verify, else certifies
     Table I in memory.
     """
-    from .._certify import certify, load, verify_certificate
-    from .._crosscheck._selftest import EXPECTED, crosscheck_self_test
-    from .._model.parameters import Parameters
+    from .._crosscheck._selftest import EXPECTED, crosscheck_self_test, table_i_certificates
 
     from .._infra.output import emit
 
     if not getattr(args, "json", False):
         emit("cross-check self-test: simulating Table I's certificates and wrong variants of them …")
-    certificates = {}
-    for case in ("a", "b"):
-        path = resolve_target(args).proofs / f"case_{case}_tightest.json"
-        cert = None
-        if path.is_file():
-            try:
-                cert = load(path)
-            except Exception:  # a malformed file is the certificates section's to report
-                cert = None
-        if cert is None or not verify_certificate(cert).proved:
-            cert = certify(Parameters.table_i(case), mode="tightest")
-        certificates[case] = cert
-    result = crosscheck_self_test(certificates)
+    result = crosscheck_self_test(table_i_certificates(resolve_target(args).proofs))
     rows = [(f"({r.case})", r.variant, r.expected, ", ".join(r.caught_by) or "-", "ok" if r.ok else "NOT CAUGHT" if r.variant != "proved" else "FAILED")
             for r in result.rows]
     proved = [r for r in result.rows if r.variant == "proved"]
@@ -472,30 +311,8 @@ def crosscheck_section(args: argparse.Namespace) -> Section:
     )
 
 
-def dataclasses_asdict(obj: Any) -> dict[str, Any]:
-    import dataclasses
-
-    return {k: (list(v) if isinstance(v, tuple) else v) for k, v in dataclasses.asdict(obj).items()}
-
-
 SECTIONS: list[Callable[[argparse.Namespace], Section]] = [obligations_section, certificates_section, crosscheck_section]
 """The parts of ``check``, in order; append to extend the command."""
-
-
-def _format_table(section: Section) -> str:
-    from .._infra.output import format_table
-
-    return format_table(section.title, section.columns, section.rows)
-
-
-def _crashed(make: Callable[[argparse.Namespace], Section], exc: Exception) -> Section:
-    """A section that raised: reported as failing, never as passing."""
-    name = getattr(make, "__name__", "section")
-    from .._infra.junit import Case
-
-    reason = f"{name} crashed: {type(exc).__name__}: {exc}"
-    return Section(name, ("error",), [(reason,)], {}, False, [f"FAILED {reason}"], summary=reason,
-                   cases=[Case(name=name, classname="check.sections", error=reason)])
 
 
 def _validate(args: argparse.Namespace) -> None:
@@ -513,14 +330,6 @@ def _validate(args: argparse.Namespace) -> None:
             f"proofs directory {str(proofs)!r} does not exist; pass --proofs DIR with your certificates, "
             "--write to create it, or --no-certificates to check only the derivations"
         )
-
-
-def closing_line(sections: list[Section]) -> str:
-    """``check: PASSED — …`` or ``check: FAILED — …`` (failed sections named first)."""
-    failed = [s for s in sections if not s.ok]
-    passed = [s for s in sections if s.ok]
-    parts = [s.summary or s.title for s in failed + passed]
-    return f"check: {'FAILED' if failed else 'PASSED'} — " + "; ".join(parts)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -581,28 +390,6 @@ def run(args: argparse.Namespace) -> int:
     else:
         emit(last, level=0)
     return 0 if passed else 1
-
-
-def _wrap(note: str) -> str:
-    """A long note wrapped to the terminal width, continuation lines indented."""
-    import textwrap
-
-    from .._infra.output import terminal_width
-
-    import os
-
-    if not (sys.stdout.isatty() or os.environ.get("COLUMNS")):
-        return note  # a log or a pipe keeps each note on one line, for grep
-    width = terminal_width()
-    if len(note) <= width:
-        return note
-    indent = " " * min(8, len(note) - len(note.lstrip()) + 5)
-    return textwrap.fill(note, width=width, subsequent_indent=indent, break_long_words=True, break_on_hyphens=False)
-
-
-def _is_verdict(note: str) -> bool:
-    """Notes that ``--quiet`` still prints: what failed or is stale."""
-    return note.startswith(("FAILS", "FAILED", "STALE", "MALFORMED"))
 
 
 def _validate_only(only: list[str]) -> None:

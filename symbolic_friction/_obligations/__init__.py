@@ -13,11 +13,12 @@ imports sympy.
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
 from types import ModuleType
 
 from ._base import Erratum, Obligation, Result
 
-__all__ = ["all_obligations", "run_obligations", "all_errata", "registry", "obligation_modules"]
+__all__ = ["all_obligations", "run_obligations", "run_checked", "all_errata", "registry", "obligation_modules"]
 
 def obligation_modules() -> tuple[ModuleType, ...]:
     """The obligation modules (imported; a missing one raises :class:`ImportError`)."""
@@ -96,6 +97,32 @@ def all_obligations() -> list[Obligation]:
 def run_obligations() -> list[Result]:
     """Run every obligation and return its :class:`Result`."""
     return [ob.run() for ob in all_obligations()]
+
+
+def run_checked(obligations: Sequence[Obligation], *, on_result: Callable[[Result], None] | None = None) -> list[Result]:
+    """Run ``obligations`` in order; one that raises is a failing :class:`Result`, never a holding one.
+
+    ``on_result(result)``, if given, is called as soon as each is decided
+    (``symbolic-friction check`` prints the row then).
+    """
+    import time
+
+    from ._base import FAILS
+
+    results: list[Result] = []
+    for ob in obligations:
+        start = time.perf_counter()
+        try:
+            result = ob.run()
+        except Exception as exc:  # a crashing check is reported as failing, never as holding
+            result = Result(
+                id=ob.id, paper=ob.paper, statement=ob.statement, method=ob.method, status=FAILS,
+                seconds=time.perf_counter() - start, reason=f"error while checking: {type(exc).__name__}: {exc}",
+            )
+        results.append(result)
+        if on_result is not None:
+            on_result(result)
+    return results
 
 
 def all_errata() -> list[Erratum]:

@@ -17,9 +17,9 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from .._infra.io import atomic_write_text
+from .._infra.io import atomic_write_text, read_limited
 
-__all__ = ["REPORT_NAME", "render_report", "write_atomic", "report_path"]
+__all__ = ["REPORT_NAME", "render_report", "write_atomic", "report_path", "compare_report"]
 
 REPORT_NAME = "obligations.md"
 
@@ -111,3 +111,13 @@ def _anchor(n: int, ident: str) -> str:
 def write_atomic(path: str | os.PathLike[str], text: str) -> None:
     """Write ``text`` (UTF-8) to ``path`` atomically (see :func:`symbolic_friction._infra.io.atomic_write`)."""
     atomic_write_text(path, text)
+
+
+def compare_report(path: str | os.PathLike[str], text: str) -> str:
+    """``"missing"``, ``"stale"`` (the bytes differ from ``text``) or ``"up to date"``."""
+    path = Path(path)
+    if not path.is_file():
+        return "missing"
+    if read_limited(path, limit=50_000_000, what="report") != text.encode("utf-8"):
+        return "stale"
+    return "up to date"
