@@ -64,6 +64,8 @@ __all__ = [
 ]
 
 SCHEMA = "symbolic-friction/certificate/v1"
+TEMPLATE_ID = "lyapunov-pair/v1"
+"""The template id of a stability certificate (the optional ``template`` member; omitted when written)."""
 PARAMETER_NAMES: tuple[str, ...] = ("k_p", "k_i", "k_v", "f_c")
 CONSTANT_NAMES: tuple[str, ...] = ("k1", "k2", "k3", "k4", "c1", "c2", "c1_hat", "c2_hat", "c")
 OBLIGATIONS: tuple[str, ...] = (
@@ -80,7 +82,7 @@ OBLIGATIONS: tuple[str, ...] = (
 PHYSICAL_NAMES: tuple[str, ...] = ("m", "k_p_bar", "k_i_bar", "k_d_bar", "alpha_v", "f_c_bar")
 """Optional physical parameters (paper §II-A) a certificate may record beside its normalised gains."""
 _TOP_KEYS = ("schema", "parameters", "constants", "overshoot_bound")
-_OPTIONAL_TOP_KEYS = ("provenance", "physical")
+_OPTIONAL_TOP_KEYS = ("provenance", "physical", "template")
 _PROVENANCE_KEYS = ("package", "package_version", "mode", "margin", "solver", "solver_status", "obligations", "label")
 _RATIONAL_RE = re.compile(r"^[+-]?[0-9]+(/[0-9]+)?$")
 _DECIMAL_RE = re.compile(r"^[0-9]+(\.[0-9]+)?$")
@@ -376,6 +378,8 @@ class Certificate:
         if data["schema"] != SCHEMA:
             raise CertificateFormatError(f"unknown schema {data['schema']!r}; expected {SCHEMA!r}")
         _check_keys(data, required=_TOP_KEYS, optional=_OPTIONAL_TOP_KEYS, where="certificate")
+        if "template" in data and data["template"] != TEMPLATE_ID:
+            raise CertificateFormatError(f"template {data['template']!r} is not a stability certificate's ({TEMPLATE_ID!r})")
         parameters = data["parameters"]
         constants = data["constants"]
         for where, obj, names in (("parameters", parameters, PARAMETER_NAMES), ("constants", constants, CONSTANT_NAMES)):

@@ -37,14 +37,17 @@ from typing import Any
 
 from .._infra.errors import CertificateFormatError, InputFileError, SymbolicFrictionError
 from .._model.parameters import Parameters
+from ._template import Template, register
 from .hunting_proof import PRECISION, Box, CycleProof, prove_cycle
 
-__all__ = ["SCHEMA", "HuntingCertificate", "HuntingReport", "verify_hunting", "verify_hunting_file", "verify_any_file", "write_hunting"]
+__all__ = ["SCHEMA", "HuntingCertificate", "HuntingReport", "verify_hunting", "verify_hunting_file", "write_hunting", "HUNTING"]
 
 SCHEMA = "symbolic-friction/hunting-certificate/v1"
+TEMPLATE_ID = "hunting-cycle/v1"
+"""The template id of a hunting certificate (the optional ``template`` member)."""
 CLAIM = "symmetric hunting cycle"
 _TOP = ("schema", "claim", "parameters", "box", "precision_bits", "verdict")
-_OPTIONAL = ("cycle",)
+_OPTIONAL = ("cycle", "template")
 _PARAMS = ("k_p", "k_i", "k_v", "f_c", "f_s")
 
 
@@ -106,6 +109,8 @@ class HuntingCertificate:
         unknown = [k for k in data if k not in _TOP + _OPTIONAL]
         if missing or unknown:
             raise CertificateFormatError(f"hunting certificate: missing keys {missing}, unknown keys {unknown}")
+        if "template" in data and data["template"] != TEMPLATE_ID:
+            raise CertificateFormatError(f"template {data['template']!r} is not a hunting certificate's ({TEMPLATE_ID!r})")
         if data["claim"] != CLAIM:
             raise CertificateFormatError(f"unknown claim {data['claim']!r}; expected {CLAIM!r}")
         params = data["parameters"]
@@ -195,27 +200,6 @@ def load_hunting(path: str | os.PathLike[str]) -> HuntingCertificate:
     return hunting_from_data(read_json(path), source=str(path))
 
 
-def verify_any_file(path: str | os.PathLike[str]) -> tuple[bool, Any]:
-    """Read a certificate file once and verify it by the proof its ``schema`` names.
-
-    Returns ``(is_hunting, report)``: a :class:`HuntingReport` (the Krawczyk
-    proof re-run) or a :class:`~.._certify.verify.VerificationReport` (the
-    exact rational verifier).
-
-    Raises
-    ------
-    InputFileError, CertificateFormatError
-        If the file cannot be read or is not a well-formed certificate.
-    """
-    from .certificate import from_data, read_json
-    from .verify import verify_certificate
-
-    data, source = read_json(path), str(path)
-    if is_hunting(data):
-        return True, verify_hunting(hunting_from_data(data, source=source), source=source)
-    return False, verify_certificate(from_data(data, source=source), source=source)
-
-
 def verify_hunting_file(path: str | os.PathLike[str]) -> HuntingReport:
     """Load and verify one hunting certificate file."""
     return verify_hunting(load_hunting(path), source=str(path))
@@ -240,3 +224,18 @@ def is_hunting_file(path: str | os.PathLike[str]) -> bool:
         return is_hunting(read_json(path))
     except (CertificateFormatError, InputFileError):
         return False  # the certificate loader says what is wrong with it
+
+
+HUNTING = register(Template(
+    id=TEMPLATE_ID,
+    schema=SCHEMA,
+    read=lambda data, source: hunting_from_data(data, source=source),
+    verify=lambda certificate, source: verify_hunting(certificate, source=source),
+    dumps=dumps,
+    # no search to be stale against: the Krawczyk proof is re-decided from the file alone
+    stale=lambda certificate, path: "",
+    failure=lambda report: report.summary(),
+    claim=lambda certificate: "a hunting cycle",
+    default=True,
+))
+"""The hunting certificate: a Krawczyk box around a symmetric stick–slip cycle (beyond the paper)."""

@@ -48,7 +48,7 @@ def run(args: argparse.Namespace) -> int:
     malformed: list[Exception] = []
     cases: list = []
     payload: list[dict] = []
-    from .._certify.hunting import verify_any_file
+    from .._certify.templates import verify_any_file
 
     for name in args.files:
         try:

@@ -104,7 +104,7 @@ def test_the_committed_hunting_certificates_verify():
 
 
 def test_check_verifies_a_listed_hunting_certificate_and_catches_a_moved_box(cert_file, tmp_path):
-    from symbolic_friction._certify.pipeline import check_listed_certificates
+    from symbolic_friction._certify import check_listed_certificates
 
     good = edited(tmp_path, cert_file, lambda d: None)
     (entry,) = check_listed_certificates(tmp_path, [good.name])
