@@ -58,7 +58,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from .._infra.errors import ParameterError
     from .._infra.output import emit
     from .._model.parameters import Parameters
 
@@ -71,22 +70,12 @@ def run(args: argparse.Namespace) -> int:
             level=0,
         )
         return 0
-    from fractions import Fraction
+    from .._hunting._study import parse_sweep, study_cycle
 
-    ratios = None
-    if args.sweep:
-        try:
-            ratios = [Fraction(r.strip()) for r in args.sweep.split(",") if r.strip()]
-        except ValueError:
-            raise ParameterError(f"--sweep must be comma-separated ratios f_s/f_c like 1.1,1.2; got {args.sweep!r}") from None
-        if any(r <= 1 for r in ratios):
-            raise ParameterError(f"--sweep ratios must exceed 1 (f_s > f_c); got {args.sweep!r}")
+    ratios = parse_sweep(args.sweep) if args.sweep else None
 
-    from .._certify.hunting import HuntingCertificate, write_hunting
-    from .._hunting._map import find_cycles
-    from .._certify.hunting_proof import box_around, prove_cycle
-
-    from .._hunting._map import real_root_escape
+    from .._certify.hunting import write_hunting
+    from .._hunting._map import find_cycles, real_root_escape
 
     emit(f"{params}: ρ = (f_s - f_c)/f_c = {params.rho}")
     escape = real_root_escape(params)
@@ -117,8 +106,8 @@ def run(args: argparse.Namespace) -> int:
         emit(f"  multiplier d(-P)/dσ = {cycle.multiplier:.10g} (P∘P: {cycle.multiplier ** 2:.10g}): {stab}")
         if escape is not None:
             emit(f"  σ* = {cycle.sigma:.6g} < {float(escape.bound):.6g}: below the escape bound")
-        box = box_around(cycle.sigma, cycle.slip_time)
-        proof = prove_cycle(params, box)
+        study = study_cycle(params, cycle, simulate=not args.no_simulation, iss=not args.no_iss)
+        proof = study.proof
         for check in proof.checks:
             emit(f"    {check}")
         if not proof.proved:
@@ -128,34 +117,13 @@ def run(args: argparse.Namespace) -> int:
         m_lo, m_hi = proof.multiplier
         stab_proved = {True: "stable (proved |multiplier| < 1)", False: "unstable (proved |multiplier| > 1)", None: "stability undecided"}[proof.stable]
         emit(f"  PROVED: exactly one symmetric cycle with σ* in the box; multiplier ∈ [{m_lo:.10g}, {m_hi:.10g}]: {stab_proved}", level=0)
-        if not args.no_simulation:
-            from .._hunting._report import simulation_agreement
-
-            agreement = simulation_agreement(cycle)
+        if study.agreement is not None:
+            agreement = study.agreement
             emit(f"  {agreement.describe()}: {'agrees to 1e-9' if agreement.holds(1e-9) else 'does NOT agree to 1e-9'}")
-            lo, hi = box.sigma
-            inside = bool(agreement.last_sigmas) and all(lo <= Fraction(x) <= hi for x in agreement.last_sigmas)
-            emit(f"  the simulated |σ| at those exits {'lies' if inside else 'does NOT lie'} in the proved box [σ_lo, σ_hi]")
-        iss = None
-        if not args.no_iss:
-            from .._hunting._iss import iss_comparison
-
-            iss = iss_comparison(cycle)
-            emit(f"  {iss.describe()}")
-        info = {
-            "sigma": f"{cycle.sigma:.17g}",
-            "period": f"{cycle.period:.17g}",
-            "slip_time": f"{cycle.slip_time:.17g}",
-            "stick_time": f"{cycle.stick_time:.17g}",
-            "amplitude_s": f"{cycle.amplitude_s:.17g}",
-            "amplitude_e_i": f"{cycle.amplitude_e_i:.17g}",
-            "amplitude_distance_z": f"{cycle.amplitude_distance:.17g}",
-            "multiplier": [f"{m_lo:.17g}", f"{m_hi:.17g}"],
-            "stable": proof.stable,
-        }
-        if iss is not None:
-            info["iss"] = {"rho": f"{iss.rho:.17g}", "gamma_hat": {k: f"{v:.17g}" for k, v in iss.gamma.items()}, "within": iss.within}
-        cert = HuntingCertificate(params=params, box=box, cycle=info)
+            emit(f"  the simulated |σ| at those exits {'lies' if study.inside_box else 'does NOT lie'} in the proved box [σ_lo, σ_hi]")
+        if study.iss is not None:
+            emit(f"  {study.iss.describe()}")
+        cert = study.certificate
         name = stem if len(cycles) == 1 else f"{stem}_{n}"
         path = write_hunting(cert, Path(args.out) / f"{name}.json")
         emit(f"  certificate: {path} (re-check: symbolic-friction verify {path})", level=0)
