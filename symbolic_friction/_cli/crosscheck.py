@@ -104,29 +104,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Run the cross-check, print the tables, write counterexamples; 1 if any property fails."""
-    from pathlib import Path
-
-    from .._crosscheck import crosscheck, format_report, write_counterexamples
+    from .._crosscheck import crosscheck, default_certificate_files, format_report, write_counterexamples
     from .._infra.errors import ParameterError, UnprovedCertificateError
     from .._infra.io import check_output_directory
     from .._infra.output import emit, verbosity
 
-    files = list(args.certificates)
-    if not files:
-        from .._infra.config import find_config
-
-        config = find_config()
-        if config is not None and config.certificates:
-            # the project's configured certificates ([tool.symbolic-friction]), like `check`
-            files = [str(_relative(config.proofs / name)) for name in config.certificates]
-        else:
-            files = sorted(str(p) for p in Path("proofs").glob("*.json"))
-        from .._certify.hunting import is_hunting_file
-
-        # a hunting certificate proves a cycle of the stiction model, not the paper's inequalities
-        files = [f for f in files if not is_hunting_file(f)]
-        if not files:
-            raise FileNotFoundError("no certificate given and no proofs/*.json in the current directory")
+    files = list(args.certificates) or default_certificate_files()
     if args.rtol >= 1:
         raise ParameterError(f"--rtol must be < 1; got {args.rtol:g}")
     if args.theta > 1:
@@ -250,15 +233,6 @@ def _junit_cases(report) -> list:
                 output=f"{r.paper}: {r.inequality}; {r.samples} instances on {r.trajectories} trajectories",
             ))
     return cases
-
-
-def _relative(path):
-    from pathlib import Path
-
-    try:
-        return path.relative_to(Path.cwd().resolve())
-    except ValueError:
-        return path
 
 
 def _run_crosscheck(crosscheck, files, args):

@@ -33,7 +33,7 @@ from ._overshoot import OvershootSearch
 from ._property import Evaluation, Property
 from ._properties import DEFAULT_RTOL, DEFAULT_THETA, PROPERTIES, Counterexample, PropertyResult
 from ._report import format_report, write_counterexamples
-from ._run import CertificateCheck, CrosscheckReport, crosscheck, default_horizon
+from ._run import CertificateCheck, CrosscheckReport, crosscheck, default_certificate_files, default_horizon
 
 __all__ = [
     "Claims",
@@ -46,6 +46,7 @@ __all__ = [
     "DEFAULT_RTOL",
     "DEFAULT_THETA",
     "default_horizon",
+    "default_certificate_files",
     "decay_fit",
     "DecayFit",
     "iss_gain",

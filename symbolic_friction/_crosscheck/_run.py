@@ -25,6 +25,7 @@ from ._group import GroupRun
 from ._outcome import SEARCH_MODES, CertificateCheck, CrosscheckReport, default_horizon, sample_times, search_mode
 
 __all__ = [
+    "default_certificate_files",
     "CertificateCheck",
     "CrosscheckReport",
     "crosscheck",
@@ -234,3 +235,37 @@ def crosscheck(
     )
 
 
+def default_certificate_files() -> list[str]:
+    """The certificates ``crosscheck`` checks when none is given.
+
+    The project's configured certificates (``[tool.symbolic-friction]``, as for
+    ``check``), else ``proofs/*.json``; hunting certificates are left out (they
+    prove a cycle of the stiction model, not the paper's inequalities).
+
+    Raises
+    ------
+    FileNotFoundError
+        If there is none.
+    """
+    from pathlib import Path
+
+    from .._certify.hunting import is_hunting_file
+    from .._infra.config import find_config
+
+    config = find_config()
+    if config is not None and config.certificates:
+        cwd = Path.cwd().resolve()
+        files = []
+        for name in config.certificates:
+            path = config.proofs / name
+            try:
+                path = path.relative_to(cwd)
+            except ValueError:
+                pass
+            files.append(str(path))
+    else:
+        files = sorted(str(p) for p in Path("proofs").glob("*.json"))
+    files = [f for f in files if not is_hunting_file(f)]
+    if not files:
+        raise FileNotFoundError("no certificate given and no proofs/*.json in the current directory")
+    return files
