@@ -137,7 +137,7 @@ class CrosscheckReport:
     seed : int
     seconds : float
     decay : dict
-        Gain-set label -> :class:`~._decay.DecayFit` (if requested).
+        Gain-set label -> :class:`~._overshoot.DecayFit` (if requested).
     iss : dict
         Gain-set label -> :class:`~._iss.IssEstimate` (if requested).
     """

@@ -155,8 +155,8 @@ def _refusal_row(case: str, cert: Any) -> SelfTestRow:
 
 def _growth_run(claims: Any, *, seed: int, starts: int = 16) -> tuple[int, list[Any]]:
     """Short dense runs from the maximisers of ``V̂°/V̂`` on ``R̂`` (the model's eq. hatVdot), as the full cross-check does."""
-    from ._adversarial import rate_maximisers
-    from ._group import GroupRun as _GroupRun
+    from ._initial import rate_maximisers
+    from ._run import GroupRun as _GroupRun
     from ._outcome import default_horizon
 
     params = claims.params

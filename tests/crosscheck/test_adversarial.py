@@ -7,7 +7,7 @@ import pytest
 
 from symbolic_friction import Parameters
 from symbolic_friction._crosscheck import Claims
-from symbolic_friction._crosscheck._adversarial import hat_V_rate
+from symbolic_friction._crosscheck._initial import hat_V_rate
 from symbolic_friction._model.coordinates import x_to_z
 from symbolic_friction._simulation.batch import simulate_batch
 from tests.crosscheck.helpers import _cert

@@ -9,7 +9,7 @@ import pytest
 
 from symbolic_friction._crosscheck import Claims
 from symbolic_friction._crosscheck import crosscheck
-from symbolic_friction._crosscheck._adversarial import hat_V_rate
+from symbolic_friction._crosscheck._initial import hat_V_rate
 from symbolic_friction._crosscheck.lemma3 import run_slack
 from tests.crosscheck.helpers import _cert
 from tests.crosscheck.helpers import _result
@@ -39,7 +39,7 @@ def test_k4_violating_only_definiteness_cannot_make_V_hat_increase():
     res = {r.id: r for r in report.checks[0].results}
     assert res["lemma3.hatV_nonincreasing"].failures == 0 and res["lemma3.hatV_nonincreasing"].samples > 0
     assert res["lemma3.hatV_lower"].failures == 0  # ½wᵀKw ≥ ½min(k1,k2,k4)|w|² on w ≥ 0 anyway
-    from symbolic_friction._crosscheck._adversarial import rate_maximisers
+    from symbolic_friction._crosscheck._initial import rate_maximisers
 
     X = rate_maximisers(cl.params, cl, seed=0, count=4)
     assert np.nanmax(hat_V_rate(cl.params, cl, X)) <= 1e-12
