@@ -15,7 +15,7 @@ from __future__ import annotations
 import importlib
 from typing import Any
 
-from ._errors import (
+from ._infra.errors import (
     AssumptionError,
     CertificateError,
     CertificateFormatError,
@@ -35,30 +35,30 @@ from ._errors import (
     OutputPathError,
     SymbolicFrictionError,
 )
-from ._parameters import TABLE_I, Parameters
-from ._rational import format_rational, to_rational
+from ._model.parameters import TABLE_I, Parameters
+from ._infra.rational import format_rational, to_rational
 
 __version__ = "0.1.0"
 
 # name -> private module that defines it (imported lazily on first access)
 _LAZY: dict[str, str] = {
     # model (eq. CoC, xDot, A, distFromA, lyapLike, Vhat)
-    "z_to_x": "._coordinates",
-    "x_to_z": "._coordinates",
-    "system_matrix": "._coordinates",
-    "input_vector": "._coordinates",
-    "dz": "._attractor",
-    "distance_x": "._attractor",
-    "squared_distance_x": "._attractor",
-    "distance_z": "._attractor",
-    "in_attractor_x": "._attractor",
-    "attractor_bound_x": "._attractor",
-    "attractor_bound_z": "._attractor",
-    "lyapunov_matrix": "._lyapunov",
-    "V": "._lyapunov",
-    "V_k": "._lyapunov",
-    "V_hat": "._lyapunov",
-    "in_R": "._lyapunov",
+    "z_to_x": "._model.coordinates",
+    "x_to_z": "._model.coordinates",
+    "system_matrix": "._model.coordinates",
+    "input_vector": "._model.coordinates",
+    "dz": "._model.attractor",
+    "distance_x": "._model.attractor",
+    "squared_distance_x": "._model.attractor",
+    "distance_z": "._model.attractor",
+    "in_attractor_x": "._model.attractor",
+    "attractor_bound_x": "._model.attractor",
+    "attractor_bound_z": "._model.attractor",
+    "lyapunov_matrix": "._model.lyapunov",
+    "V": "._model.lyapunov",
+    "V_k": "._model.lyapunov",
+    "V_hat": "._model.lyapunov",
+    "in_R": "._model.lyapunov",
     # proof obligations
     "Obligation": "._obligations._base",
     "Outcome": "._obligations._base",
@@ -68,9 +68,9 @@ _LAZY: dict[str, str] = {
     "all_errata": "._obligations",
     "Erratum": "._obligations._base",
     # conditions on k1..k4 (Lemma 3)
-    "k_conditions": "._kconditions",
-    "check_k_conditions": "._kconditions",
-    "Condition": "._kconditions",
+    "k_conditions": "._model.kconditions",
+    "check_k_conditions": "._model.kconditions",
+    "Condition": "._model.kconditions",
     # certificates (search with cvxpy; exact verification with Fractions)
     "certify": "._certify",
     "certify_many": "._certify",
@@ -105,16 +105,16 @@ _LAZY: dict[str, str] = {
     "format_report": "._crosscheck",
     "write_counterexamples": "._crosscheck",
     # simulation
-    "Solution": "._simulation._base",
+    "Solution": "._simulation._trajectories",
     "FrictionLaw": "._simulation.friction",
     "Coulomb": "._simulation.friction",
     "InflatedCoulomb": "._simulation.friction",
     "Stribeck": "._simulation.friction",
-    "Scene": "._scenes",
-    "load_scene": "._scenes",
-    "builtin_scenes": "._scenes",
-    "make_figures": "._figures",
-    "available_figures": "._figures",
+    "Scene": "._studies.scenes",
+    "load_scene": "._studies.scenes",
+    "builtin_scenes": "._studies.scenes",
+    "make_figures": "._studies.figures",
+    "available_figures": "._studies.figures",
     "simulate": "._simulation",
     "simulate_batch": "._simulation.batch",
     "iter_batches": "._simulation.batch",
@@ -137,9 +137,9 @@ _LAZY: dict[str, str] = {
     "verify_hunting": "._hunting",
     # measured against the independent 50-digit reference: speed/accuracy and the extremes
     "Reference": "._reference",
-    "measure_tradeoff": "._tradeoff",
-    "measure_cost": "._tradeoff",
-    "Tradeoff": "._tradeoff",
+    "measure_tradeoff": "._studies.tradeoff",
+    "measure_cost": "._studies.tradeoff",
+    "Tradeoff": "._studies.tradeoff",
     "run_extremes": "._extremes",
     "Extremes": "._extremes",
 }
@@ -147,7 +147,7 @@ _LAZY: dict[str, str] = {
 # public submodules (imported lazily): name -> private module
 _MODULES: dict[str, str] = {
     # the paper's model in sympy, for symbolic gains: gains(), A, A_z, b, P, T, T_inv, K_hat, dz, sat
-    "symbolic": "._symbolic",
+    "symbolic": "._model.symbolic",
 }
 
 __all__ = [

@@ -1,5 +1,5 @@
 """``python -m symbolic_friction`` is the ``symbolic-friction`` command."""
 
-from .cli import entry_point
+from ._cli.main import entry_point
 
 entry_point()

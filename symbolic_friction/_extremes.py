@@ -43,8 +43,8 @@ from typing import Any, Sequence
 
 import numpy as np
 
-from ._errors import SimulationError, SymbolicFrictionError
-from ._parameters import Parameters
+from ._infra.errors import SimulationError, SymbolicFrictionError
+from ._model.parameters import Parameters
 
 __all__ = [
     "Cell", "Outcome", "Extremes", "cells", "default_methods", "claimed_error", "classify_run", "run_extremes",
@@ -243,9 +243,9 @@ def _child(send: Any, method: Any, cell: Cell, ref: _Ref) -> None:
 
 def classify_certify(cell: Cell, ref: _Ref, cache: dict) -> Outcome:
     """``certify`` on the cell's gains (once per gain set), its bound checked along the reference."""
-    from ._attractor import distance_x
+    from ._model.attractor import distance_x
     from ._certify import certify
-    from ._coordinates import z_to_x
+    from ._model.coordinates import z_to_x
 
     t0 = time.perf_counter()
     key = cell.params
@@ -374,7 +374,7 @@ def extremes_figure(result: Extremes, path: Path, formats: Sequence[str] = ("png
     from matplotlib.colors import LogNorm
     from matplotlib.patches import Patch
 
-    from ._figures import _pyplot, save_figure
+    from ._studies.figures import _pyplot, save_figure
 
     plt = _pyplot()
     cols = list(result.methods) + ["certify"]
@@ -424,8 +424,8 @@ def extremes_figure(result: Extremes, path: Path, formats: Sequence[str] = ("png
 
 
 def _register() -> None:
-    from ._figures import _FORMATS_NOW, register
-    from ._io import atomic_write
+    from ._studies.figures import _FORMATS_NOW, register
+    from ._infra.io import atomic_write
 
     @register("extremes", "the extremes matrix: every method and certify on hard cases (report extremes.md + heat map)")
     def extremes(out: Path) -> list[Path]:

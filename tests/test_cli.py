@@ -5,7 +5,7 @@ import sys
 
 import pytest
 
-from symbolic_friction.cli import COMMANDS, build_parser, main
+from symbolic_friction._cli.main import COMMANDS, build_parser, main
 
 HEAVY = ("sympy", "scipy", "cvxpy", "matplotlib", "clarabel")
 
@@ -13,7 +13,7 @@ HEAVY = ("sympy", "scipy", "cvxpy", "matplotlib", "clarabel")
 def test_help_imports_nothing_heavy():
     code = (
         "import sys, contextlib, io\n"
-        "from symbolic_friction.cli import main\n"
+        "from symbolic_friction._cli.main import main\n"
         "with contextlib.redirect_stdout(io.StringIO()):\n"
         "    try:\n        main(['--help'])\n    except SystemExit:\n        pass\n"
         f"print(sorted(m for m in {HEAVY!r} if m in sys.modules))\n"

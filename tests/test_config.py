@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import pytest
 
-from symbolic_friction._config import find_config, load_config
-from symbolic_friction._errors import ConfigError
+from symbolic_friction._infra.config import find_config, load_config
+from symbolic_friction._infra.errors import ConfigError
 
 
 def _pyproject(directory, body):

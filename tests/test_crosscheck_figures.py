@@ -6,7 +6,7 @@ from pathlib import Path
 
 from symbolic_friction import Parameters
 from symbolic_friction._crosscheck import crosscheck, iss_gain
-from symbolic_friction._crosscheck_figures import plot_iss, plot_tightness, table_i_certificates
+from symbolic_friction._studies.crosscheck_figures import plot_iss, plot_tightness, table_i_certificates
 
 PROOFS = Path(__file__).resolve().parents[1] / "proofs"
 
@@ -36,8 +36,8 @@ def test_table_i_certificates_prefers_committed_files():
 
 
 def test_figures_are_registered_for_the_figures_command():
-    import symbolic_friction._crosscheck_figures  # noqa: F401  (registers on import)
-    from symbolic_friction._figures import FIGURES
+    import symbolic_friction._studies.crosscheck_figures  # noqa: F401  (registers on import)
+    from symbolic_friction._studies.figures import FIGURES
 
     assert {"crosscheck_tightness", "crosscheck_iss"} <= set(FIGURES)
 

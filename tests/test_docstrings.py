@@ -32,7 +32,7 @@ def test_docstring_examples(name):
 
 def test_examples_exist_where_the_api_is():
     # The user-facing modules must carry runnable examples, not just prose.
-    for name in ("symbolic_friction._rational", "symbolic_friction._parameters", "symbolic_friction._lyapunov",
+    for name in ("symbolic_friction._infra.rational", "symbolic_friction._model.parameters", "symbolic_friction._model.lyapunov",
                  "symbolic_friction._simulation.affine", "symbolic_friction._certify.search"):
         tests = doctest.DocTestFinder().find(importlib.import_module(name))
         assert sum(len(t.examples) for t in tests) > 0, name

@@ -13,7 +13,7 @@ import math
 import numpy as np
 import pytest
 
-from symbolic_friction._errors import SimulationError
+from symbolic_friction._infra.errors import SimulationError
 from symbolic_friction._extremes import (
     HUNG,
     OK,
@@ -118,7 +118,7 @@ def test_claims():
 
 
 def test_cli_writes_report_and_heat_map(tmp_path, capsys):
-    from symbolic_friction.cli import main
+    from symbolic_friction._cli.main import main
 
     assert main(["extremes", "--only", "f_c", "--out", str(tmp_path), "--format", "svg"]) == 0
     out = capsys.readouterr().out
@@ -128,7 +128,7 @@ def test_cli_writes_report_and_heat_map(tmp_path, capsys):
 
 def test_cli_fails_on_a_silently_wrong_cell(tmp_path, monkeypatch, capsys):
     import symbolic_friction._extremes as ex
-    from symbolic_friction.cli import main
+    from symbolic_friction._cli.main import main
 
     real = ex.classify_run
 

@@ -4,7 +4,7 @@ import os
 
 import pytest
 
-from symbolic_friction._io import atomic_write, atomic_write_text
+from symbolic_friction._infra.io import atomic_write, atomic_write_text
 
 
 def test_writes_text_and_keeps_no_temporary(tmp_path):
@@ -34,7 +34,7 @@ def test_read_limited_refuses_what_is_not_a_small_regular_file(tmp_path):
     import os
 
     from symbolic_friction import InputFileError
-    from symbolic_friction._io import read_limited
+    from symbolic_friction._infra.io import read_limited
 
     (tmp_path / "ok").write_bytes(b"abc")
     assert read_limited(tmp_path / "ok", limit=3) == b"abc"
@@ -60,7 +60,7 @@ def test_read_limited_refuses_what_is_not_a_small_regular_file(tmp_path):
 
 def test_ensure_directory_and_check_output_directory(tmp_path):
     from symbolic_friction import OutputPathError
-    from symbolic_friction._io import check_output_directory, ensure_directory
+    from symbolic_friction._infra.io import check_output_directory, ensure_directory
 
     (tmp_path / "file").write_text("x", encoding="utf-8")
     assert ensure_directory(tmp_path / "a" / "b").is_dir()

@@ -6,8 +6,8 @@ import xml.etree.ElementTree as ET
 
 import pytest
 
-from symbolic_friction._errors import OutputPathError
-from symbolic_friction._junit import Case, render_junit, write_junit
+from symbolic_friction._infra.errors import OutputPathError
+from symbolic_friction._infra.junit import Case, render_junit, write_junit
 
 
 def test_counts_and_elements(tmp_path):

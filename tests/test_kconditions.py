@@ -1,4 +1,4 @@
-"""The k-conditions of Lemma 3 as data (symbolic_friction._kconditions)."""
+"""The k-conditions of Lemma 3 as data (symbolic_friction._model.kconditions)."""
 
 from __future__ import annotations
 
@@ -8,8 +8,8 @@ from fractions import Fraction as F
 import pytest
 import sympy as sp
 
-from symbolic_friction._errors import CertificateError, InvalidNumberError, NonFiniteError
-from symbolic_friction._kconditions import CONDITION_NAMES, Condition, check_k_conditions, k_conditions
+from symbolic_friction._infra.errors import CertificateError, InvalidNumberError, NonFiniteError
+from symbolic_friction._model.kconditions import CONDITION_NAMES, Condition, check_k_conditions, k_conditions
 
 # case (a) of Table I and constants that satisfy every condition:
 # k_i/k_v = 5/8, so k3 = 2 > 5/8·1 and > k2 = 1; k4 = 5 > 5/4, > 3·1, > 2²/1

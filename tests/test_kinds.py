@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from symbolic_friction._kinds import EXACT, FLOAT, SYMPY, kind_of
+from symbolic_friction._model.kinds import EXACT, FLOAT, SYMPY, kind_of
 
 
 def test_kind_of_picks_the_most_general_kind():

@@ -42,7 +42,7 @@ def test_apply_refuses_a_snippet_that_is_missing_or_repeated():
 
 def test_sources_include_the_package_and_the_proofs():
     files = source_files()
-    assert "symbolic_friction/_lyapunov.py" in files and "proofs/obligations.md" in files
+    assert "symbolic_friction/_model/lyapunov.py" in files and "proofs/obligations.md" in files
     assert not any(f.startswith("tests/") for f in files)
 
 

@@ -166,7 +166,7 @@ def main(argv: list[str] | None = None) -> int:
     import nbformat
 
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-    from symbolic_friction._io import atomic_write_text
+    from symbolic_friction._infra.io import atomic_write_text
 
     parser = argparse.ArgumentParser(description="Execute the notebooks and store their outputs.")
     parser.add_argument("--write", action="store_true", help="store the fresh outputs (default: only report)")

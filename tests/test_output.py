@@ -7,7 +7,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-from symbolic_friction._output import _ascii_replace, emit, format_table, set_verbosity
+from symbolic_friction._infra.output import _ascii_replace, emit, format_table, set_verbosity
 
 REPO = Path(__file__).resolve().parents[1]
 

@@ -6,8 +6,8 @@ import io
 
 import pytest
 
-from symbolic_friction._output import set_verbosity
-from symbolic_friction._progress import Progress
+from symbolic_friction._infra.output import set_verbosity
+from symbolic_friction._infra.progress import Progress
 
 
 class _Tty(io.StringIO):

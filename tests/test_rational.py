@@ -66,7 +66,7 @@ def test_format_rational():
 
 
 def test_short_rational_keeps_messages_one_readable_line():
-    from symbolic_friction._rational import short_rational
+    from symbolic_friction._infra.rational import short_rational
 
     assert short_rational(Fraction(32, 5)) == "32/5"
     assert short_rational(Fraction(1, 10**300)) == "≈1e-300 (exact: a 301-digit denominator)"
@@ -75,7 +75,7 @@ def test_short_rational_keeps_messages_one_readable_line():
 
 
 def test_integers_beyond_the_str_limit_parse_and_print():
-    from symbolic_friction._rational import format_integer, parse_integer
+    from symbolic_friction._infra.rational import format_integer, parse_integer
 
     text = "9" * 12_345
     assert format_integer(parse_integer(text)) == text and parse_integer("-" + text) == -parse_integer(text)

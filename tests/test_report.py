@@ -1,11 +1,11 @@
-"""``proofs/obligations.md`` rendering and the atomic write (symbolic_friction._report)."""
+"""``proofs/obligations.md`` rendering and the atomic write (symbolic_friction._obligations._report)."""
 
 import os
 from types import SimpleNamespace
 
 import pytest
 
-from symbolic_friction._report import REPORT_NAME, render_report, report_path, write_atomic
+from symbolic_friction._obligations._report import REPORT_NAME, render_report, report_path, write_atomic
 
 
 def _result(ident, status="holds", reason="", details=(("A", "x^2"),), seconds=1.0):

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from symbolic_friction import Parameters, SceneError
-from symbolic_friction._scenes import OUTPUTS, Scene, builtin_scenes, load_scene
+from symbolic_friction._studies.scenes import OUTPUTS, Scene, builtin_scenes, load_scene
 from symbolic_friction._simulation.friction import InflatedCoulomb, Stribeck
 
 BASE = """
@@ -222,7 +222,7 @@ def test_npz_output(tmp_path):
 
 
 def test_every_output_name_is_documented():
-    import symbolic_friction._scenes as module
+    import symbolic_friction._studies.scenes as module
 
     for name in OUTPUTS:
         assert f'"{name}"' in module.__doc__
@@ -268,7 +268,7 @@ def test_readme_documents_the_scene_format_of_the_module_docstring():
     """The scene file format is published in the README, word for word as in the module docstring."""
     from pathlib import Path
 
-    import symbolic_friction._scenes as scenes
+    import symbolic_friction._studies.scenes as scenes
 
     block = scenes.__doc__.split("unknown keys are errors)::\n\n", 1)[1].split("\nBuilt-in scenes", 1)[0]
     expected = "\n".join(line[4:] if line.startswith("    ") else line for line in block.rstrip("\n").splitlines())

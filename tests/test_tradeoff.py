@@ -8,10 +8,10 @@ import math
 import pytest
 
 from symbolic_friction import Parameters
-from symbolic_friction._errors import UsageError
+from symbolic_friction._infra.errors import UsageError
 from symbolic_friction._simulation import EventDriven, IvpEvents, Moreau
-from symbolic_friction._tradeoff import Sweep, fit_order, measure_tradeoff, tradeoff_figures
-from symbolic_friction.cli import main
+from symbolic_friction._studies.tradeoff import Sweep, fit_order, measure_tradeoff, tradeoff_figures
+from symbolic_friction._cli.main import main
 
 A = Parameters.table_i("a")
 

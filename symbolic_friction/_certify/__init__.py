@@ -7,7 +7,11 @@
 * :mod:`.verify` — the exact verifier (Fractions only; no code shared with
   the search); the only place a certificate is called proved.
 * :mod:`.report` — the Markdown proof report.
-* :mod:`.pipeline` — certify, write, regenerate, staleness check.
+* :mod:`.pipeline` — certify, write, regenerate, staleness of a stability certificate.
+* :mod:`.hunting`, :mod:`.hunting_proof` — the hunting certificate and its Krawczyk proof.
+* :mod:`._template`, :mod:`.templates` — certificate templates: each kind of proof
+  file (its ``template`` id) with its reader, exact verifier, writer and
+  staleness check; :func:`.templates.check_listed_certificates` runs them.
 * :mod:`.sweep` — many gain sets, with any ``concurrent.futures.Executor``.
 
 Importing this package does not import cvxpy; the first search does.
@@ -27,13 +31,11 @@ from .certificate import (
     loads,
     loads_certificate,
 )
+from ._template import Template, register
 from .pipeline import (
     TABLE_I_FILES,
-    CommittedCertificate,
     certify,
     certify_table_i,
-    check_committed_certificates,
-    check_listed_certificates,
     default_stem,
     regenerate,
     render_files,
@@ -44,6 +46,7 @@ from .pipeline import (
 from .report import render_markdown
 from .search import DEFAULT_MARGIN, MODES, Candidate, Search, find_candidate
 from .sweep import SweepItem, certify_many
+from .templates import CommittedCertificate, check_committed_certificates, check_listed_certificates
 from .verify import Check, VerificationReport, verify_certificate, verify_file
 
 __all__ = [
@@ -81,4 +84,6 @@ __all__ = [
     "VerificationReport",
     "verify_certificate",
     "verify_file",
+    "Template",
+    "register",
 ]

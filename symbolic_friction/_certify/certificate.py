@@ -31,7 +31,6 @@ certificate gives a byte-identical file on any machine)::
 
 from __future__ import annotations
 
-import functools
 import json
 import os
 import re
@@ -39,9 +38,11 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
 
-from .._errors import CertificateFormatError
-from .._io import atomic_write_text
-from .._rational import format_rational, parse_integer
+from .._infra.errors import CertificateFormatError
+from .._infra.io import atomic_write_text
+from .._infra.rational import format_rational, parse_integer
+from ._json import MAX_FILE_BYTES, parse_json, read_json
+from ._schema import json_schema, validate_schema
 
 __all__ = [
     "SCHEMA",
@@ -63,6 +64,8 @@ __all__ = [
 ]
 
 SCHEMA = "symbolic-friction/certificate/v1"
+TEMPLATE_ID = "lyapunov-pair/v1"
+"""The template id of a stability certificate (the optional ``template`` member; omitted when written)."""
 PARAMETER_NAMES: tuple[str, ...] = ("k_p", "k_i", "k_v", "f_c")
 CONSTANT_NAMES: tuple[str, ...] = ("k1", "k2", "k3", "k4", "c1", "c2", "c1_hat", "c2_hat", "c")
 OBLIGATIONS: tuple[str, ...] = (
@@ -79,14 +82,12 @@ OBLIGATIONS: tuple[str, ...] = (
 PHYSICAL_NAMES: tuple[str, ...] = ("m", "k_p_bar", "k_i_bar", "k_d_bar", "alpha_v", "f_c_bar")
 """Optional physical parameters (paper §II-A) a certificate may record beside its normalised gains."""
 _TOP_KEYS = ("schema", "parameters", "constants", "overshoot_bound")
-_OPTIONAL_TOP_KEYS = ("provenance", "physical")
+_OPTIONAL_TOP_KEYS = ("provenance", "physical", "template")
 _PROVENANCE_KEYS = ("package", "package_version", "mode", "margin", "solver", "solver_status", "obligations", "label")
 _RATIONAL_RE = re.compile(r"^[+-]?[0-9]+(/[0-9]+)?$")
 _DECIMAL_RE = re.compile(r"^[0-9]+(\.[0-9]+)?$")
 MAX_NUMBER_CHARS = 20_000
 """Longest exact number accepted in a certificate (a 1,500-digit denominator is fine; 10⁵ digits is not)."""
-MAX_FILE_BYTES = 10_000_000
-"""Largest certificate file read."""
 MAX_TEXT_CHARS = 10_000
 """Longest free-text field (label, solver, …)."""
 
@@ -319,7 +320,7 @@ class Certificate:
             If the certificate's gains violate Assumption 1 (such a
             certificate also fails verification).
         """
-        from .._parameters import Parameters
+        from .._model.parameters import Parameters
 
         return Parameters(k_p=self.k_p, k_i=self.k_i, k_v=self.k_v, f_c=self.f_c)
 
@@ -377,6 +378,8 @@ class Certificate:
         if data["schema"] != SCHEMA:
             raise CertificateFormatError(f"unknown schema {data['schema']!r}; expected {SCHEMA!r}")
         _check_keys(data, required=_TOP_KEYS, optional=_OPTIONAL_TOP_KEYS, where="certificate")
+        if "template" in data and data["template"] != TEMPLATE_ID:
+            raise CertificateFormatError(f"template {data['template']!r} is not a stability certificate's ({TEMPLATE_ID!r})")
         parameters = data["parameters"]
         constants = data["constants"]
         for where, obj, names in (("parameters", parameters, PARAMETER_NAMES), ("constants", constants, CONSTANT_NAMES)):
@@ -446,70 +449,6 @@ def dumps(certificate: Certificate) -> str:
     return json.dumps(certificate.to_dict(), indent=2, sort_keys=True, ensure_ascii=True) + "\n"
 
 
-def _reject_constant(name: str) -> None:
-    raise CertificateFormatError(f"not valid JSON: the constant {name} is not allowed in a certificate")
-
-
-def _no_duplicates(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
-    out: dict[str, Any] = {}
-    for key, value in pairs:
-        if key in out:
-            raise CertificateFormatError(f"duplicate key {key!r} in a JSON object")
-        out[key] = value
-    return out
-
-
-def parse_json(text: str | bytes, *, source: str = "<string>") -> object:
-    """The JSON value of a certificate file's text, read strictly and within bounds.
-
-    Shared by every kind of certificate file (stability certificates here,
-    hunting certificates in :mod:`.._hunting._certificate`): UTF-8 only, at
-    most :data:`MAX_FILE_BYTES`, no duplicate keys, no ``NaN``/``Infinity``,
-    integers within Python's digit limit, nesting within the recursion limit.
-
-    Raises
-    ------
-    CertificateFormatError
-        Naming ``source`` and, for a syntax error, the line and column.
-    """
-    if isinstance(text, bytes):
-        try:
-            text = text.decode("utf-8")
-        except UnicodeDecodeError as exc:
-            raise CertificateFormatError(f"{source}: not valid JSON: not UTF-8 ({exc.reason} at byte {exc.start})")
-    if len(text) > MAX_FILE_BYTES:
-        raise CertificateFormatError(f"{source}: {len(text)} characters; a certificate has at most {MAX_FILE_BYTES}")
-    try:
-        return json.loads(
-            text, parse_constant=_reject_constant, object_pairs_hook=_no_duplicates,
-            parse_int=_json_int,
-        )
-    except json.JSONDecodeError as exc:
-        raise CertificateFormatError(
-            f"{source}: not valid JSON: {exc.msg} at line {exc.lineno}, column {exc.colno}"
-        ) from None
-    except RecursionError:
-        raise CertificateFormatError(f"{source}: not a certificate: JSON nested too deeply") from None
-    except CertificateFormatError as exc:
-        raise CertificateFormatError(f"{source}: {exc}") from None
-
-
-def read_json(path: str | os.PathLike[str]) -> object:
-    """Read a certificate file once, with the package's bounds, and :func:`parse_json` it.
-
-    Raises
-    ------
-    InputFileError
-        If ``path`` is not a readable regular file of at most
-        :data:`MAX_FILE_BYTES` bytes (a FIFO, a device, a directory, …).
-    CertificateFormatError
-        If the content is not strict JSON.
-    """
-    from .._io import read_limited
-
-    return parse_json(read_limited(path, limit=MAX_FILE_BYTES, what="certificate"), source=str(path))
-
-
 def from_data(data: object, *, source: str = "<string>") -> Certificate:
     """The certificate in a parsed JSON value, validated against the format and the shipped schema."""
     try:
@@ -530,42 +469,6 @@ def loads(text: str | bytes, *, source: str = "<string>") -> Certificate:
         column) or violates the format (see :meth:`Certificate.from_dict`).
     """
     return from_data(parse_json(text, source=source), source=source)
-
-
-def _json_int(text: str) -> object:
-    """JSON integers are never part of a certificate (exact values are strings); a huge one is not even read."""
-    return int(text) if len(text) <= 4000 else float("inf")
-
-
-def json_schema() -> dict[str, Any]:
-    """The JSON Schema (draft 2020-12) of the certificate format, as shipped in the package."""
-    from importlib.resources import files
-
-    return json.loads(files("symbolic_friction").joinpath("schemas", "certificate-v1.schema.json").read_text(encoding="utf-8"))
-
-
-@functools.lru_cache(maxsize=1)
-def _validator() -> Any:
-    import jsonschema
-
-    return jsonschema.Draft202012Validator(json_schema())
-
-
-def validate_schema(data: object) -> None:
-    """Validate a parsed certificate against :func:`json_schema` with :mod:`jsonschema`.
-
-    Raises
-    ------
-    CertificateFormatError
-        With the first violation, located by its JSON path.
-    """
-    import jsonschema
-
-    error = jsonschema.exceptions.best_match(_validator().iter_errors(data))
-    if error is not None:
-        where = "".join(f"[{p!r}]" if isinstance(p, int) else f".{p}" for p in error.absolute_path).lstrip(".") or "certificate"
-        message = error.message if len(error.message) <= 200 else error.message[:200] + "…"
-        raise CertificateFormatError(f"does not match the certificate schema at {where}: {message}")
 
 
 def load(path: str | os.PathLike[str]) -> Certificate:

@@ -15,9 +15,10 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Iterable
 
-from .._errors import CertificateError, CertificateFormatError, InputFileError, ParameterError, SymbolicFrictionError
-from .._parameters import Parameters
-from .certificate import MAX_FILE_BYTES, Certificate, atomic_write_text, dumps, load
+from .._infra.errors import CertificateError, CertificateFormatError, InputFileError, ParameterError, SymbolicFrictionError
+from .._model.parameters import Parameters
+from ._template import Template, register
+from .certificate import MAX_FILE_BYTES, SCHEMA, TEMPLATE_ID, Certificate, atomic_write_text, dumps, from_data, load
 from .report import render_markdown
 from .rounding import to_certificate
 from .search import MODES, check_margin, check_mode, find_candidate
@@ -32,9 +33,8 @@ __all__ = [
     "TABLE_I_FILES",
     "default_stem",
     "regenerate",
-    "CommittedCertificate",
-    "check_committed_certificates",
-    "check_listed_certificates",
+    "stability_staleness",
+    "STABILITY",
     "write_listed_certificates",
 ]
 
@@ -189,138 +189,47 @@ def regenerate(certificate: Certificate) -> Certificate:
     )
 
 
-@dataclass(frozen=True)
-class CommittedCertificate:
-    """The state of one committed certificate (see :func:`check_committed_certificates`).
-
-    Attributes
-    ----------
-    path : Path
-        The JSON file (or the expected path of a missing one).
-    report : VerificationReport or None
-        Exact verification, or None if the file is missing or malformed.
-    stale : bool
-        True if the JSON or its ``.md`` differs byte-for-byte from what
-        ``certify`` would write now (or is missing, or cannot be regenerated).
-    reason : str
-        Why it is not ok (empty when ok).
-    """
-
-    path: Path
-    report: VerificationReport | None
-    stale: bool
-    reason: str = ""
-
-    @property
-    def proved(self) -> bool:
-        return self.report is not None and self.report.proved
-
-    @property
-    def ok(self) -> bool:
-        """Proved and up to date."""
-        return self.proved and not self.stale
-
-    def describe(self) -> str:
-        """One line for ``symbolic-friction check``."""
-        if self.ok:
-            bound = getattr(self.report.certificate, "overshoot_bound", None)  # type: ignore[union-attr]
-            claim = f"κ ≤ {bound}" if bound is not None else "a hunting cycle"
-            return f"ok     {self.path} (proved, up to date, {claim})"
-        state = "STALE " if self.stale and self.report is not None and self.report.proved else "FAILED"
-        return f"{state} {self.path}: {self.reason}"
-
-
-def _check_one(path: Path) -> CommittedCertificate:
-    from .._hunting._certificate import verify_any_file
-
+def stability_staleness(certificate: Certificate, path: Path) -> str:
+    """Why the committed ``path`` (and its ``.md`` report) differ from what ``certify`` writes now; empty if they do not."""
     try:
-        hunting, report = verify_any_file(path)
-    except CertificateFormatError as exc:
-        return CommittedCertificate(path, None, True, f"malformed: {exc}")
-    except InputFileError as exc:
-        return CommittedCertificate(path, None, True, f"unreadable: {exc}")
-    if hunting:
-        # a hunting certificate (beyond the paper) has no search to be stale against:
-        # its Krawczyk proof is re-decided from the file alone
-        return CommittedCertificate(path, report, False, "" if report.proved else report.summary())
-    if not report.proved:
-        return CommittedCertificate(path, report, False, "; ".join(check.message for check in report.failures))
-    try:
-        fresh = regenerate(report.certificate)
+        fresh = regenerate(certificate)
         json_text, md_text, _ = render_files(fresh, name=path.name)
     except SymbolicFrictionError as exc:
-        return CommittedCertificate(path, report, True, f"cannot be regenerated: {exc}")
-    from .._io import read_limited
+        return f"cannot be regenerated: {exc}"
+    from .._infra.io import read_limited
 
     md_path = path.with_suffix(".md")
     stale = []
     if read_limited(path, limit=MAX_FILE_BYTES, what="certificate") != json_text.encode("utf-8"):
         stale.append(path.name)
     if not md_path.exists():
-        return CommittedCertificate(path, report, True, f"its report {md_path.name} is missing")
+        return f"its report {md_path.name} is missing"
     try:
         md_bytes = read_limited(md_path, limit=MAX_FILE_BYTES, what="proof report")
     except InputFileError as exc:
-        return CommittedCertificate(path, report, True, f"its report is unreadable: {exc}")
+        return f"its report is unreadable: {exc}"
     if md_bytes != md_text.encode("utf-8"):
         stale.append(md_path.name)
     if stale:
-        return CommittedCertificate(
-            path,
-            report,
-            True,
+        return (
             f"{' and '.join(stale)} {'differ' if len(stale) > 1 else 'differs'} from what `symbolic-friction certify` "
-            "writes now",
+            "writes now"
         )
-    return CommittedCertificate(path, report, False)
+    return ""
 
 
-def check_committed_certificates(
-    directory: str | os.PathLike[str] = "proofs", *, expected: Iterable[str] = ()
-) -> list[CommittedCertificate]:
-    """Verify every ``*.json`` certificate under ``directory`` and detect stale ones.
-
-    Parameters
-    ----------
-    directory : path
-        Searched recursively for ``*.json`` files (sorted, for a stable order).
-    expected : iterable of str, keyword-only
-        File names (relative to ``directory``) that must exist, e.g.
-        :data:`TABLE_I_FILES`; a missing one is reported as stale.
-
-    Returns
-    -------
-    list of CommittedCertificate
-        One per file; the directory passes iff every entry is ``ok``.
-    """
-    directory = Path(directory)
-    results = [_check_one(path) for path in sorted(directory.rglob("*.json"))]
-    for name in expected:
-        path = directory / name
-        if not path.exists():
-            results.append(CommittedCertificate(path, None, True, "missing; run `symbolic-friction certify`"))
-    return results
-
-
-def check_listed_certificates(directory: str | os.PathLike[str], names: Iterable[str]) -> list[CommittedCertificate]:
-    """Verify exactly the certificates ``names`` (relative to ``directory``), in order, and detect stale ones.
-
-    A listed file that does not exist is reported as missing (not ok); files
-    of ``directory`` that are not listed are not looked at.
-    """
-    directory = Path(directory)
-    results = []
-    for name in names:
-        path = directory / name
-        if not path.exists():
-            results.append(CommittedCertificate(
-                path, None, True,
-                "missing; create it with `symbolic-friction certify … --out "
-                f"{path.parent} --name {path.stem}` (or `check --write` for Table I's files)",
-            ))
-        else:
-            results.append(_check_one(path))
-    return results
+STABILITY = register(Template(
+    id=TEMPLATE_ID,
+    schema=SCHEMA,
+    read=lambda data, source: from_data(data, source=source),
+    verify=lambda certificate, source: verify_certificate(certificate, source=source),
+    dumps=dumps,
+    stale=stability_staleness,
+    failure=lambda report: "; ".join(check.message for check in report.failures),
+    claim=lambda certificate: f"κ ≤ {certificate.overshoot_bound}",
+    default=True,
+))
+"""The stability certificate of Proposition 1 (Lemma 2, Lemma 3): constants of ``V`` and ``V̂`` and κ."""
 
 
 def write_listed_certificates(directory: str | os.PathLike[str], names: Iterable[str]) -> list[Path]:

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from fractions import Fraction
 
-from .._rational import format_rational
+from .._infra.rational import format_rational
 from .certificate import SCHEMA
 from .verify import Check, VerificationReport
 

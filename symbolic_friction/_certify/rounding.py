@@ -48,8 +48,8 @@ import math
 from fractions import Fraction
 from typing import Callable
 
-from .._errors import CertificateError
-from .._parameters import Parameters
+from .._infra.errors import CertificateError
+from .._model.parameters import Parameters
 from .certificate import OBLIGATIONS, Certificate, Provenance
 from .search import Candidate
 

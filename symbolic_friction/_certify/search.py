@@ -58,9 +58,9 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
 
-from .._errors import InaccurateSolveError, InfeasibleError, ParameterError, SolverError
-from .._parameters import Parameters
-from .._rational import short_rational, to_rational
+from .._infra.errors import InaccurateSolveError, InfeasibleError, ParameterError, SolverError
+from .._model.parameters import Parameters
+from .._infra.rational import short_rational, to_rational
 
 __all__ = ["MODES", "DEFAULT_MARGIN", "Candidate", "Search", "find_candidate", "eigen_bounds_P", "check_mode", "check_margin"]
 

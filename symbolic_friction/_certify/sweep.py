@@ -14,9 +14,9 @@ from concurrent.futures import Executor, as_completed
 from dataclasses import dataclass
 from typing import Iterable, TextIO
 
-from .._errors import ParameterError, SymbolicFrictionError
-from .._parameters import Parameters
-from .._progress import Progress
+from .._infra.errors import ParameterError, SymbolicFrictionError
+from .._model.parameters import Parameters
+from .._infra.progress import Progress
 from .certificate import Certificate
 from .pipeline import certify
 from .search import check_margin, check_mode

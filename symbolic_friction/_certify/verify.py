@@ -5,9 +5,9 @@ This is the only place where a certificate is called *proved*.  It uses
 :class:`fractions.Fraction` arithmetic only (no floats, no solver), and it
 shares no code with the search (:mod:`._certify.search`,
 :mod:`._certify.rounding`): the matrices come from the model's own entry
-functions (:func:`~symbolic_friction._lyapunov.lyapunov_matrix_entries`,
-:func:`~symbolic_friction._lyapunov.vhat_matrix_entries`), the k-conditions
-from :mod:`symbolic_friction._kconditions`, and positive semidefiniteness is
+functions (:func:`~symbolic_friction._model.lyapunov.lyapunov_matrix_entries`,
+:func:`~symbolic_friction._model.lyapunov.vhat_matrix_entries`), the k-conditions
+from :mod:`symbolic_friction._model.kconditions`, and positive semidefiniteness is
 decided by *all* principal minors (a symmetric matrix is PSD iff every
 principal minor is ``≥ 0``).
 
@@ -43,10 +43,10 @@ from fractions import Fraction
 from pathlib import Path
 from typing import Any, Sequence
 
-from .._errors import CertificateError
-from .._kconditions import k_conditions
-from .._lyapunov import lyapunov_matrix_entries, vhat_matrix_entries
-from .._rational import format_rational as _f
+from .._infra.errors import CertificateError
+from .._model.kconditions import k_conditions
+from .._model.lyapunov import lyapunov_matrix_entries, vhat_matrix_entries
+from .._infra.rational import format_rational as _f
 from .certificate import Certificate, kappa_squared, load
 
 __all__ = ["Check", "VerificationReport", "Inequality", "Semidefinite", "premises", "decide", "verify_certificate", "verify_file"]
@@ -340,7 +340,7 @@ def provenance_checks(certificate: Certificate, proved: Sequence[Check]) -> tupl
         ))
         match = _TABLE_I_LABEL.fullmatch(prov.label)
         if match is not None:
-            from .._parameters import TABLE_I
+            from .._model.parameters import TABLE_I
 
             case = match.group(1).lower()
             table = TABLE_I[case]

@@ -5,7 +5,7 @@ into an :class:`Along`: the samples and events merged in time order (the
 *chain*), and on it ``V`` (eq. lyapLike, both sides of every event),
 ``|x|²_𝒜``, ``R``/``R̂`` (Lemma 3), the closed-form ``∫ v²`` and the scales
 of the tolerances.  Everything is computed by the package's model functions
-(:mod:`symbolic_friction._lyapunov`, :mod:`symbolic_friction._attractor`);
+(:mod:`symbolic_friction._model.lyapunov`, :mod:`symbolic_friction._model.attractor`);
 nothing here is a private copy of a paper object.  The result is cached per
 trajectories object, so the properties share it.
 
@@ -33,8 +33,8 @@ from typing import Any
 
 import numpy as np
 
-from .._errors import SimulationError
-from .._parameters import Parameters
+from .._infra.errors import SimulationError
+from .._model.parameters import Parameters
 
 __all__ = ["Along", "along", "Chain", "build_chain", "observability_gramian"]
 
@@ -43,7 +43,7 @@ def observability_gramian(params: Parameters) -> np.ndarray:
     """``W`` with ``AᵀW + WA = -e₃e₃ᵀ``: ``∫_0^∞ v² dt = yᵀWy`` for ``y' = Ay``, ``v = e₃ᵀy``."""
     from scipy.linalg import solve_continuous_lyapunov
 
-    from .._coordinates import system_matrix
+    from .._model.coordinates import system_matrix
 
     A = system_matrix(params)
     Q = np.zeros((3, 3))
@@ -140,7 +140,7 @@ class Along:
     @cached_property
     def V(self) -> np.ndarray:
         """``V`` of eq. (lyapLike): ``V_k`` of the mode on each side of an event, ``V`` itself at it."""
-        from .._lyapunov import V, V_k
+        from .._model.lyapunov import V, V_k
 
         x, piece = self.xs, self.ch.piece
         at_rest = x * np.array([1.0, 1.0, 0.0])
@@ -152,7 +152,7 @@ class Along:
     @cached_property
     def d2(self) -> np.ndarray:
         """``|x|²_𝒜`` (eq. distance) at every point."""
-        from .._attractor import squared_distance_x
+        from .._model.attractor import squared_distance_x
 
         return squared_distance_x(self.params, self.xs)
 
@@ -162,7 +162,7 @@ class Along:
 
     @cached_property
     def d0(self) -> np.ndarray:
-        from .._attractor import squared_distance_x
+        from .._model.attractor import squared_distance_x
 
         return np.sqrt(squared_distance_x(self.params, self.x0))
 
@@ -179,7 +179,7 @@ class Along:
     @cached_property
     def in_Rhat(self) -> np.ndarray:
         """Samples in ``R̂`` (Lemma 3), with ``sign v`` read from the mode of the solution through them."""
-        from .._lyapunov import in_R
+        from .._model.lyapunov import in_R
 
         xs = self.xs
         smode = np.where(self.is_sample, self.ch.piece, 0).astype(float)
@@ -208,7 +208,7 @@ class Along:
 
     def V_hat(self, k: tuple[float, float, float, float]) -> np.ndarray:
         """``V̂`` of eq. (Vhat) with the constants ``k`` at every point (memoised per ``k``)."""
-        from .._lyapunov import V_hat
+        from .._model.lyapunov import V_hat
 
         key = tuple(float(q) for q in k)
         if key not in self._hat:
@@ -218,7 +218,7 @@ class Along:
     @cached_property
     def lam_P(self) -> float:
         """Largest eigenvalue of ``P`` (eq. P), used only to scale tolerances."""
-        from .._lyapunov import lyapunov_matrix
+        from .._model.lyapunov import lyapunov_matrix
 
         return float(np.linalg.eigvalsh(lyapunov_matrix(self.params))[-1])
 

@@ -16,8 +16,8 @@ from typing import Any
 
 import numpy as np
 
-from .._errors import ParameterError
-from .._parameters import Parameters
+from .._infra.errors import ParameterError
+from .._model.parameters import Parameters
 from ._along import along
 from ._claims import Claims
 from ._properties import properties
@@ -109,8 +109,8 @@ class BatchChecker:
             self._fold(tally, more, first=False)
 
     def _horizon_statistics(self, batch: Any) -> None:
-        from .._attractor import attractor_bound_z
-        from .._coordinates import x_to_z
+        from .._model.attractor import attractor_bound_z
+        from .._model.coordinates import x_to_z
 
         a = along(batch)
         prop = next(p for p in self.properties if p.id == _ATTRACTIVITY)
@@ -164,8 +164,8 @@ class BatchChecker:
         The peak states are re-simulated solutions (not counted as new
         trajectories); each is one more instance of ``prop1.stability``.
         """
-        from .._attractor import distance_x
-        from .._coordinates import x_to_z
+        from .._model.attractor import distance_x
+        from .._model.coordinates import x_to_z
 
         ok = np.isfinite(t_peak) & (d0 > 0) & np.isfinite(x_peak).all(axis=1)
         if not np.any(ok):

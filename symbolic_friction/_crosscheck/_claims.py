@@ -19,8 +19,8 @@ from typing import Any
 
 import numpy as np
 
-from .._errors import CertificateFormatError
-from .._parameters import Parameters
+from .._infra.errors import CertificateFormatError
+from .._model.parameters import Parameters
 
 __all__ = ["Claims"]
 
@@ -119,7 +119,7 @@ class Claims:
 
     def lambda_max_K_half(self) -> float:
         """Largest eigenvalue of ``K/2`` (``V̂ = ½wᵀKw``), used only to scale tolerances."""
-        from .._lyapunov import vhat_matrix_entries
+        from .._model.lyapunov import vhat_matrix_entries
 
         K = np.array(vhat_matrix_entries(*self.k), dtype=float)
         return float(np.linalg.eigvalsh(K)[-1]) / 2.0

@@ -40,7 +40,8 @@ from fractions import Fraction
 
 import numpy as np
 
-from .._parameters import Parameters
+from .._model.parameters import Parameters
+from ._initial import default_initial_states
 
 __all__ = ["IssEstimate", "DEFAULT_RHOS", "iss_gain"]
 
@@ -100,14 +101,6 @@ class IssEstimate:
         ]
 
 
-def default_initial_states(params: Parameters) -> np.ndarray:
-    """The two ends and the centre of 𝒜, and three states outside 𝒜 with ``|z(0)|_𝒜`` between 0.5 and 1."""
-    from .._attractor import attractor_bound_z
-
-    e = float(attractor_bound_z(params))
-    return np.array([[e, 0.0, 0.0], [0.0, 0.0, 0.0], [-e, 0.0, 0.0], [e, 0.0, 0.5], [0.0, 0.5, 0.0], [-e, -0.5, 0.5]])
-
-
 def iss_gain(
     params: Parameters,
     rhos=DEFAULT_RHOS,
@@ -143,9 +136,9 @@ def iss_gain(
     ParameterError
         If an unknown law is named or a ``ρ`` is negative.
     """
-    from .._attractor import distance_z
-    from .._errors import ParameterError
-    from .._rational import to_rational
+    from .._model.attractor import distance_z
+    from .._infra.errors import ParameterError
+    from .._infra.rational import to_rational
     from .._simulation import simulate
     from .._simulation.friction import InflatedCoulomb, Stribeck
 

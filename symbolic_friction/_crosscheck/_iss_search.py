@@ -47,7 +47,7 @@ from typing import Any, Callable
 
 import numpy as np
 
-from .._parameters import Parameters
+from .._model.parameters import Parameters
 
 __all__ = ["WorstFound", "worst_found", "equilibrium_bound", "FAMILIES", "STRIBECK_VELOCITIES"]
 
@@ -111,8 +111,8 @@ def equilibrium_bound(params: Parameters, rho: Fraction) -> Fraction:
     smaller than its distance to 𝒜.  Decided in rational arithmetic on the
     package's ``A``, ``b``, ``T`` and ``|z|²_𝒜``; raises if it were not a rest point.
     """
-    from .._attractor import squared_distance_z
-    from .._coordinates import input_vector_entries, system_matrix_entries, z_to_x
+    from .._model.attractor import squared_distance_z
+    from .._model.coordinates import input_vector_entries, system_matrix_entries, z_to_x
 
     rho = Fraction(rho)
     z = np.array([-(1 + rho) * params.f_c / params.k_i, Fraction(0), Fraction(0)], dtype=object)
@@ -132,7 +132,7 @@ def equilibrium_bound(params: Parameters, rho: Fraction) -> Fraction:
 
 def ultimate_bound(params: Parameters, law: Any, Z0: np.ndarray, *, horizon: float, h: float) -> tuple[float, int]:
     """``(max over Z0 of sup_{t ∈ [T/2, T]} |z(t)|_𝒜, index of the maximising state)`` under ``law``."""
-    from .._attractor import distance_z
+    from .._model.attractor import distance_z
     from .._simulation import simulate
 
     best, arg = -math.inf, 0
@@ -211,10 +211,10 @@ def worst_found(params: Parameters, rho: object, *, initial_states: Any = None, 
     """
     from scipy.optimize import differential_evolution
 
-    from .._errors import ParameterError
-    from .._rational import to_rational
+    from .._infra.errors import ParameterError
+    from .._infra.rational import to_rational
     from .._simulation.friction import InflatedCoulomb, Stribeck
-    from ._iss import default_initial_states
+    from ._initial import default_initial_states
 
     rq = to_rational(rho, name="rho")
     if rq <= 0:

@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .._parameters import Parameters
+from .._model.parameters import Parameters
 from ._results import Counterexample, PropertyResult
 
 if TYPE_CHECKING:  # annotations only
@@ -34,7 +34,7 @@ def search_mode(label: str) -> str:
 
 def slowest_root(params: Parameters) -> float:
     """``Re λ`` of the slowest eigenvalue ``λ`` of ``A`` (eq. xDot), i.e. root of ``det(sI - A)``."""
-    from .._coordinates import system_matrix
+    from .._model.coordinates import system_matrix
 
     return float(np.max(np.linalg.eigvals(system_matrix(params)).real))
 
@@ -137,7 +137,7 @@ class CrosscheckReport:
     seed : int
     seconds : float
     decay : dict
-        Gain-set label -> :class:`~._decay.DecayFit` (if requested).
+        Gain-set label -> :class:`~._overshoot.DecayFit` (if requested).
     iss : dict
         Gain-set label -> :class:`~._iss.IssEstimate` (if requested).
     """

@@ -8,8 +8,8 @@ inputs apart so that a test can break either and watch the check fail:
 
 * the **trajectories** (:class:`~symbolic_friction._simulation.Trajectories`),
   read through :func:`~._along.along`, which evaluates the package's one
-  model (``V``, ``V_k``, ``|x|_𝒜``, ``R``: :mod:`symbolic_friction._lyapunov`,
-  :mod:`symbolic_friction._attractor`) on them once and shares it between
+  model (``V``, ``V_k``, ``|x|_𝒜``, ``R``: :mod:`symbolic_friction._model.lyapunov`,
+  :mod:`symbolic_friction._model.attractor`) on them once and shares it between
   the properties;
 * the **certificate** (:class:`~._claims.Claims`), whose constants enter
   only the right-hand sides.

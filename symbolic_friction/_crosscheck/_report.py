@@ -142,7 +142,7 @@ def write_counterexamples(report: CrosscheckReport, out_dir: str | Path) -> list
 
     Files are written atomically (temporary file + ``os.replace``).
     """
-    from .._io import atomic_write_text
+    from .._infra.io import atomic_write_text
 
     written = []
     for check in report.checks:

@@ -29,13 +29,15 @@ Deterministic (fixed seed); a few hundred trajectories per gain set.
 from __future__ import annotations
 
 import dataclasses
+import os
 from dataclasses import dataclass
 from fractions import Fraction
+from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-__all__ = ["EXPECTED", "SelfTestRow", "SelfTest", "wrong_variants", "crosscheck_self_test"]
+__all__ = ["EXPECTED", "SelfTestRow", "SelfTest", "wrong_variants", "crosscheck_self_test", "table_i_certificates"]
 
 EXPECTED: dict[str, str] = {
     "kappa": "prop1.stability",
@@ -71,7 +73,7 @@ class SelfTest:
 
 
 def _lambda_min_P(cert: Any) -> float:
-    from .._lyapunov import lyapunov_matrix
+    from .._model.lyapunov import lyapunov_matrix
 
     return float(np.linalg.eigvalsh(lyapunov_matrix(cert.as_parameters()))[0])
 
@@ -140,7 +142,7 @@ def crosscheck_self_test(certificates: dict[str, Any], *, trajectories: int = 15
 
 def _refusal_row(case: str, cert: Any) -> SelfTestRow:
     """An overshoot bound edited below κ must be refused before any trajectory is run."""
-    from .._errors import UnprovedCertificateError
+    from .._infra.errors import UnprovedCertificateError
     from ._run import crosscheck
 
     forged = dataclasses.replace(cert, overshoot_bound="1.0")  # κ ≥ 1 always (c₁ ≤ c₂, ĉ₁ ≤ ĉ₂): 1 is below it
@@ -153,8 +155,8 @@ def _refusal_row(case: str, cert: Any) -> SelfTestRow:
 
 def _growth_run(claims: Any, *, seed: int, starts: int = 16) -> tuple[int, list[Any]]:
     """Short dense runs from the maximisers of ``V̂°/V̂`` on ``R̂`` (the model's eq. hatVdot), as the full cross-check does."""
-    from ._adversarial import rate_maximisers
-    from ._group import GroupRun as _GroupRun
+    from ._initial import rate_maximisers
+    from ._run import GroupRun as _GroupRun
     from ._outcome import default_horizon
 
     params = claims.params
@@ -169,3 +171,23 @@ def _growth_run(claims: Any, *, seed: int, starts: int = 16) -> tuple[int, list[
     t_short = np.concatenate([[0.0], np.geomspace(1e-6, 5.0, 199)])
     run.evaluate(X, "self-test max V̂'/V̂ on R̂", t=t_short, attractivity=False)
     return X.shape[0], run.checker.results()[0]
+
+
+def table_i_certificates(proofs: str | os.PathLike[str]) -> dict[str, Any]:
+    """Table I's tightest certificates for the self-test: ``DIR/case_{a,b}_tightest.json`` when they verify, else certified in memory."""
+    from .._certify import certify, load, verify_certificate
+    from .._model.parameters import Parameters
+
+    certificates = {}
+    for case in ("a", "b"):
+        path = Path(proofs) / f"case_{case}_tightest.json"
+        cert = None
+        if path.is_file():
+            try:
+                cert = load(path)
+            except Exception:  # a malformed file is the certificates section's to report
+                cert = None
+        if cert is None or not verify_certificate(cert).proved:
+            cert = certify(Parameters.table_i(case), mode="tightest")
+        certificates[case] = cert
+    return certificates

@@ -103,8 +103,8 @@ class LowerBound(Property):
         """Whether ``c₁|x|²_𝒜 > V(x)`` in exact rational arithmetic at the float state ``x``."""
         from fractions import Fraction
 
-        from .._attractor import squared_distance_x
-        from .._lyapunov import V
+        from .._model.attractor import squared_distance_x
+        from .._model.lyapunov import V
 
         xq = exact_state(x)
         if xq is None:

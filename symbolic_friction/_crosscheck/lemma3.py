@@ -54,8 +54,8 @@ class VUpper(Property):
 
     @staticmethod
     def exact_violation(params: Any, certificate: Any, x: Any) -> bool | None:
-        from .._attractor import squared_distance_x
-        from .._lyapunov import V, in_R
+        from .._model.attractor import squared_distance_x
+        from .._model.lyapunov import V, in_R
 
         xq = exact_state(x)
         if xq is None:
@@ -88,8 +88,8 @@ class _HatBound(Property):
                           extremes=((key, ratio, a.in_Rhat & a.far, not self.lower),))
 
     def exact_violation(self, params: Any, certificate: Any, x: Any) -> bool | None:
-        from .._attractor import squared_distance_x
-        from .._lyapunov import V_hat, in_R
+        from .._model.attractor import squared_distance_x
+        from .._model.lyapunov import V_hat, in_R
 
         xq = exact_state(x)
         if xq is None:
@@ -143,7 +143,7 @@ def run_slack(F: np.ndarray, run: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 def rhat_intervals(a: Any) -> np.ndarray:
     """Consecutive points whose open interval lies in ``R̂`` (so ``V̂`` must not increase there)."""
-    from .._lyapunov import in_R
+    from .._model.lyapunov import in_R
     from .._simulation.affine import MatrixExponential
 
     ch = a.ch
@@ -202,7 +202,7 @@ class HatVNonincreasing(Property):
     @staticmethod
     def exact_rate(params: Any, certificate: Any, x: Any) -> Fraction | None:
         """``V̂°`` (eq. hatVdot) at ``x ∈ R̂``, exactly, from the package's model (``None`` outside ``R̂``)."""
-        from .._lyapunov import V_hat_rate, in_R
+        from .._model.lyapunov import V_hat_rate, in_R
 
         xq = exact_state(x)
         if xq is None or in_R(params, list(xq)):

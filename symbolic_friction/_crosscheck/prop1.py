@@ -101,7 +101,7 @@ def resolve_attractivity(params: Any, z: np.ndarray, target: np.ndarray, window:
         Per state ``(reached, time, distance, state)``, or ``None`` if its
         simulation was incomplete (event limit): neither holds nor fails.
     """
-    from .._attractor import distance_x
+    from .._model.attractor import distance_x
     from .._simulation.batch import simulate_batch
     from ._outcome import slowest_root
 

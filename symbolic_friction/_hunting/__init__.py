@@ -19,9 +19,9 @@ stick–slip limit cycle around the setpoint.  Here the cycle is
 
 from __future__ import annotations
 
-from ._certificate import HuntingCertificate, verify_hunting, verify_hunting_file, write_hunting
+from .._certify.hunting import HuntingCertificate, verify_hunting, verify_hunting_file, write_hunting
 from ._map import HuntingCycle, HuntingMap, MapStep, cycle_orbit, find_cycles
-from ._proof import Box, CycleProof, box_around, prove_cycle
+from .._certify.hunting_proof import Box, CycleProof, box_around, prove_cycle
 
 __all__ = [
     "Box",

@@ -12,8 +12,8 @@ number ``σ`` (equivalently ``s = -σ/k_i``).  The *hunting map*
 is computed with the one event-driven model: the slip from
 ``y0 = (σ, ±(f_s - f_c), 0)`` (offset from the slip equilibrium
 ``(0, ±f_c, 0)``) ends at the first zero of ``v`` (the kernel's certified
-search, :func:`.._simulation.search.first_zero`), the kernel's end-of-slip
-rule (:func:`.._simulation._kernel.mode_after_slip`, the mode table with
+search, :func:`.._simulation.slip.first_zero`), the kernel's end-of-slip
+rule (:func:`.._simulation.slip.mode_after_slip`, the mode table with
 ``f_s``) decides stick or reversal, and a stick keeps ``σ`` and ends at
 ``sign(σ) f_s``.
 
@@ -25,7 +25,7 @@ in a stick (no reversal) ``P`` is positively homogeneous in the excess:
 only, so the cycle's amplitude grows linearly from 0 with ``f_s - f_c``.
 
 Fixed points are *found* here (a scan for sign changes and Brent's method on
-the closed form); they are *proved* by :mod:`._proof`.
+the closed form); they are *proved* by :mod:`.._certify.hunting_proof`.
 """
 
 from __future__ import annotations
@@ -35,9 +35,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._coordinates import system_matrix, x_to_z
-from .._errors import ParameterError
-from .._parameters import Parameters
+from .._model.coordinates import system_matrix, x_to_z
+from .._infra.errors import ParameterError
+from .._model.parameters import Parameters
 
 __all__ = ["HuntingMap", "MapStep", "HuntingCycle", "find_cycles", "cycle_orbit", "RealRootEscape", "real_root_escape"]
 
@@ -101,7 +101,7 @@ class HuntingMap:
                 f"the hunting map needs static friction above Coulomb; got f_s = f_c = {params.f_c} "
                 "(the paper's model: 𝒜 is globally asymptotically stable, Proposition 1, no hunting)"
             )
-        from .._simulation.search import slip_model
+        from .._simulation.slip import slip_model
 
         self.params = params
         self.model = slip_model(params)
@@ -112,8 +112,7 @@ class HuntingMap:
 
     def step(self, sigma: float) -> MapStep:
         """Follow the solution from the stick exit with ``σ`` to the next one (or to its end)."""
-        from .._simulation._kernel import EPS, SNAP_ULPS, mode_after_slip
-        from .._simulation.search import UNDERFLOW, first_zero
+        from .._simulation.slip import EPS, SNAP_ULPS, UNDERFLOW, first_zero, mode_after_slip
 
         sigma = float(sigma)
         if sigma == 0.0:
@@ -294,7 +293,7 @@ def _describe(P: HuntingMap, sigma: float, symmetric: bool) -> HuntingCycle | No
 
 
 def _with_amplitudes(cycle: HuntingCycle, orbit) -> HuntingCycle:
-    from .._attractor import distance_z
+    from .._model.attractor import distance_z
 
     z = orbit.z
     values = dict(cycle.__dict__)

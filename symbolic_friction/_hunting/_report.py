@@ -18,7 +18,7 @@ from fractions import Fraction
 
 import numpy as np
 
-from .._parameters import Parameters
+from .._model.parameters import Parameters
 from ._map import HuntingCycle, HuntingMap, find_cycles
 
 __all__ = ["Agreement", "simulation_agreement", "amplitude_sweep", "hunting_figure", "with_static"]
@@ -90,7 +90,7 @@ def simulation_agreement(cycle: HuntingCycle, *, start_offset: float = 1e-3, per
         return Agreement(start_offset, periods, len(exits), math.inf, math.inf, math.inf, tail)
     last = exits[-tail:]
     sig_err = max(abs(abs(x[0]) - cycle.sigma) for _, x in last)
-    from .._coordinates import x_to_z
+    from .._model.coordinates import x_to_z
 
     z_err = 0.0
     for _, x in last:
@@ -121,7 +121,7 @@ def hunting_figure(cycle: HuntingCycle, path, *, sweep=None) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from .._io import atomic_write
+    from .._infra.io import atomic_write
     from ._map import cycle_orbit
 
     P = HuntingMap(cycle.params)

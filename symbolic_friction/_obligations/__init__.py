@@ -1,51 +1,128 @@
 """Every proof obligation of the paper, in paper order.
 
-Each module under this package implements the obligations of one part of
-the paper; :func:`all_obligations` lists them in the order the paper proves
-them.  Importing this package imports sympy.
+One module per obligation id prefix, named after it (``lemma2`` holds
+``lemma2.P``, ``lemma2.lower_bound`` and ``lemma2.dVdt``; ``model`` holds the
+binding obligations ``model.*_runtime``); private modules (``_name``) hold
+what several obligations share.  Each obligation module lists its classes in
+``OBLIGATIONS``; :func:`registry` imports every module by name in an import
+statement, so a missing or renamed module is an :class:`ImportError`, never a
+silently shorter proof, and orders the classes as the paper proves them.
+Importing this package imports nothing heavy; :func:`all_obligations`
+imports sympy.
 """
 
 from __future__ import annotations
 
-import importlib
+from collections.abc import Callable, Sequence
+from types import ModuleType
 
 from ._base import Erratum, Obligation, Result
 
-__all__ = ["all_obligations", "run_obligations", "all_errata", "OBLIGATION_MODULES"]
+__all__ = ["all_obligations", "run_obligations", "run_checked", "all_errata", "registry", "obligation_modules"]
 
-# Modules in paper order; each defines OBLIGATIONS: tuple[type[Obligation], ...]
-OBLIGATION_MODULES: tuple[str, ...] = (
-    "model",
-    "runtime",
-    "lemma1",
-    "lemma2",
-    "claim1",
-    "prop1_attractivity",
-    "lemma3",
-    "prop1_stability",
-    "cor1",
-    "table1",
-    "verifier",
-)
+def obligation_modules() -> tuple[ModuleType, ...]:
+    """The obligation modules (imported; a missing one raises :class:`ImportError`)."""
+    from . import (
+        assumption1,
+        certificate,
+        claim1,
+        coordinates,
+        cor1,
+        distance,
+        equilibria,
+        lemma1,
+        lemma2,
+        lemma3,
+        model,
+        prop1,
+        regularization,
+        remark,
+        table1,
+    )
+
+    return (coordinates, regularization, assumption1, equilibria, distance, model, lemma1, lemma2, remark,
+            claim1, prop1, lemma3, cor1, table1, certificate)
+
+
+def registry() -> tuple[type[Obligation], ...]:
+    """Every obligation class, in the order the paper proves them.
+
+    The paper's model first (coordinates, regularisation, Assumption 1's Routh
+    test, equilibria, distance), the binding obligations, Lemma 1, Lemma 2 and
+    its Remark, Claim 1, Proposition 1's attractivity, Lemma 3, Proposition 1's
+    stability bound, Corollary 1, Table I, and last the verifier's bindings.
+    """
+    from .assumption1 import Assumption1Encoding, Assumption1Routh
+    from .certificate import CertificateVerifier, VerifierDecision
+    from .claim1 import Claim1Cases
+    from .coordinates import Coordinates
+    from .cor1 import Distances, Inflation
+    from .distance import Distance
+    from .equilibria import Equilibria
+    from .lemma1 import Lemma1Uniqueness
+    from .lemma2 import Lemma2dVdt, Lemma2LowerBound, Lemma2P
+    from .lemma3 import HatVBounds, HatVDerivative, LemmaR
+    from .model import (
+        DistanceRuntime,
+        DistanceZRuntime,
+        HatVRateRuntime,
+        HatVRuntime,
+        KindsRuntime,
+        MatricesRuntime,
+        ModesRuntime,
+        PNormRuntime,
+        RRuntime,
+        VRuntime,
+    )
+    from .prop1 import Prop1Invariance, StabilityBound
+    from .regularization import Regularization
+    from .remark import RemarkArmstrong
+    from .table1 import TableI
+
+    return (
+        Coordinates, Regularization, Assumption1Routh, Equilibria, Distance,
+        KindsRuntime, VRuntime, HatVRuntime, HatVRateRuntime, RRuntime, DistanceRuntime, DistanceZRuntime,
+        MatricesRuntime, ModesRuntime, PNormRuntime,
+        Lemma1Uniqueness, Lemma2P, Lemma2LowerBound, Lemma2dVdt, RemarkArmstrong, Claim1Cases,
+        Prop1Invariance, LemmaR, HatVBounds, HatVDerivative, StabilityBound, Inflation, Distances, TableI,
+        Assumption1Encoding, CertificateVerifier, VerifierDecision,
+    )
 
 
 def all_obligations() -> list[Obligation]:
     """Instances of every obligation, in paper order."""
-    out: list[Obligation] = []
-    for name in OBLIGATION_MODULES:
-        try:
-            module = importlib.import_module(f"{__name__}.{name}")
-        except ModuleNotFoundError as exc:
-            if exc.name == f"{__name__}.{name}":
-                continue  # not written yet
-            raise
-        out.extend(cls() for cls in module.OBLIGATIONS)
-    return out
+    return [cls() for cls in registry()]
 
 
 def run_obligations() -> list[Result]:
     """Run every obligation and return its :class:`Result`."""
     return [ob.run() for ob in all_obligations()]
+
+
+def run_checked(obligations: Sequence[Obligation], *, on_result: Callable[[Result], None] | None = None) -> list[Result]:
+    """Run ``obligations`` in order; one that raises is a failing :class:`Result`, never a holding one.
+
+    ``on_result(result)``, if given, is called as soon as each is decided
+    (``symbolic-friction check`` prints the row then).
+    """
+    import time
+
+    from ._base import FAILS
+
+    results: list[Result] = []
+    for ob in obligations:
+        start = time.perf_counter()
+        try:
+            result = ob.run()
+        except Exception as exc:  # a crashing check is reported as failing, never as holding
+            result = Result(
+                id=ob.id, paper=ob.paper, statement=ob.statement, method=ob.method, status=FAILS,
+                seconds=time.perf_counter() - start, reason=f"error while checking: {type(exc).__name__}: {exc}",
+            )
+        results.append(result)
+        if on_result is not None:
+            on_result(result)
+    return results
 
 
 def all_errata() -> list[Erratum]:

@@ -32,7 +32,7 @@ from typing import Any
 
 import sympy as sp
 
-from .. import _symbolic
+from .._model import symbolic as _symbolic
 
 __all__ = [
     "Undecided",

@@ -29,11 +29,11 @@ from dataclasses import dataclass
 
 import sympy as sp
 
-from .. import _symbolic
+from .._model import symbolic as _symbolic
 from ._base import Erratum, Obligation, Outcome
 from ._decide import G, Undecided, decide, is_zero, latex, phi_classes, pos, sign_classes, sign_of
 from .lemma2 import affine_fields, decrease_rate, friction_form, friction_minimum, lyapunov_pieces, under_assumption1
-from .model import sgn_sets
+from ._shared import sgn_sets
 
 __all__ = ["Row", "StickBranch", "Claim1Cases", "OBLIGATIONS", "ROWS"]
 

@@ -25,8 +25,8 @@ from typing import Any
 
 import sympy as sp
 
-from .. import _symbolic
-from .._attractor import attractor_bound_z, squared_distance_z
+from .._model import symbolic as _symbolic
+from .._model.attractor import attractor_bound_z, squared_distance_z
 from ._base import Erratum, Obligation, Outcome
 from ._decide import G, Undecided, decide, is_zero, latex, resolve_piecewise
 from ._inequalities import Case, is_nonneg, label_latex, line_cases, rows_latex, sign_cases

@@ -21,10 +21,10 @@ from dataclasses import dataclass
 
 import sympy as sp
 
-from .. import _symbolic
+from .._model import symbolic as _symbolic
 from ._base import Obligation, Outcome
 from ._decide import G, Undecided, is_zero, latex, sign_classes, sign_of, vertices
-from .model import sgn_sets
+from ._shared import sgn_sets
 
 __all__ = ["Lemma1Uniqueness", "OBLIGATIONS"]
 

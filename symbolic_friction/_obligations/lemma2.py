@@ -1,5 +1,4 @@
-"""Lemma 2 (properties of the Lyapunov-like function ``V``, eq. lyapLike) and
-the Remark after it.
+"""Lemma 2 (properties of the Lyapunov-like function ``V``, eq. lyapLike).
 
 * ``lemma2.P`` — ``P`` of eq. (lyapLikeP) is positive definite iff
   ``k_v k_p > k_i`` (Sylvester's criterion, no division by an expression of
@@ -8,8 +7,9 @@ the Remark after it.
   ``V(x) ≥ c₁|x|²_𝒜`` with ``c₁ = min{𝔤, 1} = λ_min(P)``.
 * ``lemma2.dVdt`` — item 2's engine, eq. (dVdt): along ``f_{±1}``,
   ``d/dt V_{±1} = -2(k_v k_p - k_i) v²``; along ``f_0``, ``d/dt V_0 = 0``.
-* ``remark.armstrong`` — at stick ``V = (k_v/k_i) σ²``, hence
-  ``|σ(t_{i+1})| < |σ(t_i)|`` across a slip phase (eq. armstrongRes).
+
+The Remark after Lemma 2 (``remark.armstrong``) is in :mod:`.remark`; it uses
+the pieces of ``V`` defined here.
 """
 
 from __future__ import annotations
@@ -20,18 +20,28 @@ from typing import Any
 
 import sympy as sp
 
-from .. import _symbolic
-from .._lyapunov import V_k, quadratic_form
+from .._model import symbolic as _symbolic
+from .._model.lyapunov import V_k, quadratic_form
 from ._base import Erratum, Obligation, Outcome
 from ._statements import lemma2_decrease, lemma2_lower_bound, statement_failure
-from ._decide import G, Undecided, is_zero, latex, minimum_on, phi_classes, pos, resolve_piecewise, sign_of, sign_classes
-from .model import distance_squared, sgn_sets
+from ._decide import (
+    G,
+    is_zero,
+    latex,
+    minimum_on,
+    phi_classes,
+    pos,
+    resolve_piecewise,
+    sign_classes,
+    sign_of,
+    Undecided,
+)
+from ._shared import distance_squared, sgn_sets
 
 __all__ = [
     "Lemma2P",
     "Lemma2LowerBound",
     "Lemma2dVdt",
-    "RemarkArmstrong",
     "OBLIGATIONS",
     "F0_MATRIX",
     "affine_fields",
@@ -317,68 +327,4 @@ class Lemma2dVdt(Obligation):
 # --------------------------------------------------------------------------- remark.armstrong
 
 
-@dataclass(frozen=True)
-class ArmstrongSubject:
-    """The quadratic form of ``V``, the SGN map, the stick value and ``c``."""
-
-    form: sp.Expr
-    sgn: dict
-    stick_value: sp.Expr
-    c: sp.Expr
-    sigma: sp.Symbol
-    y: sp.Symbol
-    v: sp.Symbol
-    f_c: sp.Symbol
-
-
-class RemarkArmstrong(Obligation):
-    id = "remark.armstrong"
-    paper = "Remark after Lemma 2, eq. (armstrongRes)"
-    statement = "at stick (v = 0, |φ| ≤ f_c) V = (k_v/k_i)σ²; V strictly decreases over a slip phase of positive length (c > 0, ∫v² > 0), hence |σ(t_{i+1})| < |σ(t_i)|"
-    method = "exact minimum over f ∈ f_c SGN(0) on the stick set (3 φ-classes); sign-definite decomposition of (σ_{i+1}² - σ_i²) = (V_{i+1} - V_i)/(k_v/k_i) ≤ -c∫v²/(k_v/k_i) < 0"
-
-    def derive(self) -> ArmstrongSubject:
-        g = G()
-        form, y = friction_form(g)
-        return ArmstrongSubject(
-            form=form,
-            sgn=sgn_sets(),
-            stick_value=g.k_v / g.k_i * g.sigma**2,
-            c=decrease_rate(g),
-            sigma=g.sigma,
-            y=y,
-            v=g.v,
-            f_c=g.f_c,
-        )
-
-    def verify(self, subject: ArmstrongSubject) -> Outcome:
-        S = subject
-        details = []
-        stick = S.form.subs(S.v, 0)
-        for label, tex, phi, region in phi_classes(S.f_c, "_phi"):
-            if label not in ("φ = f_c", "|φ| < f_c", "φ = -f_c"):
-                continue
-            try:
-                V = stick.subs(S.y, 0) + friction_minimum(stick, S.y, phi, S.f_c, S.sgn[0])
-            except Undecided as exc:
-                return Outcome.fail(f"stick with {label}: {exc}")
-            if not is_zero(V - S.stick_value):
-                return Outcome.fail(f"stick with {label}: V = {sp.factor(V)}, not {S.stick_value}", tuple(details))
-            details.append((f"v = 0,\\ {tex}", f"V = {latex(sp.factor(V))}"))
-        poly = sp.Poly(S.stick_value, S.sigma)
-        if poly.monoms() != [(2,)]:
-            return Outcome.fail(f"the stick value {S.stick_value} is not a multiple of σ² alone")
-        kappa = poly.coeffs()[0]
-        if kappa.has(S.y) or sign_of(kappa) != 1:
-            return Outcome.fail(f"the stick value's coefficient {kappa} is not shown positive")
-        integral = pos("I_v")  # ∫_{t_i}^{t_{i+1}} v² dt > 0 over a slip phase of positive length
-        bound = sp.factor(under_assumption1(S.c) * integral / kappa)
-        if sign_of(bound) != 1:
-            return Outcome.fail(f"c·∫v²/κ = {bound} is not shown positive, so the decrease of V is not strict")
-        details.append(
-            ("\\sigma(t_{i+1})^2 - \\sigma(t_i)^2", f"= \\frac{{V(t_{{i+1}}) - V(t_i)}}{{{latex(kappa)}}} \\le -{latex(bound)} < 0")
-        )
-        return Outcome(True, "V = (k_v/k_i)σ² at stick and the decrease is strict", tuple(details))
-
-
-OBLIGATIONS = (Lemma2P, Lemma2LowerBound, Lemma2dVdt, RemarkArmstrong)
+OBLIGATIONS = (Lemma2P, Lemma2LowerBound, Lemma2dVdt)

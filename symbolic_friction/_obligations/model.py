@@ -1,498 +1,469 @@
-"""Obligations about the model itself (paper §II and §IV-A).
+"""Binding obligations: the code that runs is the model that is proved.
 
-* ``coordinates`` — eq. (CoC) is nonsingular iff ``k_i ≠ 0`` and maps eq.
-  (xPhDot) onto eq. (xDot), ``x' ∈ A x - b SGN(v)``, for every selection.
-* ``regularization`` — every branch of eq. (basic)/(vDot) is a selection of
-  the inclusion eq. (xPhDot).
-* ``assumption1.routh`` — Assumption 1 ⇔ ``s³ + k_v s² + k_p s + k_i`` is
-  Hurwitz, and that polynomial is ``det(sI - A)``.
-* ``equilibria`` — the equilibria of the inclusion are exactly 𝒜, eqs. (Aph)
-  and (A).
-* ``distance`` — eq. (distFromA), ``|x|²_𝒜 = σ² + v² + dz(φ)²``, piecewise.
+Every other obligation evaluates the package's model functions in the sympy
+kind (:mod:`symbolic_friction._model.kinds`).  Certificates, the simulators and the
+cross-check evaluate the *same* functions on exact rationals and on float
+arrays, and the simulators read the mode table of Claim 1 through their own
+fast code.  The obligations here bind those instantiations to the paper:
+
+* ``model.kinds_runtime`` — the three kinds' ``where``, ``clip``, ``sign``
+  and ``abs`` are the paper's (``sign(0) = 0``, ``sat``) at and off boundaries.
+* ``model.V_runtime`` — ``V`` of eq. (lyapLike): the package's closed form
+  equals the paper's ``min_{f ∈ f_c SGN(v)} |(σ, φ - f, v)|²_P`` on all 45
+  sign/φ classes, symbolically; and the exact and float evaluations equal
+  the symbolic one at a point of every class (and every boundary).
+* ``model.hatV_runtime`` — ``V̂`` of eq. (Vhat) equals ``½wᵀKw`` with
+  ``w = (|σ|, |dz(φ)|, |v|)``, ``K`` the package's matrix, ``dz`` the
+  paper's dead zone; exact and float agree with it.
+* ``model.hatV_rate_runtime`` — ``V̂°`` of eq. (hatVdot) on ``R̂`` (the
+  cross-check's growth test) equals the Clarke maximum of the gradient of the
+  package's ``V̂`` along ``F``, differentiated by sympy.
+* ``model.R_runtime`` — membership in ``R = {v(φ - sign(v) f_c) ≥ 0}``
+  (Lemma 3), boundary included, in all three kinds.
+* ``model.distance_runtime`` and ``model.distance_z_runtime`` — ``|x|²_𝒜``
+  (eq. distFromA) and ``|z|²_𝒜`` (Corollary 1) against the paper's piecewise
+  ``dz``, in all three kinds.
+* ``model.matrices_runtime`` — the float matrices ``A``, ``b``, ``P``, ``T``,
+  ``T⁻¹`` the simulators use equal the symbolic ones.
+* ``model.modes_runtime`` — the simulators' mode selection (exact
+  ``table_row``/``select_mode``, and the
+  ``mode_at_rest``/``mode_after_slip`` the event-driven kernel calls, with
+  ``φ`` kept as a boundary plus an offset) equals the appendix table that
+  ``claim1.cases`` proves, at a point of every one of its 45 classes.
+* ``model.P_norm_runtime`` — the ``|y|_P`` written out for speed in the
+  certified root search of the event-driven simulator equals the package's
+  quadratic form.
+
+"Exhaustive" here means: one exact point in every open class and on every
+boundary of the case split, at gains whose float arithmetic is exact (all
+values dyadic), compared with ``==``, never with a tolerance.
 """
 
 from __future__ import annotations
 
+import itertools
+from collections.abc import Callable
 from dataclasses import dataclass
+from fractions import Fraction
 from typing import Any
 
+import numpy as np
 import sympy as sp
 
-from .. import _symbolic
-from .._attractor import attractor_bound_x, attractor_bound_z, squared_distance_x
-from ._base import Erratum, Obligation, Outcome
-from ._decide import (
-    G,
-    Undecided,
-    affine_image,
-    decide,
-    interval_partitions_reals,
-    is_zero,
-    latex,
-    minimum_on,
-    phi_classes,
-    resolve_piecewise,
-    sign_of,
+from .._model import symbolic as _symbolic
+from .._model.attractor import dz, squared_distance_x, squared_distance_z
+from .._model.coordinates import input_vector, system_matrix, x_to_z, z_to_x
+from .._model.lyapunov import V, V_hat, V_hat_rate, in_R, lyapunov_matrix, quadratic_form
+from .._model.parameters import Parameters
+from .._simulation._kernel import mode_after_slip
+from .._simulation.modes import mode_at_rest, select_mode, table_row
+from ._base import Obligation, Outcome
+from ._decide import G, Undecided, minimum_on, resolve_piecewise, sign_of
+from ._inequalities import Case, case_grid, line_cases, sign_cases
+from .claim1 import table_rows
+from ._shared import sgn_sets
+from ._binding import (
+    INSTANCE,
+    K_INSTANCE,
+    _as_exact,
+    _Binding,
+    _gain_values,
+    _paper_dz,
+    _sign,
+    _state_cases,
+    _x_subject,
+    BindingSubject,
+    instance_points,
 )
 
 __all__ = [
-    "Coordinates",
-    "Regularization",
-    "Assumption1Routh",
-    "Equilibria",
-    "Distance",
+    "INSTANCE",
+    "K_INSTANCE",
+    "instance_points",
+    "BindingSubject",
+    "VRuntime",
+    "HatVRuntime",
+    "HatVRateRuntime",
+    "RRuntime",
+    "DistanceRuntime",
+    "DistanceZRuntime",
+    "MatricesRuntime",
+    "ModesRuntime",
+    "PNormRuntime",
+    "KindsRuntime",
     "OBLIGATIONS",
-    "sgn_sets",
-    "attractor_x",
-    "attractor_z",
-    "distance_squared",
 ]
 
 
-def sgn_sets() -> dict[int, sp.Set]:
-    """``SGN`` of eq. (frictionforceSetValued), indexed by the sign of ``v``."""
-    return {1: sp.FiniteSet(1), 0: sp.Interval(-1, 1), -1: sp.FiniteSet(-1)}
-
-
-def attractor_x(g: _symbolic.Gains) -> tuple[Any, Any, Any]:
-    """𝒜 of eq. (A) as ``(σ, φ, v)`` components: a fixed value or an interval.
-
-    The bound comes from the package's :func:`attractor_bound_x`.
-    """
-    bound = attractor_bound_x(g)
-    return (sp.Integer(0), sp.Interval(-bound, bound), sp.Integer(0))
-
-
-def attractor_z(g: _symbolic.Gains) -> tuple[Any, Any, Any]:
-    """𝒜 of eq. (Aph) as ``(e_i, s, v)`` components (bound from :func:`attractor_bound_z`)."""
-    bound = attractor_bound_z(g)
-    return (sp.Interval(-bound, bound), sp.Integer(0), sp.Integer(0))
-
-
-def distance_squared(g: _symbolic.Gains) -> sp.Expr:
-    """The package's ``|x|²_𝒜`` (:func:`symbolic_friction._attractor.squared_distance_x`) for symbolic gains (checked by ``distance``)."""
-    return squared_distance_x(g, [g.sigma, g.phi, g.v])
-
-
-def _mat(m: Any) -> sp.ImmutableMatrix:
-    return sp.ImmutableMatrix(m)
-
-
-# --------------------------------------------------------------------------- coordinates
-
-
-@dataclass(frozen=True)
-class CoordinatesSubject:
-    """``T`` (x = T z), its package inverse, and both forms of the dynamics."""
-
-    T: sp.ImmutableMatrix
-    T_inv: sp.ImmutableMatrix
-    A_z: sp.ImmutableMatrix
-    b_z: sp.ImmutableMatrix
-    A: sp.ImmutableMatrix
-    b: sp.ImmutableMatrix
-    z: sp.ImmutableMatrix
-    w: sp.Symbol
-    k_i: sp.Symbol
-
-
-class Coordinates(Obligation):
-    id = "coordinates"
-    paper = "eq. (CoC), eq. (xDot)"
-    statement = "x = T z is nonsingular iff k_i ≠ 0 and maps z' = A_z z - b w onto x' = A x - b w for every selection w of SGN(v)"
-    method = "sympy identity (expand(T(A_z z - b w) - (A T z - b w)) == 0 for symbolic w; factorisation of det T)"
-    errata = (
-        Erratum(
-            where="§IV-A, after eq. (CoC)",
-            paper_says="the change of coordinates is nonsingular thanks to Assumption 1 (k_i, k_p strictly positive)",
-            correct="det T = -k_i², so T is nonsingular iff k_i ≠ 0; k_p plays no role",
-            checked_by="coordinates",
-        ),
+class VRuntime(_Binding):
+    id = "model.V_runtime"
+    paper = "eq. (lyapLike), eq. (lyapLikeP)"
+    statement = (
+        "the package's closed-form V (certificates, simulators, cross-check) is "
+        "min_{f ∈ f_c SGN(v)} |(σ, φ − f, v)|²_P, in exact, float and symbolic form"
     )
 
-    def derive(self) -> CoordinatesSubject:
+    def derive(self) -> BindingSubject:
         g = G()
-        return CoordinatesSubject(
-            T=_mat(_symbolic.T(g)),
-            T_inv=_mat(_symbolic.T_inv(g)),
-            A_z=_mat(_symbolic.A_z(g)),
-            b_z=_mat(_symbolic.b(g)),
-            A=_mat(_symbolic.A(g)),
-            b=_mat(_symbolic.b(g)),
-            z=_mat([g.e_i, g.s, g.v]),
-            w=sp.Symbol("w", real=True),
-            k_i=g.k_i,
-        )
-
-    def verify(self, subject: CoordinatesSubject) -> Outcome:
-        S = subject
-        det = sp.factor(S.T.det())
-        const, factors = sp.factor_list(det)
-        details = [("T", latex(S.T)), ("\\det T", latex(det))]
-        if const == 0 or any(not is_zero(f - S.k_i) and not is_zero(f + S.k_i) for f, _ in factors) or not factors:
-            return Outcome.fail(f"det T = {det} does not vanish exactly when {S.k_i} = 0", tuple(details))
-        eye = sp.eye(3)
-        for name, prod in (("T_inv·T", S.T_inv * S.T), ("T·T_inv", S.T * S.T_inv)):
-            residual = (prod - eye).applyfunc(lambda e: sp.cancel(e))
-            if not all(is_zero(e) for e in residual):
-                return Outcome.fail(f"{name} - I = {residual.tolist()} is not zero", tuple(details))
-        if list(S.T[2, :]) != [0, 0, 1]:
-            return Outcome.fail(f"T changes v (third row {list(S.T[2, :])}), so SGN(v) would not carry over", tuple(details))
-        x = S.T * S.z
-        residual = S.T * (S.A_z * S.z - S.b_z * S.w) - (S.A * x - S.b * S.w)
-        residual = residual.applyfunc(sp.expand)
-        if not all(is_zero(e) for e in residual):
-            return Outcome.fail(
-                f"T(A_z z - b w) - (A T z - b w) = {list(residual)} is not identically zero", tuple(details)
-            )
-        details += [
-            ("x = T z", latex(x)),
-            ("T A_z T^{-1}", latex((S.T * S.A_z * S.T_inv).applyfunc(sp.cancel))),
-            ("A", latex(S.A)),
-            ("T b", latex(S.T * S.b_z)),
-            ("T(A_z z - b w) = A\\,Tz - b\\,w", latex((S.T * (S.A_z * S.z - S.b_z * S.w)).applyfunc(sp.expand))),
-        ]
-        return Outcome(True, "det T = -k_i^2 and the vector fields agree for symbolic w", tuple(details))
-
-
-# --------------------------------------------------------------------------- regularization
-
-
-@dataclass(frozen=True)
-class Branch:
-    """One branch of eq. (vDot): the sign of ``v``, the set of ``u`` and ``v'``."""
-
-    label: str
-    v_sign: int
-    u_set: sp.Set
-    vdot: sp.Expr
-    tex: str = ""
-
-
-@dataclass(frozen=True)
-class RegularizationSubject:
-    """Eq. (basic) as printed in the paper, and the package's inclusion data."""
-
-    ei_dot: sp.Expr
-    s_dot: sp.Expr
-    u_of_z: sp.Expr
-    branches: tuple[Branch, ...]
-    A_z: sp.ImmutableMatrix
-    b: sp.ImmutableMatrix
-    z: sp.ImmutableMatrix
-    u: sp.Symbol
-    sgn: dict
-
-
-class Regularization(Obligation):
-    id = "regularization"
-    paper = "eqs. (basic), (vDot), (xPhDot)"
-    statement = "each branch of the discontinuous model (basic) is a selection of the inclusion (xPhDot), and the branches partition the state space"
-    method = "exhaustive case split over the five branches; the selection w solving u - f_c w = v' is checked to lie in SGN(v) (affine image of the branch's u-interval)"
-
-    def derive(self) -> RegularizationSubject:
-        g = G()
-        u = sp.Symbol("u", real=True)
-        f_c = g.f_c
-        branches = (
-            Branch("v > 0", 1, sp.S.Reals, u - f_c, "v > 0"),
-            Branch("v = 0, u ≥ f_c", 0, sp.Interval(f_c, sp.oo), u - f_c, "v = 0,\\ u \\ge f_c"),
-            Branch("v = 0, |u| < f_c", 0, sp.Interval.open(-f_c, f_c), sp.Integer(0), "v = 0,\\ |u| < f_c"),
-            Branch("v = 0, u ≤ -f_c", 0, sp.Interval(-sp.oo, -f_c), u + f_c, "v = 0,\\ u \\le -f_c"),
-            Branch("v < 0", -1, sp.S.Reals, u + f_c, "v < 0"),
-        )
-        return RegularizationSubject(
-            ei_dot=g.s,
-            s_dot=g.v,
-            u_of_z=-g.k_p * g.s - g.k_v * g.v - g.k_i * g.e_i,
-            branches=branches,
-            A_z=_mat(_symbolic.A_z(g)),
-            b=_mat(_symbolic.b(g)),
-            z=_mat([g.e_i, g.s, g.v]),
-            u=u,
-            sgn=sgn_sets(),
-        )
-
-    def verify(self, subject: RegularizationSubject) -> Outcome:
-        S = subject
-        rhs = S.A_z * S.z
-        if not (is_zero(rhs[0] - S.ei_dot) and is_zero(rhs[1] - S.s_dot) and S.b[0] == 0 and S.b[1] == 0):
-            return Outcome.fail(f"the first two rows of (xPhDot) {list(rhs[:2])} differ from e_i' = {S.ei_dot}, s' = {S.s_dot}")
-        if not is_zero(rhs[2] - S.u_of_z):
-            return Outcome.fail(f"the third row of A_z z is {rhs[2]}, not u = {S.u_of_z}")
-        f = S.b[2]
-        if sign_of(f) != 1:
-            return Outcome.fail(f"the friction level b_3 = {f} is not positive")
+        P = _symbolic.P(g)
         w = sp.Symbol("w", real=True)
-        details = [("u", latex(S.u_of_z))]
-        for br in S.branches:
-            sols = sp.solve(sp.Eq(S.u - f * w, br.vdot), w)
-            if len(sols) != 1:
-                return Outcome.fail(f"branch '{br.label}': no unique selection w with u - f_c w = {br.vdot}")
-            w_sel = sp.simplify(sols[0])
-            allowed = S.sgn[br.v_sign]
-            try:
-                if isinstance(allowed, sp.FiniteSet):
-                    ok = any(is_zero(w_sel - a) for a in allowed.args)
-                    image: Any = w_sel
-                elif is_zero(sp.diff(w_sel, S.u)):
-                    image = w_sel
-                    ok = decide(sp.And(sp.Le(allowed.start, w_sel), sp.Le(w_sel, allowed.end))) is True
-                else:
-                    if not (br.u_set.start.is_finite and br.u_set.end.is_finite):
-                        raise Undecided(f"w = {w_sel} is unbounded on u ∈ {br.u_set}")
-                    closure = sp.Interval(br.u_set.start, br.u_set.end)
-                    image = affine_image(w_sel, S.u, closure)
-                    ok = decide(sp.And(sp.Le(allowed.start, image.start), sp.Le(image.end, allowed.end))) is True
-            except Undecided as exc:
-                return Outcome.fail(f"branch '{br.label}': {exc}", tuple(details))
-            if not ok:
-                return Outcome.fail(
-                    f"branch '{br.label}': v' = {br.vdot} needs w = {w_sel} (range {image}), not in SGN = {allowed}",
-                    tuple(details),
-                )
-            details.append((f"{br.tex}:\\ \\dot v = {latex(br.vdot)} = u - f_c w", f"w = {latex(w_sel)} \\in {latex(allowed)}"))
-        # The branches must cover every (v, u) exactly once: v > 0, v < 0 whole lines, v = 0 a partition of u.
-        for sgn_v in (1, -1):
-            sets = [br.u_set for br in S.branches if br.v_sign == sgn_v]
-            if sets != [sp.S.Reals]:
-                return Outcome.fail(f"v with sign {sgn_v} is covered by the u-sets {sets}, not exactly once by all of ℝ")
-        stick = [br.u_set for br in S.branches if br.v_sign == 0]
-        ok, why = interval_partitions_reals(stick)
-        if not ok:
-            return Outcome.fail(f"the v = 0 branches do not partition u ∈ ℝ: {why}", tuple(details))
-        return Outcome(True, "all five branches are selections; the v = 0 branches partition ℝ", tuple(details))
+        sgn = sgn_sets()
+
+        def paper(case: Case) -> sp.Expr:
+            vec = sp.Matrix([case(g.sigma), case(g.phi) - g.f_c * w, case(g.v)])
+            form = sp.expand(case((vec.T * P * vec)[0]))
+            return minimum_on(form, w, sgn[_sign(case, g.v)])
+
+        return _x_subject("V", V, paper)
 
 
-# --------------------------------------------------------------------------- assumption 1 / Routh
+class HatVRuntime(_Binding):
+    id = "model.hatV_runtime"
+    paper = "eq. (Vhat); Lemma 3, proof of eq. (hatVandHatR)"
+    statement = (
+        "the package's V̂ is ½k₁σ² + ½k₂dz(φ)² + k₃|σ||v| + ½k₄v² = ½wᵀKw with w = (|σ|, |dz(φ)|, |v|), "
+        "in exact, float and symbolic form"
+    )
+
+    def derive(self) -> BindingSubject:
+        g = G()
+        k = tuple(sp.symbols("k_1 k_2 k_3 k_4", positive=True))
+        K = _symbolic.K_hat(*k)
+
+        def paper(case: Case) -> sp.Expr:
+            w = sp.Matrix([sp.Abs(case(g.sigma)), sp.Abs(_paper_dz(case, g.phi, g.f_c)), sp.Abs(case(g.v))])
+            return sp.expand((w.T * K * w)[0] / 2)
+
+        def runtime(p: Parameters, x: Any) -> Any:
+            return V_hat(p, x, K_INSTANCE)
+
+        constants = _gain_values(g, INSTANCE)
+        constants.update(zip(k, (sp.Rational(q) for q in K_INSTANCE)))
+        return _x_subject("V̂", runtime, paper, symbolic=V_hat(g, [g.sigma, g.phi, g.v], k), constants=constants)
 
 
-@dataclass(frozen=True)
-class RouthSubject:
-    """``A`` and ``A_z`` with real (unsigned) gains, the paper's polynomial and Assumption 1."""
+class HatVRateRuntime(_Binding):
+    id = "model.hatV_rate_runtime"
+    paper = "Lemma 3, eq. (hatVdot) and eq. (almostEverywhereDerivatives)"
+    statement = (
+        "the package's V̂° on R̂ (used by the cross-check) is max_{ζ ∈ ∂|σ|} ⟨∂V̂, F⟩ with ∂V̂ differentiated from "
+        "the package's V̂ and F = Ax − b sign(v), in exact, float and symbolic form"
+    )
 
-    A: sp.ImmutableMatrix
-    A_z: sp.ImmutableMatrix
-    paper_polynomial: sp.Expr
-    s: sp.Symbol
-    assumption: tuple[sp.Expr, ...]
-    gains: tuple[sp.Symbol, ...]
+    def derive(self) -> BindingSubject:
+        g = G()
+        k = tuple(sp.symbols("k_1 k_2 k_3 k_4", positive=True))
+        zeta = sp.Symbol("zeta", real=True)
+        state = (g.sigma, g.phi, g.v)
+        Vh = V_hat(g, list(state), k)
+        F = _symbolic.A(g) * sp.Matrix(state) - _symbolic.b(g) * sp.sign(g.v)
+        # Clarke: ∂|σ| = SGN(σ); keep ζ for the element of SGN(σ) that sympy writes sign(σ)
+        rate = sum(sp.diff(Vh, x) * F[i] for i, x in enumerate(state)).xreplace({sp.sign(g.sigma): zeta})
 
+        def paper(case: Case) -> sp.Expr:
+            if _sign(case, g.sigma) != 0:
+                return case(rate).xreplace({zeta: _sign(case, g.sigma)})
+            ends = [resolve_piecewise(case(rate).xreplace({zeta: z})) for z in (1, -1)]
+            order = sign_of(sp.expand(ends[0] - ends[1]))
+            if order is None:
+                raise Undecided(f"cannot compare ζ = ±1 in {ends}")
+            return ends[0] if order >= 0 else ends[1]
 
-def hurwitz_minors(poly: sp.Poly) -> list[sp.Expr]:
-    """Leading principal minors of the Hurwitz matrix of ``poly`` (leading coefficient first)."""
-    n = poly.degree()
-    coeffs = poly.all_coeffs()  # a_n, ..., a_0
+        def in_rhat(case: Case) -> bool:
+            margin = sp.expand(case(g.v) * (case(g.phi) - _sign(case, g.v) * case(g.f_c)))
+            return sign_of(margin) == -1
 
-    def a(k: int) -> sp.Expr:
-        return coeffs[n - k] if 0 <= k <= n else sp.Integer(0)
+        def runtime(p: Parameters, x: Any) -> Any:
+            return V_hat_rate(p, x, K_INSTANCE)
 
-    H = sp.Matrix(n, n, lambda i, j: a(n - 2 * (j + 1) + (i + 1)))
-    return [sp.factor(H[:k, :k].det()) for k in range(1, n + 1)]
-
-
-class Assumption1Routh(Obligation):
-    id = "assumption1.routh"
-    paper = "Assumption 1; §II-B and §III (Routh test)"
-    statement = "k_i > 0, k_p > 0, k_v k_p > k_i ⇔ s³ + k_v s² + k_p s + k_i is Hurwitz, and this polynomial is det(sI - A) = det(sI - A_z)"
-    method = "charpoly identity; Hurwitz determinants (Routh-Hurwitz theorem) with each direction proved by solving one side for the gains and a sign-definite decomposition of the other"
-
-    def derive(self) -> RouthSubject:
-        k_p, k_i, k_v = sp.symbols("k_p k_i k_v", real=True)
-        g = _symbolic.Gains(k_p, k_i, k_v, *(getattr(G(), n) for n in ("f_c", "sigma", "phi", "v", "e_i", "s", "delta")))
-        s = sp.Symbol("s")
-        return RouthSubject(
-            A=_mat(_symbolic.A(g)),
-            A_z=_mat(_symbolic.A_z(g)),
-            paper_polynomial=s**3 + k_v * s**2 + k_p * s + k_i,
-            s=s,
-            assumption=(k_i, k_p, k_v * k_p - k_i),
-            gains=(k_p, k_i, k_v),
+        constants = _gain_values(g, INSTANCE)
+        constants.update(zip(k, (sp.Rational(q) for q in K_INSTANCE)))
+        cases = tuple(c for c in _state_cases(g) if in_rhat(c))
+        points = tuple(p for p in instance_points() if p[2] != 0 and (1 if p[2] > 0 else -1) * p[1] < INSTANCE.f_c)
+        return _x_subject(
+            "V̂°", runtime, paper, symbolic=V_hat_rate(g, list(state), k), constants=constants, cases=cases, points=points
         )
 
-    def verify(self, subject: RouthSubject) -> Outcome:
-        S = subject
-        details: list[tuple[str, str]] = []
-        for name, M in (("A", S.A), ("A_z", S.A_z)):
-            cp = sp.expand((S.s * sp.eye(3) - M).det())
-            if not is_zero(cp - S.paper_polynomial):
-                return Outcome.fail(f"det(sI - {name}) = {cp} differs from the paper's {S.paper_polynomial}")
-        details.append(("\\det(sI - A) = \\det(sI - A_z)", latex(S.paper_polynomial)))
-        poly = sp.Poly(S.paper_polynomial, S.s)
-        if sign_of(poly.LC()) != 1:
-            return Outcome.fail(f"leading coefficient {poly.LC()} is not positive")
-        minors = hurwitz_minors(poly)
-        details.append(("\\text{Hurwitz minors } \\Delta_k", latex(sp.Matrix(minors).T)))
-        # (⇐) every point of Assumption 1 is (a_1, a_2, a_3) = (positive, positive, positive); solve for the gains.
-        alphas = sp.symbols(f"alpha_1:{len(S.assumption) + 1}", positive=True)
-        back = sp.solve([e - a for e, a in zip(S.assumption, alphas)], S.gains, dict=True)
-        if not back:
-            return Outcome.fail(f"cannot solve Assumption 1's expressions {S.assumption} for the gains")
-        for sol in back:
-            for k, m in enumerate(minors, 1):
-                if sign_of(m.subs(sol)) != 1:
-                    return Outcome.fail(
-                        f"(⇐) fails: on Assumption 1 ({sol}), Hurwitz minor Δ_{k} = {sp.factor(m.subs(sol))} is not shown positive",
-                        tuple(details),
-                    )
-        # (⇒) every Hurwitz point has positive minors d_k; solve the minors for the gains.
-        ds = sp.symbols(f"d_1:{len(minors) + 1}", positive=True)
-        forth = sp.solve([m - d for m, d in zip(minors, ds)], S.gains, dict=True)
-        if not forth:
-            return Outcome.fail(f"cannot solve the Hurwitz minors {minors} for the gains")
-        for sol in forth:
-            for e in S.assumption:
-                val = sp.factor(e.subs(sol))
-                if sign_of(val) != 1:
-                    return Outcome.fail(
-                        f"(⇒) fails: with Hurwitz minors d_k > 0 ({sol}), Assumption 1's {e} = {val} is not shown positive",
-                        tuple(details),
-                    )
-        details.append(("\\Leftarrow\\ \\text{on Assumption 1}", latex([sp.factor(m.subs(back[0])) for m in minors])))
-        details.append(("\\Rightarrow\\ \\text{from } \\Delta_k = d_k", latex([sp.factor(e.subs(forth[0])) for e in S.assumption])))
-        return Outcome(True, "both directions hold for real gains", tuple(details))
 
+class RRuntime(_Binding):
+    id = "model.R_runtime"
+    paper = "Lemma 3 (the sets R and R̂)"
+    statement = "the package's test x ∈ R is v(φ − sign(v) f_c) ≥ 0, boundary included, in exact, float and symbolic form"
 
-# --------------------------------------------------------------------------- equilibria
-
-
-@dataclass(frozen=True)
-class EquilibriaSubject:
-    """The inclusion in both coordinates and 𝒜 in both (eqs. Aph and A)."""
-
-    A: sp.ImmutableMatrix
-    b: sp.ImmutableMatrix
-    attractor_x: tuple
-    A_z: sp.ImmutableMatrix
-    b_z: sp.ImmutableMatrix
-    attractor_z: tuple
-    sgn: dict
-
-
-def _equilibria_match(M: sp.ImmutableMatrix, b: sp.ImmutableMatrix, target: tuple, sgn: dict, names: tuple[str, ...]):
-    """Decide ``{x : 0 ∈ M x - b SGN(x_3)} == target``; return (ok, reason, details)."""
-    w = sp.Symbol("w", real=True)
-    xs = sp.symbols("x_1:4", real=True)
-    X = sp.Matrix(xs)
-    details = []
-    # v ≠ 0: the only selection is w = sign(v); M x = b w must then force v = 0, a contradiction.
-    if is_zero(M.det()):
-        return False, f"M = {M.tolist()} is singular, so the v ≠ 0 case is not settled", details
-    for sgn_v in (1, -1):
-        (wv,) = sgn[sgn_v].args
-        sol = M.LUsolve(b * wv).applyfunc(sp.cancel)
-        # The unique solution is an equilibrium only if its v really has the sign assumed.
-        consistent = sign_of(sgn_v * sol[2])
-        if consistent == 1:
-            return False, f"x = {list(sol)} is an equilibrium with {names[2]} of sign {sgn_v}", details
-        if consistent is None:
-            return False, f"cannot exclude an equilibrium with {names[2]} of sign {sgn_v}: {list(sol)}", details
-    # v = 0: solve M x = b w for the other two components, w ∈ SGN(0).
-    eqs = list(M * X.subs(xs[2], 0) - b * w)
-    sols = sp.solve(eqs, xs[:2], dict=True)
-    if len(sols) != 1 or set(sols[0]) != set(xs[:2]):
-        return False, f"the equilibria with {names[2]} = 0 are not a curve parametrised by w: {sols}", details
-    sol = sols[0]
-    comps = [sol[xs[0]], sol[xs[1]], sp.Integer(0)]
-    for i, (comp, want) in enumerate(zip(comps, target)):
-        if isinstance(want, sp.Set):
-            image = affine_image(comp, w, sgn[0])
-            if not (is_zero(image.start - want.start) and is_zero(image.end - want.end) and type(image) is type(want)
-                    and image.left_open == want.left_open and image.right_open == want.right_open):
-                return False, f"equilibria have {names[i]} ∈ {image}, but 𝒜 says {want}", details
-            details.append((names[i], f"{latex(comp)},\\ w \\in [-1,1] \\;\\Rightarrow\\; {latex(image)}"))
-        else:
-            if not is_zero(comp - want):
-                return False, f"equilibria have {names[i]} = {comp}, but 𝒜 says {want}", details
-            details.append((names[i], latex(comp)))
-    return True, "", details
-
-
-class Equilibria(Obligation):
-    id = "equilibria"
-    paper = "eqs. (Aph), (A); §II-B"
-    statement = "the equilibria of the inclusion, {x : 0 ∈ A x - b SGN(v)}, are exactly 𝒜, in x = (σ, φ, v) and in z = (e_i, s, v)"
-    method = "exhaustive case split on sign(v): v ≠ 0 gives v = 0 (contradiction); v = 0 solved exactly for w ∈ [-1, 1] and the affine image compared with 𝒜"
-
-    def derive(self) -> EquilibriaSubject:
+    def derive(self) -> BindingSubject:
         g = G()
-        return EquilibriaSubject(
-            A=_mat(_symbolic.A(g)),
-            b=_mat(_symbolic.b(g)),
-            attractor_x=attractor_x(g),
-            A_z=_mat(_symbolic.A_z(g)),
-            b_z=_mat(_symbolic.b(g)),
-            attractor_z=attractor_z(g),
-            sgn=sgn_sets(),
+
+        def paper(case: Case) -> Any:
+            return sp.GreaterThan(sp.expand(case(g.v) * (case(g.phi) - _sign(case, g.v) * case(g.f_c))), 0)
+
+        return _x_subject("x ∈ R", in_R, paper, relation=True)
+
+
+class DistanceRuntime(_Binding):
+    id = "model.distance_runtime"
+    paper = "eq. (distFromA); Notation (dz, sat)"
+    statement = "the package's |x|²_𝒜 is σ² + v² + dz(φ)² with dz(y) = y − f_c·sat(y/f_c), in exact, float and symbolic form"
+
+    def derive(self) -> BindingSubject:
+        g = G()
+
+        def paper(case: Case) -> sp.Expr:
+            return case(g.sigma) ** 2 + case(g.v) ** 2 + _paper_dz(case, g.phi, g.f_c) ** 2
+
+        return _x_subject("|x|²_𝒜", squared_distance_x, paper)
+
+
+class DistanceZRuntime(_Binding):
+    id = "model.distance_z_runtime"
+    paper = "Corollary 1, proof (the two distances)"
+    statement = "the package's |z|²_𝒜 is s² + v² + dz_{f_c/k_i}(e_i)², in exact, float and symbolic form"
+
+    def derive(self) -> BindingSubject:
+        g = G()
+        beta = g.f_c / g.k_i
+        cases = case_grid(
+            sign_cases(g.s, "s", "a_s"),
+            sign_cases(g.v, "v", "a_v"),
+            line_cases(g.e_i, [-beta, beta], name="e_i", beyond="d_e", weights=("u_e", "w_e"), labels=["-f_c/k_i", "f_c/k_i"]),
         )
 
-    def verify(self, subject: EquilibriaSubject) -> Outcome:
-        S = subject
-        details: list[tuple[str, str]] = []
-        for M, b, target, names in (
-            (S.A, S.b, S.attractor_x, ("\\sigma", "\\phi", "v")),
-            (S.A_z, S.b_z, S.attractor_z, ("e_i", "s", "v")),
-        ):
-            try:
-                ok, why, det = _equilibria_match(M, b, target, S.sgn, names)
-            except Undecided as exc:
-                ok, why, det = False, str(exc), []
-            details += det
-            if not ok:
-                return Outcome.fail(why, tuple(details))
-        return Outcome(True, "no equilibrium with v ≠ 0; with v = 0 the equilibria sweep 𝒜 exactly", tuple(details))
+        def paper(case: Case) -> sp.Expr:
+            return case(g.s) ** 2 + case(g.v) ** 2 + _paper_dz(case, g.e_i, beta) ** 2
 
-
-# --------------------------------------------------------------------------- distance
+        points = tuple((e, s, v) for s, e, v in instance_points(INSTANCE.f_c / INSTANCE.k_i))
+        return _x_subject(
+            "|z|²_𝒜", squared_distance_z, paper, symbolic=squared_distance_z(g, [g.e_i, g.s, g.v]),
+            cases=tuple(cases), points=points, state=(g.e_i, g.s, g.v),
+        )
 
 
 @dataclass(frozen=True)
-class DistanceSubject:
-    """𝒜 in ``x`` coordinates and the package's formula for ``|x|²_𝒜``."""
+class MatricesSubject:
+    """The symbolic matrices and the float (and exact) ones the simulators use."""
 
-    attractor: tuple
-    formula: sp.Expr
-    state: tuple[sp.Symbol, sp.Symbol, sp.Symbol]
-    f_c: sp.Symbol
+    symbolic: dict[str, sp.ImmutableMatrix]
+    runtime: dict[str, Callable[[Parameters], Any]]
+    params: Parameters
+    constants: dict
 
 
-class Distance(Obligation):
-    id = "distance"
-    paper = "eq. (distFromA)"
-    statement = "|x|²_𝒜 = inf_{y ∈ 𝒜} |x - y|² = σ² + v² + dz(φ)², on each piece φ < -f_c, |φ| ≤ f_c, φ > f_c"
-    method = "exhaustive case split (five classes of φ); exact minimum over the closed interval (endpoints and stationary points) compared with the formula"
+class MatricesRuntime(Obligation):
+    id = "model.matrices_runtime"
+    paper = "eq. (CoC), eq. (xDot), eq. (lyapLikeP)"
+    statement = "the float A, b, P and the coordinate maps z ↦ x = Tz, x ↦ z = T⁻¹x that the simulators use equal the symbolic ones (exact and float paths)"
+    method = "evaluate at dyadic gains (float arithmetic exact) and compare entry by entry with =="
 
-    def derive(self) -> DistanceSubject:
+    def derive(self) -> MatricesSubject:
         g = G()
-        return DistanceSubject(attractor=attractor_x(g), formula=distance_squared(g), state=(g.sigma, g.phi, g.v), f_c=g.f_c)
+        basis_f = np.eye(3)
+        basis_q = np.array([[Fraction(int(i == j)) for j in range(3)] for i in range(3)], dtype=object)
+        return MatricesSubject(
+            symbolic={
+                "A": sp.ImmutableMatrix(_symbolic.A(g)),
+                "b": sp.ImmutableMatrix(_symbolic.b(g)).T,
+                "P": sp.ImmutableMatrix(_symbolic.P(g)),
+                # rows of z_to_x(eᵢ) are the columns of T: compare with Tᵀ
+                "T (float)": sp.ImmutableMatrix(_symbolic.T(g)).T,
+                "T (exact)": sp.ImmutableMatrix(_symbolic.T(g)).T,
+                "T⁻¹ (float)": sp.ImmutableMatrix(_symbolic.T_inv(g)).T,
+                "T⁻¹ (exact)": sp.ImmutableMatrix(_symbolic.T_inv(g)).T,
+            },
+            runtime={
+                "A": system_matrix,
+                "b": lambda p: input_vector(p).reshape(1, 3),
+                "P": lyapunov_matrix,
+                "T (float)": lambda p: z_to_x(p, basis_f),
+                "T (exact)": lambda p: z_to_x(p, basis_q),
+                "T⁻¹ (float)": lambda p: x_to_z(p, basis_f),
+                "T⁻¹ (exact)": lambda p: x_to_z(p, basis_q),
+            },
+            params=INSTANCE,
+            constants=_gain_values(g, INSTANCE),
+        )
 
-    def verify(self, subject: DistanceSubject) -> Outcome:
-        S = subject
-        x = S.state
-        y = sp.Symbol("y", real=True)
-        free = [i for i, c in enumerate(S.attractor) if isinstance(c, sp.Set)]
-        if len(free) != 1:
-            return Outcome.fail(f"𝒜 = {S.attractor} does not have exactly one interval component")
-        (j,) = free
-        fixed_part = sum(((x[i] - c) ** 2 for i, c in enumerate(S.attractor) if i != j), sp.Integer(0))
-        details = []
-        for label, tex, value, _region in phi_classes(S.f_c, tag="_phi"):
-            try:
-                inner = minimum_on((value - y) ** 2, y, S.attractor[j])
-                claimed = resolve_piecewise(S.formula.subs(x[j], value))
-            except Undecided as exc:
-                return Outcome.fail(f"piece {label}: {exc}", tuple(details))
-            exact = fixed_part + inner
-            if not is_zero(exact - claimed):
-                return Outcome.fail(
-                    f"piece {label} (φ = {value}): inf |x - y|² = {sp.factor(exact)} but the formula gives {sp.factor(claimed)}",
-                    tuple(details),
-                )
-            details.append((
-                f"{tex},\\ \\phi = {latex(value)}",
-                f"\\inf_{{y\\in\\mathcal A}}|x-y|^2 = {latex(sp.factor(exact))}",
-            ))
-        return Outcome(True, "the formula equals the exact infimum on every piece", tuple(details))
+    def verify(self, subject: MatricesSubject) -> Outcome:
+        for name, M in subject.symbolic.items():
+            want = M.xreplace(subject.constants)
+            got = np.asarray(subject.runtime[name](subject.params))
+            if got.shape != want.shape:
+                return Outcome.fail(f"{name}: shape {got.shape}, expected {want.shape}")
+            exact = "exact" in name
+            for i, j in itertools.product(range(want.shape[0]), range(want.shape[1])):
+                w, x = want[i, j], got[i, j]
+                same = (x == _as_exact(w) and isinstance(x, (Fraction, int))) if exact else float(x) == float(w)
+                if not same:
+                    return Outcome.fail(f"{name}[{i + 1},{j + 1}] = {x!r} at the instance gains; symbolically {w}")
+        return Outcome(True, f"{len(subject.symbolic)} matrices equal entry by entry at dyadic gains")
 
 
-OBLIGATIONS = (Coordinates, Regularization, Assumption1Routh, Equilibria, Distance)
+@dataclass(frozen=True)
+class ModesSubject:
+    """The appendix table proved by ``claim1.cases`` and the simulators' mode selection."""
+
+    rows: tuple[Any, ...]
+    table_row: Callable[..., str]
+    select_mode: Callable[..., int]
+    mode_at_rest: Callable[..., Any]
+    mode_after_slip: Callable[..., Any]
+    f_c: Fraction
+    points: tuple[tuple[Fraction, Fraction, Fraction], ...]
+
+
+def _classes(point: tuple[Fraction, Fraction, Fraction], f_c: Fraction) -> tuple[str, str, str]:
+    """The row-table classes (as :func:`.claim1.table_rows` writes them) of an exact point."""
+    sigma, phi, v = point
+
+    def sgn(q: Fraction) -> str:
+        return "> 0" if q > 0 else "< 0" if q < 0 else "= 0"
+
+    phi_class = (
+        "φ > f_c" if phi > f_c else "φ = f_c" if phi == f_c else "φ = -f_c" if phi == -f_c else "φ < -f_c" if phi < -f_c else "|φ| < f_c"
+    )
+    return sgn(v), phi_class, sgn(sigma)
+
+
+class ModesRuntime(Obligation):
+    id = "model.modes_runtime"
+    paper = "Claim 1; Appendix (table of cases (i)-(xi))"
+    statement = "the simulators' mode selection (table_row/select_mode, mode_at_rest at tolerance 0 from every boundary base, and mode_after_slip at the end of a slip in either direction) gives the row and k of the table that claim1.cases proves, in every class"
+    method = "a dyadic point in each of the 45 sign/φ classes (every boundary included), compared with =="
+
+    def derive(self) -> ModesSubject:
+        f_c = INSTANCE.f_c
+        return ModesSubject(
+            rows=table_rows(sp.Rational(f_c)),
+            table_row=table_row,
+            select_mode=select_mode,
+            mode_at_rest=mode_at_rest,
+            mode_after_slip=mode_after_slip,
+            f_c=f_c,
+            points=instance_points(f_c),
+        )
+
+    def verify(self, subject: ModesSubject) -> Outcome:
+        seen: set[str] = set()
+        for point in subject.points:
+            v_class, phi_class, sigma_class = _classes(point, subject.f_c)
+            rows = [
+                r for r in subject.rows
+                if r.v == v_class and r.phi in (None, phi_class) and r.sigma in (None, sigma_class)
+            ]
+            where = "(σ, φ, v) = (" + ", ".join(str(c) for c in point) + ")"
+            if len(rows) != 1:
+                return Outcome.fail(f"{where}: {len(rows)} rows of the proved table apply; expected exactly one")
+            row = rows[0]
+            seen.add(row.label)
+            label = subject.table_row(*point, subject.f_c)
+            if label != row.label:
+                return Outcome.fail(f"{where}: table_row gives row ({label}), the proved table row ({row.label})")
+            k = subject.select_mode(*point, subject.f_c)
+            if k != row.k:
+                return Outcome.fail(f"{where}: select_mode gives k = {k}, row ({row.label}) has k = {row.k}")
+            if point[2] != 0:
+                continue
+            # at rest the simulators keep φ = base·f_c + offset; with tol = 0 every base must give the row's k
+            for base in (-1, 0, 1):
+                offset = float(point[1] - base * subject.f_c)
+                _, _, k_rest = subject.mode_at_rest(float(point[0]), base, offset, float(subject.f_c), 0.0)
+                if int(k_rest) != row.k:
+                    return Outcome.fail(
+                        f"{where}, φ = {base}·f_c + {offset}: mode_at_rest gives k = {int(k_rest)}, row ({row.label}) has k = {row.k}"
+                    )
+            # where a slip in direction d can end (d·(φ - d f_c) ≤ 0), the kernel's rule gives the row's k
+            for d in (1, -1):
+                offset = float(point[1] - d * subject.f_c)
+                if d * offset > 0:
+                    continue
+                _, _, k_slip = subject.mode_after_slip(float(point[0]), offset, d, float(subject.f_c), 0.0)
+                if int(k_slip) != row.k:
+                    return Outcome.fail(
+                        f"{where}, after a slip d = {d}: mode_after_slip gives k = {int(k_slip)}, row ({row.label}) has k = {row.k}"
+                    )
+        missing = [r.label for r in subject.rows if r.label not in seen]
+        if missing:
+            return Outcome.fail(f"rows {missing} were never reached by a point: the check would be vacuous for them")
+        return Outcome(True, f"all {len(subject.rows)} rows agree at {len(subject.points)} points")
+
+
+@dataclass(frozen=True)
+class PNormSubject:
+    """The simulation kernel's written-out ``|y|_P`` and the package's quadratic form."""
+
+    p_norm: Callable[..., float]
+    weights: tuple[float, float]
+    params: Parameters
+    points: tuple[tuple[Fraction, Fraction, Fraction], ...]
+
+
+class PNormRuntime(Obligation):
+    id = "model.P_norm_runtime"
+    paper = "eq. (lyapLikeP); eq. (dVdt) (|y|_P is nonincreasing along a slip)"
+    statement = "the certified root search's written-out |y|_P squares to the package's (σ, φ, v)P(σ, φ, v)ᵀ"
+    method = "evaluate at a dyadic point of every class (63 points, gains dyadic) against the exact form; a float square root is compared to within 4 ulps"
+
+    def derive(self) -> PNormSubject:
+        from .._simulation.affine import MatrixExponential
+        from .._simulation.search import p_norm, p_weights
+
+        return PNormSubject(
+            p_norm=p_norm,
+            weights=p_weights(MatrixExponential.from_params(INSTANCE)),
+            params=INSTANCE,
+            points=instance_points(),
+        )
+
+    def verify(self, subject: PNormSubject) -> Outcome:
+        for point in subject.points:
+            want = quadratic_form(subject.params, *point)
+            where = "(" + ", ".join(str(c) for c in point) + ")"
+            got2 = Fraction(float(subject.p_norm(*(float(c) for c in point), *subject.weights))) ** 2
+            if abs(got2 - want) > 8 * Fraction(2) ** -52 * want:
+                return Outcome.fail(f"at {where}: p_norm² = {float(got2)!r}, the package's |y|²_P = {want}")
+        return Outcome(True, f"the kernel's |y|_P agrees with the package's P at {len(subject.points)} points")
+
+
+@dataclass(frozen=True)
+class KindsSubject:
+    """The three kinds' non-arithmetic operations (:mod:`symbolic_friction._model.kinds`)."""
+
+    kinds: tuple[Any, ...]
+
+
+class KindsRuntime(Obligation):
+    id = "model.kinds_runtime"
+    paper = "Notation (sign, sat, dz); eq. (frictionforceSetValued)"
+    statement = "where, clip (c·sat), sign and abs agree with the paper's definitions in the exact, float and sympy kinds, boundaries included"
+    method = "each operation at -2, -1, -1/2, 0, 1/2, 1, 2 against the definition, compared with =="
+
+    def derive(self) -> KindsSubject:
+        from .._model.kinds import EXACT, FLOAT, SYMPY
+
+        return KindsSubject((EXACT, FLOAT, SYMPY))
+
+    def verify(self, subject: KindsSubject) -> Outcome:
+        points = [Fraction(n, 2) for n in (-4, -2, -1, 0, 1, 2, 4)]
+        one = Fraction(1)
+        for kind in subject.kinds:
+            cast = {"exact": lambda q: q, "float": float, "sympy": sp.Rational}.get(kind.name, lambda q: q)
+            for y in points:
+                yk = cast(y)
+                # the paper's Notation: sign(0) = 0, sat(y) = y on [-1, 1], ±1 outside
+                want = {
+                    "sign": (y > 0) - (y < 0),
+                    "clip": -one if y < -1 else one if y > 1 else y,
+                    "abs": abs(y),
+                    "where": 1 if y > 0 else 2,
+                }
+                got = {
+                    "sign": kind.sign(yk),
+                    "clip": kind.clip(yk, cast(-one), cast(one)),
+                    "abs": kind.abs(yk),
+                    "where": kind.where(yk > 0, 1, 2),
+                }
+                for name, value in got.items():
+                    if Fraction(str(value if kind.name != "float" else float(value))) != want[name]:
+                        return Outcome.fail(f"the {kind.name} kind's {name}({y}) is {value!r}; the definition gives {want[name]}")
+        return Outcome(True, f"{len(subject.kinds)} kinds × 4 operations agree at {len(points)} points")
+
+
+OBLIGATIONS = (KindsRuntime, VRuntime, HatVRuntime, HatVRateRuntime, RRuntime, DistanceRuntime, DistanceZRuntime, MatricesRuntime, ModesRuntime, PNormRuntime)

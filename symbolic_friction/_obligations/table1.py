@@ -26,8 +26,8 @@ from fractions import Fraction
 
 import sympy as sp
 
-from .. import _symbolic
-from .._parameters import Parameters
+from .._model import symbolic as _symbolic
+from .._model.parameters import Parameters
 from ._base import Obligation, Outcome
 from ._decide import latex
 

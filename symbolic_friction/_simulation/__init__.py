@@ -9,14 +9,11 @@ from __future__ import annotations
 
 import dataclasses
 import importlib
-import math
 from typing import Any
 
-import numpy as np
-
-from .._errors import SimulationError
-from .._parameters import Parameters
-from ._base import SimulationMethod, Solution
+from .._infra.errors import SimulationError
+from .._model.parameters import Parameters
+from ._base import SimulationMethod, Solution, _check_horizon, _check_state, _check_t_eval
 from ._trajectories import Status, Trajectories
 
 __all__ = [
@@ -94,44 +91,6 @@ def configure(method: Any, options: dict[str, Any]) -> SimulationMethod:
             f"expected some of {', '.join(sorted(base.options)) or '(none)'}"
         )
     return dataclasses.replace(base, **options)
-
-
-def _check_state(z0: Any) -> np.ndarray:
-    try:
-        arr = np.asarray(z0, dtype=float)
-    except (TypeError, ValueError):
-        raise SimulationError(f"the initial state z0 must be three numbers (e_i, s, v); got {z0!r}") from None
-    if arr.shape != (3,):
-        raise SimulationError(f"the initial state z0 must have shape (3,) as (e_i, s, v); got shape {arr.shape}")
-    if not all(map(math.isfinite, arr.tolist())):
-        raise SimulationError(f"all components of the initial state z0 must be finite; got {arr.tolist()}")
-    return arr
-
-
-def _check_horizon(t_end: Any) -> float:
-    try:
-        t = float(t_end)
-    except (TypeError, ValueError):
-        raise SimulationError(f"t_end must be a number; got {t_end!r}") from None
-    if not math.isfinite(t) or t <= 0:
-        raise SimulationError(f"t_end must be finite and > 0; got {t_end!r}")
-    return t
-
-
-def _check_t_eval(t_eval: Any, t_end: float) -> np.ndarray | None:
-    if t_eval is None:
-        return None
-    arr = np.asarray(t_eval, dtype=float)
-    if arr.ndim != 1 or arr.size == 0:
-        raise SimulationError(f"t_eval must be a non-empty 1-D sequence of times; got shape {arr.shape}")
-    # Written so that NaN fails every comparison: nondecreasing within [0, t_end] implies finite.
-    if not (arr[0] >= 0 and arr[-1] <= t_end and (arr[1:] >= arr[:-1]).all()):
-        if not np.isfinite(arr).all():
-            raise SimulationError("t_eval must contain only finite times")
-        raise SimulationError(
-            f"t_eval must be nondecreasing within [0, t_end] = [0, {t_end:g}]; got range [{arr.min():g}, {arr.max():g}]"
-        )
-    return arr
 
 
 def simulate(

@@ -10,15 +10,15 @@ slip ``v < 0``: ``x' = Ax + b``).  Every method below approximates (or, for
 from __future__ import annotations
 
 import abc
+import math
 from dataclasses import dataclass, fields
-from functools import cached_property
 from typing import Any, ClassVar
 
 import numpy as np
 
-from .._errors import SimulationError
-from .._parameters import Parameters
-from ._trajectories import AlongStates, Status, Trajectories
+from .._infra.errors import SimulationError
+from .._model.parameters import Parameters
+from ._trajectories import Solution, Status
 
 __all__ = ["Solution", "SimulationMethod", "Status", "RTOL_FLOOR", "check_rtol", "finite_or_raise"]
 
@@ -47,133 +47,43 @@ def finite_or_raise(method: str, t: np.ndarray, z: np.ndarray) -> None:
         )
 
 
-class Solution(AlongStates):
-    """One simulated solution: a view of one row of a :class:`.Trajectories`.
+# -- the arguments of simulate and simulate_batch, checked once for every method --
+def _check_state(z0: Any) -> np.ndarray:
+    try:
+        arr = np.asarray(z0, dtype=float)
+    except (TypeError, ValueError):
+        raise SimulationError(f"the initial state z0 must be three numbers (e_i, s, v); got {z0!r}") from None
+    if arr.shape != (3,):
+        raise SimulationError(f"the initial state z0 must have shape (3,) as (e_i, s, v); got shape {arr.shape}")
+    if not all(map(math.isfinite, arr.tolist())):
+        raise SimulationError(f"all components of the initial state z0 must be finite; got {arr.tolist()}")
+    return arr
 
-    Attributes
-    ----------
-    params : Parameters
-    method : str
-    t : ndarray, shape (n,)
-        Sample times (those after an incomplete trajectory's stop dropped).
-    z : ndarray, shape (n, 3)
-        ``(e_i, s, v)``.
-    x : ndarray, shape (n, 3)
-        ``(σ, φ, v)``.
-    mode : ndarray of int, shape (n,)
-        ``+1`` slip with ``v > 0``, ``0`` stick, ``-1`` slip with ``v < 0``.
-    events : tuple of (float, int, int)
-        ``(t, mode_before, mode_after)`` for every mode change.
-    event_x : ndarray, shape (n_events, 3)
-        The state at each event (NaN where the method does not compute it).
-    status : str
-        One of :class:`Status`.
-    complete : bool
-    options : dict
-        The accuracy knobs used.
-    trajectories, index
-        The batch this is a view of, and the row.
-    """
 
-    def __init__(self, trajectories: "Trajectories", index: int) -> None:
-        self.trajectories = trajectories
-        self.index = index
-        complete = trajectories.status[index] in Status.COMPLETE
-        self._keep = slice(None) if complete else trajectories.t <= trajectories.t_stop[index]
+def _check_horizon(t_end: Any) -> float:
+    try:
+        t = float(t_end)
+    except (TypeError, ValueError):
+        raise SimulationError(f"t_end must be a number; got {t_end!r}") from None
+    if not math.isfinite(t) or t <= 0:
+        raise SimulationError(f"t_end must be finite and > 0; got {t_end!r}")
+    return t
 
-    @classmethod
-    def from_samples(
-        cls,
-        *,
-        params: Parameters,
-        method: str,
-        t: np.ndarray,
-        z: np.ndarray,
-        mode: np.ndarray,
-        events: tuple[tuple[float, int, int], ...],
-        status: str,
-        options: dict[str, Any],
-    ) -> "Solution":
-        """A solution from samples of one trajectory (the time-stepping methods), states at events unknown (NaN)."""
-        from .._coordinates import z_to_x
 
-        t = np.asarray(t, dtype=float)
-        z = np.asarray(z, dtype=float).reshape(-1, 3)
-        n = len(events)
-        ev = np.array(events, dtype=float).reshape(n, 3)
-        batch = Trajectories(
-            params=params,
-            method=method,
-            t=t,
-            z=z[None],
-            x=z_to_x(params, z)[None],
-            mode=np.asarray(mode, dtype=np.int8)[None],
-            event_t=ev[None, :, 0],
-            event_x=np.full((1, n, 3), np.nan),
-            event_before=ev[None, :, 1].astype(np.int8),
-            event_after=ev[None, :, 2].astype(np.int8),
-            event_residual=np.zeros((1, n)),
-            n_events=np.array([n]),
-            status=np.array([status], dtype=object),
-            t_stop=np.array([t[-1] if t.size else 0.0]),
-            z0=z[:1].copy() if z.size else np.zeros((1, 3)),
-            x0=z_to_x(params, z[:1]) if z.size else np.zeros((1, 3)),
-            options=dict(options),
+def _check_t_eval(t_eval: Any, t_end: float) -> np.ndarray | None:
+    if t_eval is None:
+        return None
+    arr = np.asarray(t_eval, dtype=float)
+    if arr.ndim != 1 or arr.size == 0:
+        raise SimulationError(f"t_eval must be a non-empty 1-D sequence of times; got shape {arr.shape}")
+    # Written so that NaN fails every comparison: nondecreasing within [0, t_end] implies finite.
+    if not (arr[0] >= 0 and arr[-1] <= t_end and (arr[1:] >= arr[:-1]).all()):
+        if not np.isfinite(arr).all():
+            raise SimulationError("t_eval must contain only finite times")
+        raise SimulationError(
+            f"t_eval must be nondecreasing within [0, t_end] = [0, {t_end:g}]; got range [{arr.min():g}, {arr.max():g}]"
         )
-        return cls(batch, 0)
-
-    # -- what the row holds ----------------------------------------------------------
-    @property
-    def params(self) -> Parameters:
-        return self.trajectories.params
-
-    @property
-    def method(self) -> str:
-        return self.trajectories.method
-
-    @property
-    def options(self) -> dict[str, Any]:
-        return self.trajectories.options
-
-    @property
-    def status(self) -> str:
-        return str(self.trajectories.status[self.index])
-
-    @property
-    def complete(self) -> bool:
-        return self.status in Status.COMPLETE
-
-    @cached_property
-    def t(self) -> np.ndarray:
-        return self.trajectories.t[self._keep]
-
-    @cached_property
-    def z(self) -> np.ndarray:
-        return self.trajectories.z[self.index][self._keep]
-
-    @cached_property
-    def x(self) -> np.ndarray:
-        """States in ``(σ, φ, v)``, shape (n, 3)."""
-        return self.trajectories.x[self.index][self._keep]
-
-    @cached_property
-    def mode(self) -> np.ndarray:
-        return self.trajectories.mode[self.index][self._keep]
-
-    @cached_property
-    def events(self) -> tuple[tuple[float, int, int], ...]:
-        return self.trajectories.events(self.index)
-
-    @property
-    def event_x(self) -> np.ndarray:
-        return self.trajectories.event_x[self.index, : int(self.trajectories.n_events[self.index])]
-
-    @property
-    def t_stop(self) -> float:
-        return float(self.trajectories.t_stop[self.index])
-
-    def __repr__(self) -> str:
-        return f"Solution(method={self.method!r}, samples={self.t.size}, events={len(self.events)}, status={self.status!r})"
+    return arr
 
 
 @dataclass(frozen=True, kw_only=True)

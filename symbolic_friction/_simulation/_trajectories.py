@@ -1,7 +1,7 @@
 """The one result type of a simulation: ``N`` solutions of eq. (xDot) on common
 sample times, with every event (mode change of Claim 1) and its state.
 
-Every consumer (the :class:`~._base.Solution` of a single simulation, the
+Every consumer (the :class:`Solution` of a single simulation, the
 cross-check, the figures and the scenes) reads a :class:`Trajectories`;
 nothing rebuilds what the simulator knew.  ``V`` (eq. lyapLike) is
 discontinuous exactly at the events, so their states and the modes on either
@@ -12,17 +12,14 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
-from .._errors import SimulationError
-from .._parameters import Parameters
+from .._infra.errors import SimulationError
+from .._model.parameters import Parameters
 
-if TYPE_CHECKING:  # annotations only (._base imports this module)
-    from ._base import Solution
-
-__all__ = ["Trajectories", "Status", "AlongStates"]
+__all__ = ["Trajectories", "Solution", "Status", "AlongStates"]
 
 _ONE_EMPTY_LABEL = np.array([""], dtype=object)
 _ONE_EMPTY_LABEL.flags.writeable = False
@@ -53,27 +50,27 @@ class AlongStates:
     """The paper's functions along the states ``self.x`` (shape ``(…, 3)``) of ``self.params``.
 
     Shared by :class:`Trajectories` (shape ``(N, m)``) and its one-row view
-    :class:`~._base.Solution` (shape ``(n,)``); each evaluates the package's
+    :class:`Solution` (shape ``(n,)``); each evaluates the package's
     one definition (:mod:`.._lyapunov`, :mod:`.._attractor`).
     """
 
     @cached_property
     def V(self) -> np.ndarray:
         """``V(x(t))`` of eq. (lyapLike)."""
-        from .._lyapunov import V
+        from .._model.lyapunov import V
 
         return V(self.params, self.x)
 
     @cached_property
     def distance(self) -> np.ndarray:
         """``|x(t)|_𝒜`` of eq. (distFromA)."""
-        from .._attractor import distance_x
+        from .._model.attractor import distance_x
 
         return distance_x(self.params, self.x)
 
     def V_hat(self, k: tuple[Any, Any, Any, Any]) -> np.ndarray:
         """``V̂(x(t))`` of eq. (Vhat) for constants ``k = (k1, k2, k3, k4)``."""
-        from .._lyapunov import V_hat
+        from .._model.lyapunov import V_hat
 
         return V_hat(self.params, self.x, k)
 
@@ -252,12 +249,139 @@ class Trajectories(AlongStates):
         )
 
     def solution(self, i: int = 0) -> "Solution":
-        """Trajectory ``i`` as a :class:`~._base.Solution` (a view; samples after an incomplete stop dropped)."""
-        from ._base import Solution
-
+        """Trajectory ``i`` as a :class:`Solution` (a view; samples after an incomplete stop dropped)."""
         if not -self.size <= i < self.size:
             raise IndexError(f"trajectory {i} out of range for {self.size} trajectories")
         return Solution(self, i % self.size)
 
     def __iter__(self):
         return (self.solution(i) for i in range(self.size))
+
+
+class Solution(AlongStates):
+    """One simulated solution: a view of one row of a :class:`.Trajectories`.
+
+    Attributes
+    ----------
+    params : Parameters
+    method : str
+    t : ndarray, shape (n,)
+        Sample times (those after an incomplete trajectory's stop dropped).
+    z : ndarray, shape (n, 3)
+        ``(e_i, s, v)``.
+    x : ndarray, shape (n, 3)
+        ``(σ, φ, v)``.
+    mode : ndarray of int, shape (n,)
+        ``+1`` slip with ``v > 0``, ``0`` stick, ``-1`` slip with ``v < 0``.
+    events : tuple of (float, int, int)
+        ``(t, mode_before, mode_after)`` for every mode change.
+    event_x : ndarray, shape (n_events, 3)
+        The state at each event (NaN where the method does not compute it).
+    status : str
+        One of :class:`Status`.
+    complete : bool
+    options : dict
+        The accuracy knobs used.
+    trajectories, index
+        The batch this is a view of, and the row.
+    """
+
+    def __init__(self, trajectories: "Trajectories", index: int) -> None:
+        self.trajectories = trajectories
+        self.index = index
+        complete = trajectories.status[index] in Status.COMPLETE
+        self._keep = slice(None) if complete else trajectories.t <= trajectories.t_stop[index]
+
+    @classmethod
+    def from_samples(
+        cls,
+        *,
+        params: Parameters,
+        method: str,
+        t: np.ndarray,
+        z: np.ndarray,
+        mode: np.ndarray,
+        events: tuple[tuple[float, int, int], ...],
+        status: str,
+        options: dict[str, Any],
+    ) -> "Solution":
+        """A solution from samples of one trajectory (the time-stepping methods), states at events unknown (NaN)."""
+        from .._model.coordinates import z_to_x
+
+        t = np.asarray(t, dtype=float)
+        z = np.asarray(z, dtype=float).reshape(-1, 3)
+        n = len(events)
+        ev = np.array(events, dtype=float).reshape(n, 3)
+        batch = Trajectories(
+            params=params,
+            method=method,
+            t=t,
+            z=z[None],
+            x=z_to_x(params, z)[None],
+            mode=np.asarray(mode, dtype=np.int8)[None],
+            event_t=ev[None, :, 0],
+            event_x=np.full((1, n, 3), np.nan),
+            event_before=ev[None, :, 1].astype(np.int8),
+            event_after=ev[None, :, 2].astype(np.int8),
+            event_residual=np.zeros((1, n)),
+            n_events=np.array([n]),
+            status=np.array([status], dtype=object),
+            t_stop=np.array([t[-1] if t.size else 0.0]),
+            z0=z[:1].copy() if z.size else np.zeros((1, 3)),
+            x0=z_to_x(params, z[:1]) if z.size else np.zeros((1, 3)),
+            options=dict(options),
+        )
+        return cls(batch, 0)
+
+    # -- what the row holds ----------------------------------------------------------
+    @property
+    def params(self) -> Parameters:
+        return self.trajectories.params
+
+    @property
+    def method(self) -> str:
+        return self.trajectories.method
+
+    @property
+    def options(self) -> dict[str, Any]:
+        return self.trajectories.options
+
+    @property
+    def status(self) -> str:
+        return str(self.trajectories.status[self.index])
+
+    @property
+    def complete(self) -> bool:
+        return self.status in Status.COMPLETE
+
+    @cached_property
+    def t(self) -> np.ndarray:
+        return self.trajectories.t[self._keep]
+
+    @cached_property
+    def z(self) -> np.ndarray:
+        return self.trajectories.z[self.index][self._keep]
+
+    @cached_property
+    def x(self) -> np.ndarray:
+        """States in ``(σ, φ, v)``, shape (n, 3)."""
+        return self.trajectories.x[self.index][self._keep]
+
+    @cached_property
+    def mode(self) -> np.ndarray:
+        return self.trajectories.mode[self.index][self._keep]
+
+    @cached_property
+    def events(self) -> tuple[tuple[float, int, int], ...]:
+        return self.trajectories.events(self.index)
+
+    @property
+    def event_x(self) -> np.ndarray:
+        return self.trajectories.event_x[self.index, : int(self.trajectories.n_events[self.index])]
+
+    @property
+    def t_stop(self) -> float:
+        return float(self.trajectories.t_stop[self.index])
+
+    def __repr__(self) -> str:
+        return f"Solution(method={self.method!r}, samples={self.t.size}, events={len(self.events)}, status={self.status!r})"

@@ -67,10 +67,10 @@ from typing import Any
 
 import numpy as np
 
-from .._coordinates import system_matrix_entries
-from .._errors import SimulationError
-from .._lyapunov import lyapunov_matrix_entries
-from .._parameters import Parameters
+from .._model.coordinates import system_matrix_entries
+from .._infra.errors import SimulationError
+from .._model.lyapunov import lyapunov_matrix_entries
+from .._model.parameters import Parameters
 
 __all__ = [
     "MatrixExponential",

@@ -14,9 +14,10 @@ from typing import Any, Iterator
 
 import numpy as np
 
-from .._errors import SimulationError
-from .._parameters import Parameters
+from .._infra.errors import SimulationError
+from .._model.parameters import Parameters
 from ._trajectories import Trajectories
+from ._base import _check_horizon, _check_t_eval
 from .event import _check_positive_int, run
 
 __all__ = ["simulate_batch", "iter_batches", "DEFAULT_CHUNK"]
@@ -91,7 +92,6 @@ def simulate_batch(
 
 
 def _validated(params: Parameters, Z0: Any, t_end: Any, t_eval: Any, max_events: Any, grid_points: Any):
-    from . import _check_horizon, _check_t_eval
 
     if not isinstance(params, Parameters):
         raise SimulationError(f"params must be a Parameters instance; got {type(params).__name__}")

@@ -56,9 +56,9 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from .._coordinates import x_to_z
-from .._errors import SimulationError
-from .._parameters import Parameters
+from .._model.coordinates import x_to_z
+from .._infra.errors import SimulationError
+from .._model.parameters import Parameters
 from ._base import SimulationMethod, Solution
 from ._jit import kernel, plain, spent_in_plain
 from ._trajectories import Status, Trajectories

@@ -52,9 +52,9 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from .._errors import SimulationError
-from .._parameters import Parameters
-from .._coordinates import coc_entries, input_vector_entries, z_system_matrix_entries
+from .._infra.errors import SimulationError
+from .._model.parameters import Parameters
+from .._model.coordinates import coc_entries, input_vector_entries, z_system_matrix_entries
 from ._base import SimulationMethod, Solution, Status, check_rtol, finite_or_raise
 from .modes import select_mode
 

@@ -14,7 +14,7 @@ from fractions import Fraction
 
 import numpy as np
 
-from .._coordinates import system_matrix_entries
+from .._model.coordinates import system_matrix_entries
 from .affine import MatrixExponential, _Grid, split_roots_exact
 
 __all__ = ["ModalScan"]

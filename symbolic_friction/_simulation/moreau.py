@@ -55,8 +55,8 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from .._errors import SimulationError
-from .._parameters import Parameters
+from .._infra.errors import SimulationError
+from .._model.parameters import Parameters
 from ._base import SimulationMethod, Solution, Status, finite_or_raise
 from .friction import FrictionLaw, Step
 

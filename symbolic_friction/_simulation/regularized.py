@@ -54,9 +54,9 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from .._errors import SimulationError
-from .._coordinates import input_vector_entries, z_system_matrix_entries
-from .._parameters import Parameters
+from .._infra.errors import SimulationError
+from .._model.coordinates import input_vector_entries, z_system_matrix_entries
+from .._model.parameters import Parameters
 from ._base import SimulationMethod, Solution, Status, check_rtol, finite_or_raise
 
 __all__ = ["Regularized", "LAWS", "INTEGRATORS", "vector_field", "creep_time", "drift_estimate"]

@@ -58,10 +58,10 @@ from fractions import Fraction
 
 import numpy as np
 
-from .._errors import SimulationError
-from .._coordinates import coc_entries, coc_inverse_entries, system_matrix_entries
-from .._lyapunov import lyapunov_matrix_entries
-from .._parameters import Parameters
+from .._infra.errors import SimulationError
+from .._model.coordinates import coc_entries, coc_inverse_entries, system_matrix_entries
+from .._model.lyapunov import lyapunov_matrix_entries
+from .._model.parameters import Parameters
 from .affine import MatrixExponential, ScanTable, SlipBounds
 from ._kernel_flow import p_norm
 from ._kernel_layout import UNDERFLOW

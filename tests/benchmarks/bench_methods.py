@@ -1,7 +1,7 @@
 """Speed/accuracy trade-off of the simulation methods, printed as a table.
 
 The measurement itself is the package's (``symbolic-friction tradeoff``,
-:mod:`symbolic_friction._tradeoff`): for Table I case (a), z0 = (0, 1, 0)
+:mod:`symbolic_friction._studies.tradeoff`): for Table I case (a), z0 = (0, 1, 0)
 over t ∈ [0, 30], every method across its knob against the 50-digit mpmath
 reference, with the median time of repeats.  Also the perturbed-friction
 laws run by ``moreau``.
@@ -16,7 +16,7 @@ import time
 from symbolic_friction import Parameters
 from symbolic_friction._simulation import simulate
 from symbolic_friction._simulation.friction import InflatedCoulomb, Stribeck
-from symbolic_friction._tradeoff import measure_tradeoff
+from symbolic_friction._studies.tradeoff import measure_tradeoff
 
 PARAMS = Parameters.table_i("a")
 Z0 = (0.0, 1.0, 0.0)

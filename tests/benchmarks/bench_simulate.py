@@ -74,7 +74,7 @@ STREAM = """
 import resource, sys, time
 import numpy as np
 from symbolic_friction import Parameters
-from symbolic_friction._attractor import distance_x
+from symbolic_friction._model.attractor import distance_x
 from symbolic_friction._simulation.batch import iter_batches
 n = int(sys.argv[1])
 rng = np.random.default_rng(1)

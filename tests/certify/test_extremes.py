@@ -58,6 +58,7 @@ def gains() -> list[Parameters]:
     return g
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("mode", ["tightest", "feasible"])
 def test_one_thousand_random_gain_sets_certify_and_verify(gains, mode):
     items = certify_many(gains, mode=mode, progress=False)

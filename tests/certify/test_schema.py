@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 
 from symbolic_friction._certify.certificate import json_schema, loads, validate_schema
-from symbolic_friction._errors import CertificateFormatError
+from symbolic_friction._infra.errors import CertificateFormatError
 
 REPO = Path(__file__).resolve().parents[2]
 PROOFS = sorted((REPO / "proofs").glob("*.json"))

@@ -226,7 +226,7 @@ def test_decision_refuses_inexact_numbers():
 def test_premises_are_built_once_for_fractions_and_symbols(cert_a):
     import sympy as sp
 
-    from symbolic_friction._obligations.verifier import _symbolic_certificate
+    from symbolic_friction._obligations.certificate import _symbolic_certificate
 
     exact = verify_module.premises(verify_module._Exact(cert_a))
     symbolic = verify_module.premises(_symbolic_certificate())

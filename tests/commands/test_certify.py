@@ -12,7 +12,7 @@ import pytest
 
 from symbolic_friction._certify import TABLE_I_FILES, default_stem, load, verify_file
 from symbolic_friction import Parameters
-from symbolic_friction.cli import main
+from symbolic_friction._cli.main import main
 
 REPO = Path(__file__).resolve().parents[2]
 

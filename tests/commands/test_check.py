@@ -14,9 +14,9 @@ from pathlib import Path
 import pytest
 
 import symbolic_friction._obligations as obligations
-from symbolic_friction._commands import check
+from symbolic_friction._cli import check
 from symbolic_friction._obligations._base import Erratum, Obligation, Outcome
-from symbolic_friction.cli import main
+from symbolic_friction._cli.main import main
 
 REPO = Path(__file__).resolve().parents[2]
 MY_IDS = (
@@ -93,6 +93,7 @@ def test_write_reports_every_obligation_with_latex(full_run):
     assert "seconds" not in text and " s)" not in text  # no timings: byte-deterministic
 
 
+@pytest.mark.slow
 def test_write_is_deterministic_across_processes(full_run, tmp_path):
     """A second process (other hash seed) writes the same bytes."""
     _, _, _, report = full_run
@@ -330,12 +331,12 @@ def _modules_after(code: str) -> list[str]:
 
 
 def test_importing_the_cli_does_not_import_sympy():
-    assert _modules_after("import symbolic_friction.cli") == []
+    assert _modules_after("import symbolic_friction._cli.main") == []
 
 
 def test_check_help_does_not_import_sympy():
     code = (
-        "import contextlib, io\nfrom symbolic_friction.cli import main\n"
+        "import contextlib, io\nfrom symbolic_friction._cli.main import main\n"
         "with contextlib.redirect_stdout(io.StringIO()):\n"
         "    try:\n        main(['check', '--help'])\n    except SystemExit:\n        pass"
     )

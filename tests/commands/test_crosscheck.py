@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from symbolic_friction.cli import main
+from symbolic_friction._cli.main import main
 
 REPO = Path(__file__).resolve().parents[2]
 PROOFS = REPO / "proofs"
@@ -164,7 +164,7 @@ def test_progress_bar_when_enabled(monkeypatch):
 def test_command_module_imports_only_the_standard_library():
     code = (
         "import sys\n"
-        "import symbolic_friction._commands.crosscheck\n"
+        "import symbolic_friction._cli.crosscheck\n"
         "print(sorted(m for m in ('numpy', 'scipy', 'sympy', 'matplotlib', 'cvxpy') if m in sys.modules))\n"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from symbolic_friction import Parameters
-from symbolic_friction._figures import (
+from symbolic_friction._studies.figures import (
     FIG3_HORIZON,
     FIG3_INITIAL_STATES,
     FIGURES,
@@ -15,7 +15,7 @@ from symbolic_friction._figures import (
     make_figures,
     register,
 )
-from symbolic_friction.cli import main
+from symbolic_friction._cli.main import main
 
 PNG = b"\x89PNG\r\n\x1a\n"
 EXPECTED = [
@@ -30,6 +30,7 @@ EXPECTED = [
 ]
 
 
+@pytest.mark.slow
 def test_all_figures_are_written(tmp_path, capsys):
     # the paper's figures; figures registered by other modules may add files
     assert main(["figures", "--out", str(tmp_path), "--only", "fig2", "fig3a", "fig3b", "fig4"]) == 0
@@ -119,7 +120,7 @@ def test_fig3b_highlights_a_solution_that_sticks():
 
 
 def test_fig3b_V_on_a_log_time_axis_shows_the_early_jumps():
-    from symbolic_friction._figures import FIG3_LOG_TIME
+    from symbolic_friction._studies.figures import FIG3_LOG_TIME
 
     params = Parameters.table_i("b")
     assert FIG3_LOG_TIME["b"]

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import json
 
-from symbolic_friction.cli import main
+from symbolic_friction._cli.main import main
 
 A = ["--k-p", "3", "--k-i", "4", "--k-v", "6.4", "--f-c", "1"]
 

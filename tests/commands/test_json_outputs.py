@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from symbolic_friction.cli import main
+from symbolic_friction._cli.main import main
 
 REPO = Path(__file__).resolve().parents[2]
 PROOFS = REPO / "proofs"

@@ -8,7 +8,7 @@ import sys
 import numpy as np
 import pytest
 
-from symbolic_friction.cli import main
+from symbolic_friction._cli.main import main
 
 HEAVY = ("sympy", "cvxpy", "scipy.integrate", "matplotlib")
 
@@ -17,7 +17,7 @@ def imported_after(argv):
     """Run the CLI in a fresh interpreter; return (exit code, heavy modules imported)."""
     code = (
         "import sys, json, contextlib, io\n"
-        "from symbolic_friction.cli import main\n"
+        "from symbolic_friction._cli.main import main\n"
         "with contextlib.redirect_stdout(io.StringIO()):\n"
         f"    rc = main({argv!r})\n"
         f"print(json.dumps([rc, sorted(m for m in {HEAVY!r} if m in sys.modules)]))\n"

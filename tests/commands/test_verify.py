@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 from symbolic_friction._certify import TABLE_I_FILES
-from symbolic_friction.cli import main
+from symbolic_friction._cli.main import main
 
 REPO = Path(__file__).resolve().parents[2]
 PROOFS = REPO / "proofs"
@@ -132,7 +132,7 @@ def test_console_script_exit_codes(tmp_path):
 def test_verify_imports_no_solver_and_no_sympy():
     code = (
         "import sys\n"
-        "from symbolic_friction.cli import main\n"
+        "from symbolic_friction._cli.main import main\n"
         f"rc = main(['verify', {str(PROOFS / 'case_a_tightest.json')!r}])\n"
         "print(rc, sorted(m for m in ('cvxpy', 'clarabel', 'sympy', 'scipy') if m in sys.modules))\n"
     )

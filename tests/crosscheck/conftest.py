@@ -10,7 +10,7 @@ import pytest
 
 from symbolic_friction import Parameters
 from symbolic_friction._crosscheck import Claims, crosscheck
-from symbolic_friction._lyapunov import lyapunov_matrix
+from symbolic_friction._model.lyapunov import lyapunov_matrix
 from tests.crosscheck.helpers import N_SMALL, PROOFS, _cert
 
 

@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 
 from symbolic_friction._certify import load
-from symbolic_friction._coordinates import x_to_z
+from symbolic_friction._model.coordinates import x_to_z
 from symbolic_friction._simulation import Trajectories
 
 PROOFS = Path(__file__).resolve().parents[2] / "proofs"

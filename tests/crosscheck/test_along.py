@@ -13,9 +13,9 @@ from symbolic_friction._crosscheck import Claims
 from symbolic_friction._crosscheck._checker import BatchChecker
 from symbolic_friction._crosscheck._along import observability_gramian
 from symbolic_friction._crosscheck._run import sample_times
-from symbolic_friction._coordinates import x_to_z
+from symbolic_friction._model.coordinates import x_to_z
 from symbolic_friction._simulation.batch import simulate_batch
-from symbolic_friction._lyapunov import lyapunov_matrix
+from symbolic_friction._model.lyapunov import lyapunov_matrix
 from tests.tolerance import assert_close
 from tests.crosscheck.helpers import _cert
 
@@ -59,7 +59,7 @@ def test_V_read_through_the_modes_is_the_papers_V():
     # the checker evaluates V through the mode pieces V_k (Claim 1, item 2); at every sample whose
     # velocity sign is unambiguous this must be the closed-form V of eq. (lyapLike)
     from symbolic_friction._crosscheck._along import along
-    from symbolic_friction._lyapunov import V
+    from symbolic_friction._model.lyapunov import V
 
     p = Parameters.table_i("a")
     rng = np.random.default_rng(5)

@@ -6,7 +6,7 @@ import numpy as np
 
 from symbolic_friction import Parameters
 from symbolic_friction._crosscheck import Claims
-from symbolic_friction._crosscheck._group import GroupRun
+from symbolic_friction._crosscheck._run import GroupRun
 from tests.crosscheck.helpers import _cert
 
 

@@ -9,7 +9,7 @@ import pytest
 
 from symbolic_friction._crosscheck import Claims
 from symbolic_friction._crosscheck import crosscheck
-from symbolic_friction._crosscheck._adversarial import hat_V_rate
+from symbolic_friction._crosscheck._initial import hat_V_rate
 from symbolic_friction._crosscheck.lemma3 import run_slack
 from tests.crosscheck.helpers import _cert
 from tests.crosscheck.helpers import _result
@@ -30,7 +30,7 @@ def test_k4_violating_the_derived_conditions_makes_V_hat_increase(wrong_report):
 def test_k4_violating_only_definiteness_cannot_make_V_hat_increase():
     # k1 k4 > k3² fails (2·7 < 4²) but the four derivative conditions of eq. (hatVdot) hold
     # (k3 = 4 > max(k_i/k_v k1, k2) = 2, k4 = 7 > max(k_i/k_v k3, k_p k2) = 6); those four
-    # are necessary and sufficient for V̂° ≤ 0 on R̂ (symbolic_friction._kconditions), so no
+    # are necessary and sufficient for V̂° ≤ 0 on R̂ (symbolic_friction._model.kconditions), so no
     # trajectory can show V̂ increasing in R̂, and the cross-check must not report one.
     cert = dataclasses.replace(_cert("a"), k1=2, k2=2, k3=4, k4=7, c1_hat=1, c2_hat=Fraction(427, 100))
     assert not cert.k1 * cert.k4 > cert.k3**2
@@ -39,7 +39,7 @@ def test_k4_violating_only_definiteness_cannot_make_V_hat_increase():
     res = {r.id: r for r in report.checks[0].results}
     assert res["lemma3.hatV_nonincreasing"].failures == 0 and res["lemma3.hatV_nonincreasing"].samples > 0
     assert res["lemma3.hatV_lower"].failures == 0  # ½wᵀKw ≥ ½min(k1,k2,k4)|w|² on w ≥ 0 anyway
-    from symbolic_friction._crosscheck._adversarial import rate_maximisers
+    from symbolic_friction._crosscheck._initial import rate_maximisers
 
     X = rate_maximisers(cl.params, cl, seed=0, count=4)
     assert np.nanmax(hat_V_rate(cl.params, cl, X)) <= 1e-12

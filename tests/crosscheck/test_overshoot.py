@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from symbolic_friction import Parameters
-from symbolic_friction._attractor import distance_x
-from symbolic_friction._coordinates import x_to_z
+from symbolic_friction._model.attractor import distance_x
+from symbolic_friction._model.coordinates import x_to_z
 from symbolic_friction._crosscheck._along import along
 from symbolic_friction._crosscheck._outcome import default_horizon, sample_times
 from symbolic_friction._crosscheck._overshoot import DEFAULT_SCALES, linear_limit, refine_peak, search_overshoot

@@ -8,7 +8,7 @@ from symbolic_friction import Parameters
 from symbolic_friction._crosscheck import Claims
 from symbolic_friction._crosscheck._checker import BatchChecker
 from symbolic_friction._crosscheck._run import sample_times
-from symbolic_friction._coordinates import x_to_z
+from symbolic_friction._model.coordinates import x_to_z
 from symbolic_friction._simulation.batch import simulate_batch
 from tests.crosscheck.helpers import _cert
 from tests.crosscheck.helpers import _result

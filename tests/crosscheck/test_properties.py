@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 
 from symbolic_friction import Parameters
-from symbolic_friction._coordinates import x_to_z
+from symbolic_friction._model.coordinates import x_to_z
 from symbolic_friction._crosscheck import PROPERTIES, Claims
 from symbolic_friction._crosscheck._property import DEFAULT_RTOL, Evaluation, Property
 from symbolic_friction._crosscheck._run import sample_times

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from symbolic_friction._certify import load
-from symbolic_friction._commands import check
+from symbolic_friction._cli import check
 from symbolic_friction._crosscheck import _results
 from symbolic_friction._crosscheck._selftest import EXPECTED, crosscheck_self_test
 

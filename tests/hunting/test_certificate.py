@@ -11,7 +11,7 @@ import pytest
 from symbolic_friction import CertificateFormatError, Parameters
 from symbolic_friction._hunting import HuntingCertificate, box_around, find_cycles, verify_hunting_file, write_hunting
 from symbolic_friction._hunting._report import with_static
-from symbolic_friction.cli import main
+from symbolic_friction._cli.main import main
 
 A12 = with_static(Parameters.table_i("a"), F(6, 5))
 PROOFS = Path(__file__).resolve().parents[2] / "proofs"
@@ -104,7 +104,7 @@ def test_the_committed_hunting_certificates_verify():
 
 
 def test_check_verifies_a_listed_hunting_certificate_and_catches_a_moved_box(cert_file, tmp_path):
-    from symbolic_friction._certify.pipeline import check_listed_certificates
+    from symbolic_friction._certify import check_listed_certificates
 
     good = edited(tmp_path, cert_file, lambda d: None)
     (entry,) = check_listed_certificates(tmp_path, [good.name])

@@ -9,7 +9,7 @@ import pytest
 
 from symbolic_friction import Parameters
 from symbolic_friction._hunting import Box, box_around, find_cycles, prove_cycle
-from symbolic_friction._hunting import _proof
+from symbolic_friction._certify import hunting_proof as _proof
 from symbolic_friction._hunting._report import with_static
 
 GAINS = {

@@ -30,13 +30,13 @@ class Mutant:
     equivalent: str | None = None
 
 
-_L = "symbolic_friction/_lyapunov.py"
-_A = "symbolic_friction/_attractor.py"
-_C = "symbolic_friction/_coordinates.py"
-_K = "symbolic_friction/_kinds.py"
+_L = "symbolic_friction/_model/lyapunov.py"
+_A = "symbolic_friction/_model/attractor.py"
+_C = "symbolic_friction/_model/coordinates.py"
+_K = "symbolic_friction/_model/kinds.py"
 _M = "symbolic_friction/_simulation/modes.py"
 _S = "symbolic_friction/_simulation/search.py"
-_KC = "symbolic_friction/_kconditions.py"
+_KC = "symbolic_friction/_model/kconditions.py"
 _V = "symbolic_friction/_certify/verify.py"
 _CE = "symbolic_friction/_certify/certificate.py"
 _T = "symbolic_friction/_crosscheck/_results.py"

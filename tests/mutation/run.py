@@ -219,7 +219,7 @@ def main(argv: list[str] | None = None) -> int:
     text = table(outcomes)
     print(text)
     if args.out:
-        from symbolic_friction._io import atomic_write_text
+        from symbolic_friction._infra.io import atomic_write_text
 
         atomic_write_text(Path(args.out), text + "\n")
     return 0 if all(o.ok for o in outcomes) else 1

@@ -9,7 +9,8 @@ from fractions import Fraction as F
 import numpy as np
 import sympy as sp
 
-from symbolic_friction import Parameters, _attractor
+from symbolic_friction import Parameters
+from symbolic_friction._model import attractor as _attractor
 from symbolic_friction._obligations.cor1 import Distances, Inflation, _counterexample, _expand_abs_relations
 
 from ..tolerance import assert_close

@@ -1,4 +1,4 @@
-"""The exact tools behind lemma3, prop1_stability and cor1 (_obligations/_inequalities.py)."""
+"""The exact tools behind lemma3, prop1 and cor1 (_obligations/_inequalities.py)."""
 
 from __future__ import annotations
 

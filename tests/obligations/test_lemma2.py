@@ -5,7 +5,8 @@ import dataclasses
 import sympy as sp
 
 from symbolic_friction._obligations._decide import G
-from symbolic_friction._obligations.lemma2 import Lemma2dVdt, Lemma2LowerBound, Lemma2P, RemarkArmstrong
+from symbolic_friction._obligations.lemma2 import Lemma2dVdt, Lemma2LowerBound, Lemma2P
+from symbolic_friction._obligations.remark import RemarkArmstrong
 
 from ._helpers import assert_fails, assert_holds, obligation_fixture, replace_key, with_entry
 

@@ -11,10 +11,11 @@ import pytest
 import sympy as sp
 
 from symbolic_friction import Parameters
-from symbolic_friction import _lyapunov
+from symbolic_friction._model import lyapunov as _lyapunov
 from symbolic_friction._obligations import lemma3
 from symbolic_friction._obligations._inequalities import case_grid, line_cases
-from symbolic_friction._obligations.lemma3 import HatVBounds, HatVDerivative, LemmaR, _leading_witness
+from symbolic_friction._obligations._derived_k import _leading_witness
+from symbolic_friction._obligations.lemma3 import HatVBounds, HatVDerivative, LemmaR
 
 from ..tolerance import assert_close
 from ._helpers import assert_fails, assert_holds, subject_fixture

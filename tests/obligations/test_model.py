@@ -1,241 +1,326 @@
-"""Obligations on the model: coordinates, regularization, assumption1.routh,
-equilibria, distance (eqs. CoC, xDot, basic, xPhDot, Aph, A, distFromA)."""
+"""Binding obligations ``model.*_runtime``: each holds, and each fails when
+the runtime function it binds is broken in one place (in one kind only, or
+in the symbolic form only)."""
 
 import dataclasses
+from fractions import Fraction
 
+import numpy as np
 import pytest
 import sympy as sp
 
+from symbolic_friction._model.attractor import squared_distance_x, squared_distance_z
+from symbolic_friction._model.lyapunov import V, V_hat, in_R
+from symbolic_friction._obligations import all_obligations
 from symbolic_friction._obligations._decide import G
 from symbolic_friction._obligations.model import (
-    Assumption1Routh,
-    Branch,
-    Coordinates,
-    Distance,
-    Equilibria,
-    Regularization,
-    hurwitz_minors,
+    INSTANCE,
+    K_INSTANCE,
+    DistanceRuntime,
+    DistanceZRuntime,
+    HatVRateRuntime,
+    KindsRuntime,
+    HatVRuntime,
+    MatricesRuntime,
+    ModesRuntime,
+    PNormRuntime,
+    RRuntime,
+    VRuntime,
+    instance_points,
 )
 
-from ._helpers import assert_fails, assert_holds, obligation_fixture, replace_item, with_entry
+from ._helpers import assert_fails, assert_holds, obligation_fixture
 
 g = G()
 
-
-# --------------------------------------------------------------------------- coordinates
-
-
-coordinates = obligation_fixture(Coordinates)
-
-
-def test_coordinates_holds(coordinates):
-    ob, subject = coordinates
-    out = assert_holds(ob, subject)
-    assert dict(out.details)["\\det T"] == "- k_{i}^{2}"
-    assert sp.factor(subject.T.det()) == -g.k_i**2
+v_runtime = obligation_fixture(VRuntime)
+hatv_runtime = obligation_fixture(HatVRuntime)
+r_runtime = obligation_fixture(RRuntime)
+distance_runtime = obligation_fixture(DistanceRuntime)
+distance_z_runtime = obligation_fixture(DistanceZRuntime)
+matrices_runtime = obligation_fixture(MatricesRuntime)
+modes_runtime = obligation_fixture(ModesRuntime)
+pnorm_runtime = obligation_fixture(PNormRuntime)
 
 
-def test_coordinates_flipped_sign_in_A_fails(coordinates):
-    ob, subject = coordinates
-    assert_fails(ob, dataclasses.replace(subject, A=with_entry(subject.A, 1, 2, g.k_p)), "not identically zero")
+def test_every_binding_is_listed_by_check():
+    ids = [ob.id for ob in all_obligations()]
+    for cls in (VRuntime, HatVRuntime, RRuntime, DistanceRuntime, DistanceZRuntime, MatricesRuntime, ModesRuntime, PNormRuntime):
+        assert cls.id in ids
 
 
-def test_coordinates_flipped_sign_of_b_fails(coordinates):
-    ob, subject = coordinates
-    assert_fails(ob, dataclasses.replace(subject, b=-subject.b), "not identically zero", "f_c*w")
+def test_instance_points_cover_every_class_and_boundary():
+    points = instance_points()
+    assert len(points) == 63
+    phis = {p[1] for p in points}
+    assert {INSTANCE.f_c, -INSTANCE.f_c} <= phis  # both boundaries of dz and of the table
+    assert {np.sign(float(p[2])) for p in points} == {-1.0, 0.0, 1.0}
 
 
-def test_coordinates_det_depending_on_k_p_fails(coordinates):
-    ob, subject = coordinates
-    assert_fails(ob, dataclasses.replace(subject, T=with_entry(subject.T, 0, 0, g.k_p)), "does not vanish exactly when k_i = 0")
+@pytest.mark.parametrize(
+    "fixture",
+    ["v_runtime", "hatv_runtime", "r_runtime", "distance_runtime", "distance_z_runtime", "matrices_runtime", "modes_runtime", "pnorm_runtime"],
+)
+def test_binding_holds(fixture, request):
+    ob, subject = request.getfixturevalue(fixture)
+    assert_holds(ob, subject)
 
 
-def test_coordinates_wrong_inverse_fails(coordinates):
-    ob, subject = coordinates
-    assert_fails(ob, dataclasses.replace(subject, T_inv=with_entry(subject.T_inv, 0, 0, 2 * g.k_p / g.k_i**2)), "T_inv·T - I")
+# ---------------------------------------------------------------- V
 
 
-def test_coordinates_T_that_mixes_v_fails(coordinates):
-    ob, subject = coordinates
-    T = with_entry(subject.T, 2, 0, 1)
-    assert_fails(ob, dataclasses.replace(subject, T=T, T_inv=sp.ImmutableMatrix(sp.Matrix(T).inv())), "T changes v")
+def _v_zero_at_rest(p, x):
+    """Exact V with the friction value 0 at v = 0 instead of the projection of φ."""
+    sigma, phi, v = x
+    return V(p, x) if v != 0 else V(p, [sigma, Fraction(0), v]) + phi**2
 
 
-# --------------------------------------------------------------------------- regularization
+def test_V_wrong_minimiser_symbolic_fails(v_runtime):
+    ob, s = v_runtime
+    wrong = V(g, [g.sigma, g.phi, 0 * g.v]).subs(g.phi, 0) + g.phi**2  # f = 0 instead of sat(φ) at v = 0
+    broken = sp.Piecewise((s.symbolic, sp.Ne(g.v, 0)), (wrong, True))
+    assert_fails(ob, dataclasses.replace(s, symbolic=broken), "v = 0", "differs from the paper")
 
 
-regularization = obligation_fixture(Regularization)
+def test_V_wrong_exact_kind_fails(v_runtime):
+    ob, s = v_runtime
+    assert_fails(ob, dataclasses.replace(s, exact=_v_zero_at_rest), "the exact V")
 
 
-def _replace_branch(subject, label, **changes):
-    return replace_item(subject, "branches", "label", label, **changes)
+def test_V_wrong_float_kind_fails(v_runtime):
+    ob, s = v_runtime
+
+    def float_v(p, x):
+        out = np.array(V(p, x), dtype=float)
+        return out + (x[:, 2] == 0) * 1.0  # off by one at rest
+    assert_fails(ob, dataclasses.replace(s, floats=float_v), "the float V")
 
 
-def test_regularization_holds(regularization):
-    ob, subject = regularization
-    out = assert_holds(ob, subject)
-    assert len(subject.branches) == 5
-    assert any("\\frac{u}{f_{c}}" in tex for _, tex in out.details)
+def test_V_exact_kind_returning_a_float_fails(v_runtime):
+    ob, s = v_runtime
+    assert_fails(ob, dataclasses.replace(s, exact=lambda p, x: float(V(p, x))), "the exact V")
 
 
-def test_regularization_friction_helping_the_motion_fails(regularization):
-    ob, subject = regularization
-    assert_fails(ob, _replace_branch(subject, "v > 0", vdot=subject.u + g.f_c), "branch 'v > 0'", "w = -1")
+# ---------------------------------------------------------------- V̂
 
 
-def test_regularization_too_wide_stick_band_fails(regularization):
-    ob, subject = regularization
+def test_hatV_doubled_cross_term_fails(hatv_runtime):
+    ob, s = hatv_runtime
+    k3 = sp.Symbol("k_3", positive=True)
+    broken = s.symbolic + k3 * sp.Abs(g.sigma) * sp.Abs(g.v)
+    assert_fails(ob, dataclasses.replace(s, symbolic=broken), "differs from the paper")
+
+
+def test_hatV_without_dead_zone_fails_in_exact_kind(hatv_runtime):
+    ob, s = hatv_runtime
+
+    def no_dz(p, x):
+        sigma, phi, v = x
+        k1, k2, k3, k4 = K_INSTANCE
+        return k1 * sigma**2 / 2 + k2 * phi**2 / 2 + k3 * abs(sigma) * abs(v) + k4 * v**2 / 2
+
+    assert_fails(ob, dataclasses.replace(s, exact=no_dz), "the exact V̂")
+
+
+def test_hatV_float_kind_off_fails(hatv_runtime):
+    ob, s = hatv_runtime
+    assert_fails(ob, dataclasses.replace(s, floats=lambda p, x: V_hat(p, x, K_INSTANCE) * 1.5), "the float V̂")
+
+
+# ---------------------------------------------------------------- R
+
+
+def test_R_strict_fails(r_runtime):
+    ob, s = r_runtime
+    strict = sp.StrictGreaterThan(s.symbolic.lhs, 0)
+    assert_fails(ob, dataclasses.replace(s, symbolic=strict), "x ∈ R")
+
+
+def test_R_sign_flip_fails(r_runtime):
+    ob, s = r_runtime
+    flipped = sp.GreaterThan(g.v * (g.phi + sp.sign(g.v) * g.f_c), 0)
+    assert_fails(ob, dataclasses.replace(s, symbolic=flipped), "the paper")
+
+
+def test_R_strict_float_kind_fails(r_runtime):
+    ob, s = r_runtime
+    from symbolic_friction._model.lyapunov import R_margin
+
+    assert_fails(ob, dataclasses.replace(s, floats=lambda p, x: R_margin(p, x) > 0), "the float x ∈ R")
+
+
+def test_R_exact_kind_not_a_bool_fails(r_runtime):
+    ob, s = r_runtime
+    assert_fails(ob, dataclasses.replace(s, exact=lambda p, x: int(in_R(p, x))), "the exact x ∈ R")
+
+
+# ---------------------------------------------------------------- distances
+
+
+def test_distance_without_v_fails(distance_runtime):
+    ob, s = distance_runtime
+    assert_fails(ob, dataclasses.replace(s, symbolic=s.symbolic - g.v**2), "differs from the paper")
+
+
+def test_distance_float_kind_off_fails(distance_runtime):
+    ob, s = distance_runtime
     assert_fails(
-        ob, _replace_branch(subject, "v = 0, |u| < f_c", u_set=sp.Interval.open(-2 * g.f_c, 2 * g.f_c)), "|u| < f_c", "not in SGN"
+        ob, dataclasses.replace(s, floats=lambda p, x: squared_distance_x(p, x) + (np.abs(x[:, 1]) == 2)), "the float |x|²_𝒜"
     )
 
 
-def test_regularization_overlapping_branches_fail(regularization):
-    ob, subject = regularization
-    assert_fails(ob, _replace_branch(subject, "v = 0, u ≥ f_c", u_set=sp.Interval(g.f_c / 2, sp.oo)), "do not partition")
-
-
-def test_regularization_missing_branch_fails(regularization):
-    ob, subject = regularization
-    assert_fails(ob, dataclasses.replace(subject, branches=subject.branches[:-1]), "sign -1")
-
-
-def test_regularization_wrong_control_law_fails(regularization):
-    ob, subject = regularization
-    assert_fails(ob, dataclasses.replace(subject, u_of_z=subject.u_of_z + 2 * g.k_i * g.e_i), "not u =")
-
-
-def test_regularization_unbounded_selection_fails(regularization):
-    ob, subject = regularization
-    assert_fails(ob, _replace_branch(subject, "v = 0, u ≥ f_c", vdot=sp.Integer(0)), "unbounded")
-
-
-def test_branch_is_frozen():
-    br = Branch("v > 0", 1, sp.S.Reals, sp.Integer(0))
-    with pytest.raises(dataclasses.FrozenInstanceError):
-        br.v_sign = 0
-
-
-# --------------------------------------------------------------------------- assumption1.routh
-
-
-routh = obligation_fixture(Assumption1Routh)
-
-
-def test_routh_holds(routh):
-    ob, subject = routh
-    assert_holds(ob, subject)
-    k_p, k_i, k_v = subject.gains
-    assert [sp.expand(m) for m in hurwitz_minors(sp.Poly(subject.paper_polynomial, subject.s))] == [
-        k_v,
-        sp.expand(k_p * k_v - k_i),
-        sp.expand(k_i * (k_p * k_v - k_i)),
-    ]
-
-
-def test_routh_flipped_sign_in_A_fails(routh):
-    ob, subject = routh
-    k_p, k_i, k_v = subject.gains
-    assert_fails(ob, dataclasses.replace(subject, A=with_entry(subject.A, 0, 2, k_i)), "det(sI - A)")
-
-
-def test_routh_dropping_a_condition_fails(routh):
-    ob, subject = routh
-    k_p, k_i, k_v = subject.gains
-    assert_fails(ob, dataclasses.replace(subject, assumption=(k_i, k_v * k_p - k_i)), "(⇐) fails")
-
-
-def test_routh_stronger_condition_fails_the_converse(routh):
-    ob, subject = routh
-    k_p, k_i, k_v = subject.gains
-    assert_fails(ob, dataclasses.replace(subject, assumption=(k_i, k_p, k_v * k_p - 2 * k_i)), "(⇒) fails")
-
-
-def test_routh_wrong_polynomial_fails(routh):
-    ob, subject = routh
-    k_p, k_i, k_v = subject.gains
-    s = subject.s
-    assert_fails(ob, dataclasses.replace(subject, paper_polynomial=s**3 + k_v * s**2 + k_p * s - k_i), "differs from the paper's")
-
-
-# --------------------------------------------------------------------------- equilibria
-
-
-equilibria = obligation_fixture(Equilibria)
-
-
-def test_equilibria_hold(equilibria):
-    ob, subject = equilibria
-    assert_holds(ob, subject)
-    assert subject.attractor_x[1] == sp.Interval(-g.f_c, g.f_c)
-    assert subject.attractor_z[0] == sp.Interval(-g.f_c / g.k_i, g.f_c / g.k_i)
-
-
-def test_equilibria_moved_attractor_bound_fails(equilibria):
-    ob, subject = equilibria
+def test_distance_z_wrong_bound_fails(distance_z_runtime):
+    ob, s = distance_z_runtime
     assert_fails(
-        ob, dataclasses.replace(subject, attractor_x=(0, sp.Interval(-g.f_c, 2 * g.f_c), 0)), "𝒜 says Interval(-f_c, 2*f_c)"
+        ob,
+        dataclasses.replace(s, exact=lambda p, z: squared_distance_z(p, z) + (abs(z[0]) > 1) * (z[0] ** 2 - (abs(z[0]) - 1) ** 2)),
+        "the exact |z|²_𝒜",
     )
 
 
-def test_equilibria_moved_z_bound_fails(equilibria):
-    ob, subject = equilibria
-    assert_fails(ob, dataclasses.replace(subject, attractor_z=(sp.Interval(-g.f_c, g.f_c), 0, 0)), "e_i")
+# ---------------------------------------------------------------- matrices, modes, |y|_P
 
 
-def test_equilibria_wrong_integral_gain_in_A_z_fails(equilibria):
-    ob, subject = equilibria
-    assert_fails(ob, dataclasses.replace(subject, A_z=with_entry(subject.A_z, 2, 0, -2 * g.k_i)), "f_c/(2*k_i)")
+def test_matrices_swapped_gains_fail(matrices_runtime):
+    ob, s = matrices_runtime
+    from symbolic_friction._model.coordinates import system_matrix_entries
+
+    swapped = lambda p: np.array(system_matrix_entries(float(p.k_v), float(p.k_i), float(p.k_p)))  # noqa: E731
+    assert_fails(ob, dataclasses.replace(s, runtime={**s.runtime, "A": swapped}), "A[")
 
 
-def test_equilibria_singular_A_fails(equilibria):
-    ob, subject = equilibria
-    assert_fails(ob, dataclasses.replace(subject, A=with_entry(subject.A, 0, 2, 0)), "singular")
+def test_matrices_inexact_coordinate_map_fails(matrices_runtime):
+    ob, s = matrices_runtime
+    assert_fails(
+        ob, dataclasses.replace(s, runtime={**s.runtime, "T (exact)": lambda p: np.eye(3)}), "T (exact)"
+    )
 
 
-def test_equilibria_with_moving_velocity_fails(equilibria):
-    ob, subject = equilibria
-    # σ' = -k_i v + k_i φ/f_c... changes the v = ±1 equilibrium to one with v ≠ 0
-    A = with_entry(subject.A, 0, 1, g.k_i / g.f_c)
-    assert_fails(ob, dataclasses.replace(subject, A=A), "equilibrium with v of sign")
+def test_modes_wrong_boundary_fails(modes_runtime):
+    ob, s = modes_runtime
+
+    def select_mode(sigma, phi, v, f_c):  # row (v) sent to k = -1 instead of 0
+        k = s.select_mode(sigma, phi, v, f_c)
+        return -1 if (v == 0 and phi == f_c and sigma < 0) else k
+
+    assert_fails(ob, dataclasses.replace(s, select_mode=select_mode), "select_mode gives k = -1", "row (v)")
 
 
-# --------------------------------------------------------------------------- distance
+def test_modes_unreached_row_fails(modes_runtime):
+    ob, s = modes_runtime
+    few = tuple(p for p in s.points if p[2] != 0)
+    assert_fails(ob, dataclasses.replace(s, points=few), "never reached")
 
 
-distance = obligation_fixture(Distance)
+def test_pnorm_sign_flip_fails(pnorm_runtime):
+    ob, s = pnorm_runtime
+
+    def wrong(sv, p, v, kv_ki, k_p):
+        return float(np.sqrt(kv_ki * sv * sv + 2.0 * sv * v + k_p * v * v + p * p))
+
+    assert_fails(ob, dataclasses.replace(s, p_norm=wrong), "p_norm²")
 
 
-def test_distance_holds(distance):
-    ob, subject = distance
-    out = assert_holds(ob, subject)
-    assert len(out.details) == 5
+def test_modes_at_rest_strict_boundary_fails(modes_runtime):
+    ob, s = modes_runtime
+
+    def mode_at_rest(sigma, base, offset, f_c, tol):  # rows (iii)-(v) decided by the sign of the offset only
+        b, o, k = s.mode_at_rest(sigma, base, offset, f_c, tol)
+        phi = base * f_c + offset
+        return (b, o, 0) if phi == f_c else (b, o, k)
+
+    assert_fails(ob, dataclasses.replace(s, mode_at_rest=mode_at_rest), "mode_at_rest gives k = 0", "row (iii)")
 
 
-def test_distance_wrong_dead_zone_width_fails(distance):
-    ob, subject = distance
-    from symbolic_friction._symbolic import dz
+def test_mode_after_slip_without_the_clamp_rule_fails(modes_runtime):
+    ob, s = modes_runtime
 
-    wrong = g.sigma**2 + g.v**2 + dz(g.phi, 2 * g.f_c) ** 2
-    assert_fails(ob, dataclasses.replace(subject, formula=wrong), "φ > f_c")
+    def mode_after_slip(sigma, offset, direction, f_c, tol):  # clamps the side a slip can end on
+        return s.mode_at_rest(sigma, direction, 0.0 if direction * offset < 0 else offset, f_c, tol)
 
-
-def test_distance_missing_velocity_term_fails(distance):
-    ob, subject = distance
-    assert_fails(ob, dataclasses.replace(subject, formula=subject.formula - g.v**2), "the formula gives")
+    assert_fails(ob, dataclasses.replace(s, mode_after_slip=mode_after_slip), "after a slip d = ", "mode_after_slip gives")
 
 
-def test_distance_moved_attractor_bound_fails(distance):
-    ob, subject = distance
-    assert_fails(ob, dataclasses.replace(subject, attractor=(0, sp.Interval(-g.f_c, 2 * g.f_c), 0)), "cannot decide")
+hatv_rate_runtime = obligation_fixture(HatVRateRuntime)
 
 
-def test_distance_needs_one_interval_component(distance):
-    ob, subject = distance
-    assert_fails(ob, dataclasses.replace(subject, attractor=(0, 0, 0)), "exactly one interval component")
+def test_hatV_rate_holds(hatv_rate_runtime):
+    assert_holds(*hatv_rate_runtime)
 
 
-def test_equilibria_undecidable_velocity_fails(equilibria):
-    ob, subject = equilibria
-    A = with_entry(subject.A, 0, 1, (g.k_i - g.k_p) / g.f_c)
-    assert_fails(ob, dataclasses.replace(subject, A=A), "cannot exclude an equilibrium with v of sign 1")
+def test_hatV_rate_without_clarke_max_fails(hatv_rate_runtime):
+    ob, s = hatv_rate_runtime
+    from symbolic_friction._model.lyapunov import V_hat_rate
+
+    def smooth_only(p, x):  # sign(σ)σ' also at σ = 0, i.e. 0 instead of |σ'|
+        value = V_hat_rate(p, x, K_INSTANCE)
+        sigma, phi, v = x
+        if sigma != 0:
+            return value
+        k3 = K_INSTANCE[2]
+        return value - k3 * abs(p.k_i * v) * abs(v)
+
+    assert_fails(ob, dataclasses.replace(s, exact=smooth_only), "the exact V̂°")
+
+
+def test_hatV_rate_wrong_flow_fails(hatv_rate_runtime):
+    ob, s = hatv_rate_runtime
+    k4 = sp.Symbol("k_4", positive=True)
+    assert_fails(ob, dataclasses.replace(s, symbolic=s.symbolic + k4 * g.v * g.f_c * sp.sign(g.v)), "differs from the paper")
+
+
+kinds_runtime = obligation_fixture(KindsRuntime)
+
+
+def test_kinds_hold(kinds_runtime):
+    assert_holds(*kinds_runtime)
+
+
+@pytest.mark.parametrize("op", ["sign", "clip", "abs", "where"])
+def test_each_broken_kind_operation_fails(kinds_runtime, op):
+    ob, s = kinds_runtime
+    from symbolic_friction._model.kinds import EXACT
+
+    class Broken(type(EXACT)):
+        name = "exact"
+
+        def sign(self, y):
+            return super().sign(y) if op != "sign" else (y > 0) - (y <= 0)
+
+        def clip(self, y, lo, hi):
+            return super().clip(y, lo, hi) if op != "clip" else super().clip(y, lo, 2 * hi)
+
+        def abs(self, y):
+            return super().abs(y) if op != "abs" else y
+
+        def where(self, cond, a, b):
+            return super().where(cond, a, b) if op != "where" else super().where(not cond, a, b)
+
+    assert_fails(ob, dataclasses.replace(s, kinds=(Broken(),)), f"exact kind's {op}(")
+
+
+def test_each_obligation_module_is_named_after_its_id_prefix():
+    """One module per id prefix; the registry lists exactly the modules' obligations, each once."""
+    from symbolic_friction._obligations import obligation_modules, registry
+
+    listed = []
+    for module in obligation_modules():
+        prefix = module.__name__.rsplit(".", 1)[1]
+        assert module.OBLIGATIONS, prefix
+        for cls in module.OBLIGATIONS:
+            assert cls.id.split(".")[0] == prefix, (prefix, cls.id)
+            listed.append(cls)
+    assert sorted(c.__name__ for c in listed) == sorted(c.__name__ for c in registry())
+    assert len(set(registry())) == len(registry())
+
+
+def test_a_missing_obligation_module_is_an_import_error(monkeypatch):
+    """A registered module that cannot be imported stops the run; it is never skipped."""
+    import sys
+
+    import symbolic_friction._obligations as obligations
+
+    monkeypatch.setitem(sys.modules, "symbolic_friction._obligations.table1", None)
+    monkeypatch.delattr(obligations, "table1", raising=False)
+    with pytest.raises(ImportError):
+        obligations.all_obligations()

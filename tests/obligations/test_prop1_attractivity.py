@@ -5,7 +5,7 @@ import dataclasses
 import sympy as sp
 
 from symbolic_friction._obligations._decide import G
-from symbolic_friction._obligations.prop1_attractivity import Prop1Invariance
+from symbolic_friction._obligations.prop1 import Prop1Invariance
 
 from ._helpers import assert_fails, assert_holds, obligation_fixture, replace_key, with_entry
 

@@ -6,7 +6,8 @@ import dataclasses
 
 import sympy as sp
 
-from symbolic_friction._obligations.prop1_stability import Ineq, StabilityBound
+from symbolic_friction._obligations._stability_chain import Ineq
+from symbolic_friction._obligations.prop1 import StabilityBound
 
 from ._helpers import assert_fails, assert_holds, replace_item, subject_fixture
 

@@ -5,7 +5,7 @@ import dataclasses
 from symbolic_friction._obligations._statements import statement_failure
 from symbolic_friction._obligations.lemma2 import Lemma2dVdt, Lemma2LowerBound
 from symbolic_friction._obligations.lemma3 import HatVBounds, HatVDerivative, LemmaR
-from symbolic_friction._obligations.prop1_stability import StabilityBound
+from symbolic_friction._obligations.prop1 import StabilityBound
 
 from ._helpers import assert_fails
 
@@ -48,10 +48,10 @@ def test_reversed_hatV_monotonicity_fails():
 
 
 def test_prop1_premises_come_from_the_statements(monkeypatch):
-    from symbolic_friction._obligations import prop1_stability
+    from symbolic_friction._obligations import _stability_chain
 
     # a weaker Lemma 3 conclusion (upper bound 2c₂) leaves Proposition 1's chain without the bound it needs
-    monkeypatch.setattr(prop1_stability, "lemma3_V_bounds", lambda c1, c2, d, V: ((c1 * d, V), (V, 2 * c2 * d)))
+    monkeypatch.setattr(_stability_chain, "lemma3_V_bounds", lambda c1, c2, d, V: ((c1 * d, V), (V, 2 * c2 * d)))
     ob = StabilityBound()
     out = ob.verify(ob.derive())
     assert not out.holds and "does not follow" in out.reason

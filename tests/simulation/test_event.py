@@ -17,8 +17,8 @@ import numpy as np
 import pytest
 
 from symbolic_friction import Parameters
-from symbolic_friction._coordinates import z_to_x
-from symbolic_friction._lyapunov import V
+from symbolic_friction._model.coordinates import z_to_x
+from symbolic_friction._model.lyapunov import V
 from symbolic_friction._simulation import Status, simulate
 from symbolic_friction._simulation.modes import table_row
 

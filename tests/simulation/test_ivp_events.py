@@ -6,7 +6,7 @@ import pytest
 
 from symbolic_friction import Parameters, SimulationError
 from symbolic_friction._simulation import Status, simulate
-from symbolic_friction._coordinates import x_to_z
+from symbolic_friction._model.coordinates import x_to_z
 from symbolic_friction._reference import Reference, reference_table_mode
 from tests.tolerance import relative_error
 

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from symbolic_friction import Parameters
-from symbolic_friction._coordinates import x_to_z
+from symbolic_friction._model.coordinates import x_to_z
 from symbolic_friction._simulation import simulate
 from symbolic_friction._simulation.search import first_zero, slip_model
 

@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 
 from symbolic_friction import Parameters, SimulationError
-from symbolic_friction._coordinates import z_to_x
+from symbolic_friction._model.coordinates import z_to_x
 from symbolic_friction._simulation import simulate
 from symbolic_friction._simulation._kernel import mode_after_slip
 from symbolic_friction._simulation.modes import mode_at_rest, select_mode, table_row

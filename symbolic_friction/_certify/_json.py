@@ -1,0 +1,82 @@
+"""One strict JSON reader for every certificate file (stability and hunting): bounded size, no duplicate keys, no ``NaN``/``Infinity``, no huge integers."""
+
+from __future__ import annotations
+
+import json
+import os
+from typing import Any
+
+from .._infra.errors import CertificateFormatError
+
+
+MAX_FILE_BYTES = 10_000_000
+"""Largest certificate file read."""
+
+
+def _reject_constant(name: str) -> None:
+    raise CertificateFormatError(f"not valid JSON: the constant {name} is not allowed in a certificate")
+
+
+def _no_duplicates(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
+    out: dict[str, Any] = {}
+    for key, value in pairs:
+        if key in out:
+            raise CertificateFormatError(f"duplicate key {key!r} in a JSON object")
+        out[key] = value
+    return out
+
+
+def parse_json(text: str | bytes, *, source: str = "<string>") -> object:
+    """The JSON value of a certificate file's text, read strictly and within bounds.
+
+    Shared by every kind of certificate file (stability certificates here,
+    hunting certificates in :mod:`.._hunting._certificate`): UTF-8 only, at
+    most :data:`MAX_FILE_BYTES`, no duplicate keys, no ``NaN``/``Infinity``,
+    integers within Python's digit limit, nesting within the recursion limit.
+
+    Raises
+    ------
+    CertificateFormatError
+        Naming ``source`` and, for a syntax error, the line and column.
+    """
+    if isinstance(text, bytes):
+        try:
+            text = text.decode("utf-8")
+        except UnicodeDecodeError as exc:
+            raise CertificateFormatError(f"{source}: not valid JSON: not UTF-8 ({exc.reason} at byte {exc.start})")
+    if len(text) > MAX_FILE_BYTES:
+        raise CertificateFormatError(f"{source}: {len(text)} characters; a certificate has at most {MAX_FILE_BYTES}")
+    try:
+        return json.loads(
+            text, parse_constant=_reject_constant, object_pairs_hook=_no_duplicates,
+            parse_int=_json_int,
+        )
+    except json.JSONDecodeError as exc:
+        raise CertificateFormatError(
+            f"{source}: not valid JSON: {exc.msg} at line {exc.lineno}, column {exc.colno}"
+        ) from None
+    except RecursionError:
+        raise CertificateFormatError(f"{source}: not a certificate: JSON nested too deeply") from None
+    except CertificateFormatError as exc:
+        raise CertificateFormatError(f"{source}: {exc}") from None
+
+
+def read_json(path: str | os.PathLike[str]) -> object:
+    """Read a certificate file once, with the package's bounds, and :func:`parse_json` it.
+
+    Raises
+    ------
+    InputFileError
+        If ``path`` is not a readable regular file of at most
+        :data:`MAX_FILE_BYTES` bytes (a FIFO, a device, a directory, …).
+    CertificateFormatError
+        If the content is not strict JSON.
+    """
+    from .._infra.io import read_limited
+
+    return parse_json(read_limited(path, limit=MAX_FILE_BYTES, what="certificate"), source=str(path))
+
+
+def _json_int(text: str) -> object:
+    """JSON integers are never part of a certificate (exact values are strings); a huge one is not even read."""
+    return int(text) if len(text) <= 4000 else float("inf")

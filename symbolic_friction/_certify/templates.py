@@ -1,0 +1,174 @@
+"""Every kind of proof file, read, verified and checked for staleness by its template.
+
+:func:`builtin_templates` imports the modules that register the package's
+templates (a missing one is an :class:`ImportError`): the stability
+certificate of Proposition 1 (:data:`.pipeline.STABILITY`) and the hunting
+certificate (:data:`.hunting.HUNTING`).  The functions below take any file,
+pick its template from its ``template`` member or its ``schema``
+(:func:`._template.template_for`) and run that template's reader, exact
+verifier and staleness check; ``symbolic-friction verify`` and ``check`` go
+through them, so a registered template needs nothing else.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Iterable
+
+from .._infra.errors import CertificateFormatError, InputFileError
+from ._template import Template, registered, template_for
+
+__all__ = [
+    "builtin_templates",
+    "read_certificate_file",
+    "verify_any_file",
+    "verify_template_file",
+    "CommittedCertificate",
+    "check_committed_certificates",
+    "check_listed_certificates",
+]
+
+
+def builtin_templates() -> tuple[Template, ...]:
+    """The package's templates, registered (the stability certificate first); then every registered one."""
+    from .hunting import HUNTING
+    from .pipeline import STABILITY
+
+    return (STABILITY, HUNTING) + tuple(t for t in registered() if t not in (STABILITY, HUNTING))
+
+
+def read_certificate_file(path: str | os.PathLike[str]) -> tuple[Template, Any]:
+    """Read a certificate file once, strictly, and parse it with the template it names.
+
+    Raises
+    ------
+    InputFileError, CertificateFormatError
+        If the file cannot be read, is not strict JSON, names an unknown
+        template or is not a well-formed certificate of its template.
+    """
+    from .certificate import read_json
+
+    stability = builtin_templates()[0]
+    data, source = read_json(path), str(path)
+    template = template_for(data, fallback=stability)
+    return template, template.read(data, source)
+
+
+def verify_template_file(path: str | os.PathLike[str]) -> tuple[Template, Any]:
+    """Read a certificate file and decide it exactly with its template's verifier: ``(template, report)``."""
+    template, certificate = read_certificate_file(path)
+    return template, template.verify(certificate, str(path))
+
+
+def verify_any_file(path: str | os.PathLike[str]) -> tuple[bool, Any]:
+    """``(is_hunting, report)`` for a certificate file of any template (see :func:`verify_template_file`)."""
+    from .hunting import HUNTING
+
+    template, report = verify_template_file(path)
+    return template is HUNTING, report
+
+
+@dataclass(frozen=True)
+class CommittedCertificate:
+    """The state of one committed certificate (see :func:`check_committed_certificates`).
+
+    Attributes
+    ----------
+    path : Path
+        The JSON file (or the expected path of a missing one).
+    report : VerificationReport, HuntingReport or None
+        Exact verification, or None if the file is missing or malformed.
+    stale : bool
+        True if the file (and what its template writes beside it) differs
+        byte-for-byte from what would be written now (or is missing, or
+        cannot be regenerated).
+    reason : str
+        Why it is not ok (empty when ok).
+    claim : str
+        What the file shows when proved (its template's words: ``κ ≤ …``, ``a hunting cycle``).
+    """
+
+    path: Path
+    report: Any
+    stale: bool
+    reason: str = ""
+    claim: str = ""
+
+    @property
+    def proved(self) -> bool:
+        return self.report is not None and self.report.proved
+
+    @property
+    def ok(self) -> bool:
+        """Proved and up to date."""
+        return self.proved and not self.stale
+
+    def describe(self) -> str:
+        """One line for ``symbolic-friction check``."""
+        if self.ok:
+            return f"ok     {self.path} (proved, up to date, {self.claim})"
+        state = "STALE " if self.stale and self.report is not None and self.report.proved else "FAILED"
+        return f"{state} {self.path}: {self.reason}"
+
+
+def _check_one(path: Path) -> CommittedCertificate:
+    try:
+        template, report = verify_template_file(path)
+    except CertificateFormatError as exc:
+        return CommittedCertificate(path, None, True, f"malformed: {exc}")
+    except InputFileError as exc:
+        return CommittedCertificate(path, None, True, f"unreadable: {exc}")
+    if not report.proved:
+        return CommittedCertificate(path, report, False, template.failure(report))
+    reason = template.stale(report.certificate, path)
+    return CommittedCertificate(path, report, bool(reason), reason, template.claim(report.certificate))
+
+
+def check_committed_certificates(
+    directory: str | os.PathLike[str] = "proofs", *, expected: Iterable[str] = ()
+) -> list[CommittedCertificate]:
+    """Verify every ``*.json`` certificate under ``directory`` and detect stale ones.
+
+    Parameters
+    ----------
+    directory : path
+        Searched recursively for ``*.json`` files (sorted, for a stable order).
+    expected : iterable of str, keyword-only
+        File names (relative to ``directory``) that must exist, e.g.
+        :data:`TABLE_I_FILES`; a missing one is reported as stale.
+
+    Returns
+    -------
+    list of CommittedCertificate
+        One per file; the directory passes iff every entry is ``ok``.
+    """
+    directory = Path(directory)
+    results = [_check_one(path) for path in sorted(directory.rglob("*.json"))]
+    for name in expected:
+        path = directory / name
+        if not path.exists():
+            results.append(CommittedCertificate(path, None, True, "missing; run `symbolic-friction certify`"))
+    return results
+
+
+def check_listed_certificates(directory: str | os.PathLike[str], names: Iterable[str]) -> list[CommittedCertificate]:
+    """Verify exactly the certificates ``names`` (relative to ``directory``), in order, and detect stale ones.
+
+    A listed file that does not exist is reported as missing (not ok); files
+    of ``directory`` that are not listed are not looked at.
+    """
+    directory = Path(directory)
+    results = []
+    for name in names:
+        path = directory / name
+        if not path.exists():
+            results.append(CommittedCertificate(
+                path, None, True,
+                "missing; create it with `symbolic-friction certify … --out "
+                f"{path.parent} --name {path.stem}` (or `check --write` for Table I's files)",
+            ))
+        else:
+            results.append(_check_one(path))
+    return results

@@ -1,0 +1,126 @@
+"""The ``symbolic-friction`` command line.
+
+Start-up must stay fast: this module and the command modules
+import only the standard library at top level; each command imports sympy,
+scipy or cvxpy inside its ``run`` function, and only what it needs.
+
+Each subcommand lives in ``symbolic_friction/_cli/<name>.py`` and
+provides ``HELP`` (one line), ``add_arguments(parser)`` and
+``run(args) -> int``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+from collections.abc import Sequence
+from typing import NoReturn
+
+__all__ = ["main", "build_parser"]
+
+COMMANDS = ("check", "certify", "verify", "simulate", "figures", "crosscheck", "hunting", "tradeoff", "extremes")
+
+
+class _Parser(argparse.ArgumentParser):
+    """An argument parser whose usage errors are one line on stderr and exit status 2."""
+
+    def error(self, message: str) -> "NoReturn":  # type: ignore[override]
+        message = " ".join(message.split())
+        if len(message) > 300:
+            message = message[:300] + "…"
+        self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+
+
+def _common(parser: argparse.ArgumentParser) -> None:
+    """``--quiet`` and ``--verbose``, on every command."""
+    group = parser.add_mutually_exclusive_group()
+    group.add_argument("-q", "--quiet", action="store_true", help="print only verdicts, the closing line and errors")
+    group.add_argument("-v", "--verbose", action="store_true", help="print more detail (every inequality, every trajectory, timings)")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser, with one subparser per command."""
+    parser = _Parser(
+        prog="symbolic-friction",
+        description=(
+            "Machine-checked proof of global asymptotic stability for a PID-controlled mass with Coulomb "
+            "friction (Bisoffi, Da Lio, Teel, Zaccarian). Re-derives the proof, certifies gains exactly, "
+            "simulates the Filippov inclusion and cross-checks certificates on trajectories."
+        ),
+    )
+    from .. import __version__
+
+    parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True, parser_class=_Parser)
+    for name in COMMANDS:
+        module = importlib.import_module(f"symbolic_friction._cli.{name}")
+        p = sub.add_parser(name, help=module.HELP, description=module.HELP)
+        _common(p)
+        module.add_arguments(p)
+        p.set_defaults(_module=module)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the command line; return the exit code.
+
+    User errors (any :class:`~symbolic_friction.SymbolicFrictionError`, any
+    OS error on a path, input nested too deeply to parse) print one line
+    ``error: …`` to stderr and return 2, without a traceback.  Output that
+    cannot be encoded (``PYTHONIOENCODING=ascii``) falls back to ASCII.
+    """
+    from .._infra.errors import SymbolicFrictionError
+    from .._infra.output import install_ascii_fallback, set_verbosity
+
+    install_ascii_fallback()
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    set_verbosity(0 if getattr(args, "quiet", False) else 2 if getattr(args, "verbose", False) else 1)
+    prefix = f"symbolic-friction {args.command}: error:"
+    try:
+        return int(args._module.run(args))
+    except SymbolicFrictionError as exc:
+        _error_line(prefix, str(exc))
+        return 2
+    except BrokenPipeError:
+        # the reader went away (`| head`): stop quietly, as other command-line tools do
+        import os
+
+        try:
+            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        except OSError:  # pragma: no cover
+            pass
+        return 141
+    except OSError as exc:
+        from .._infra.io import describe_os_error
+
+        _error_line(prefix, describe_os_error(exc))
+        return 2
+    except RecursionError:
+        _error_line(prefix, "input nested too deeply")
+        return 2
+    except OverflowError as exc:  # only user numbers reach float conversion at this size
+        _error_line(prefix, f"a number is beyond the range of floating point (about 1e308): {exc}")
+        return 2
+    except KeyboardInterrupt:
+        print(f"symbolic-friction {args.command}: interrupted", file=sys.stderr)
+        return 130
+    finally:
+        set_verbosity(1)
+
+
+def _error_line(prefix: str, message: str) -> None:
+    """One line on stderr: newlines folded, a runaway message cut."""
+    message = " ".join(message.split())
+    if len(message) > 2000:
+        message = message[:2000] + "…"
+    print(f"{prefix} {message}", file=sys.stderr, flush=True)
+
+
+def entry_point() -> None:  # pragma: no cover - thin wrapper for the console script
+    sys.exit(main())
+
+
+if __name__ == "__main__":  # pragma: no cover
+    entry_point()

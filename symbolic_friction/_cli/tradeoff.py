@@ -1,0 +1,123 @@
+"""``symbolic-friction tradeoff``: the speed/accuracy trade of every simulation
+method, measured against the independent 50-digit reference.
+
+Gains are Table I's case (a) or (b) (``--case``), or the user's own, read
+exactly as ``certify`` reads them (``--k-p --k-i --k-v --f-c`` or the
+physical ``--m --k-p-bar …``).  This module imports only the standard
+library at top level.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import json
+import textwrap
+
+HELP = "measure each simulation method's error (vs a 50-digit reference) against its time, across its accuracy knob"
+
+_EPILOG = """examples:
+  symbolic-friction tradeoff                                  # Table I case (a), z0 = (0, 1, 0), T = 30
+  symbolic-friction tradeoff --case b --z0 0,3,0 --t-end 60
+  symbolic-friction tradeoff --k-p 3 --k-i 4 --k-v 6.4 --f-c 1 --z0 0,1,0 --z0 1,1,1 --format pdf svg
+  symbolic-friction tradeoff --json --no-cost > tradeoff.json
+"""
+
+DEFAULT_Z0 = {"a": "0,1,0", "b": "0,3,0"}
+DEFAULT_T = {"a": 30.0, "b": 60.0}
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    """Gains (as ``certify``), ``--case``, ``--z0``, ``--t-end``, ``--samples``, ``--repeats``, output options."""
+    from .certify import add_gain_arguments
+
+    parser.description = textwrap.fill(
+        f"{HELP}. For every method (event, moreau across h, regularized across epsilon for tanh and sat, "
+        "ivp-events across rtol): the error in the state, the final state and the stick start times, the "
+        "time per trajectory (median of repeats, with spread), the fitted order of accuracy; a table, a "
+        "Pareto figure and a figure of the cost against the horizon T and the batch size N."
+    )
+    parser.epilog = _EPILOG
+    parser.formatter_class = argparse.RawDescriptionHelpFormatter
+    parser.add_argument("--case", choices=("a", "b"), default=None, help="Table I case (default a unless gains are given)")
+    parser.add_argument(
+        "--z0", action="append", default=None, metavar="E_I,S,V",
+        help="initial state (e_i, s, v), repeatable (default: 0,1,0 for case a, 0,3,0 for case b, 0,1,0 for gains)",
+    )
+    parser.add_argument("--t-end", type=float, default=None, metavar="T", help="horizon (default 30; 60 for case b)")
+    parser.add_argument("--samples", type=int, default=301, metavar="M", help="sample times where errors are measured (default 301)")
+    parser.add_argument("--repeats", type=int, default=7, metavar="R", help="timed runs per configuration (default 7)")
+    parser.add_argument("--quick", action="store_true", help="three knob values per method (a fast look)")
+    parser.add_argument("--no-cost", action="store_true", help="skip the cost against T and N (and its figure)")
+    parser.add_argument("--json", action="store_true", help="print the measurements as JSON instead of the table")
+    parser.add_argument("--out", default="figures", metavar="DIR", help="directory for the figures (default: ./figures)")
+    parser.add_argument("--no-figures", action="store_true", help="write no figure")
+    parser.add_argument("--format", nargs="+", default=["png"], metavar="FMT", help="figure formats: png (always), pdf, svg")
+    add_gain_arguments(parser)
+
+
+def _state(text: str) -> tuple[float, float, float]:
+    from .._infra.errors import UsageError
+
+    parts = text.replace(" ", "").split(",")
+    try:
+        values = tuple(float(p) for p in parts)
+    except ValueError:
+        raise UsageError(f"--z0 takes three numbers e_i,s,v; got {text!r}") from None
+    if len(values) != 3:
+        raise UsageError(f"--z0 takes three numbers e_i,s,v; got {len(values)} in {text!r}")
+    return values  # type: ignore[return-value]
+
+
+def run(args: argparse.Namespace) -> int:
+    from pathlib import Path
+
+    from .._infra.errors import UsageError
+    from .._infra.io import ensure_directory
+    from .._infra.output import emit
+    from .._model.parameters import Parameters
+    from .._studies.tradeoff import check_formats, measure_cost, measure_tradeoff, tradeoff_figures
+    from .certify import _gains
+
+    formats = check_formats(args.format)
+    params = _gains(args)
+    if params is not None and args.case is not None:
+        raise UsageError("give either --case or gains, not both")
+    if params is None:
+        case = args.case or "a"
+        params, label, stem = Parameters.table_i(case), f"Table I case ({case})", f"tradeoff_{case}"
+    else:
+        case, label, stem = None, "user gains", "tradeoff_user"
+    z0s = [_state(z) for z in (args.z0 or [DEFAULT_Z0.get(case, "0,1,0")])]
+    t_end = args.t_end if args.t_end is not None else DEFAULT_T.get(case, 30.0)
+    if not (math.isfinite(t_end) and t_end > 0):
+        raise UsageError(f"--t-end must be finite and > 0; got {t_end}")
+    if not args.no_figures:
+        ensure_directory(args.out)  # an unusable --out fails now, not after the measurements
+    result = measure_tradeoff(params, z0s, t_end, label=label, samples=args.samples, repeats=args.repeats, quick=args.quick)
+    if not args.no_cost:
+        from dataclasses import replace
+
+        cost = measure_cost(params, z0s[0], repeats=3, t_batch=min(t_end, 30.0),
+                            sizes=(1, 10, 100) if args.quick else (1, 10, 100, 1000, 10000),
+                            horizons=(3.0, 10.0, 30.0) if args.quick else (3.0, 10.0, 30.0, 100.0, 300.0))
+        result = replace(result, cost=cost)
+    files = [] if args.no_figures else tradeoff_figures(result, Path(args.out), stem, formats)
+    if args.json:
+        data = result.as_dict()
+        data["files"] = [str(f) for f in files]
+        emit(json.dumps(data, indent=1, default=str), level=0)
+    else:
+        emit(result.table())  # the table and the costs: not under --quiet; the note and the files: always
+        if result.cost:
+            emit()
+            emit("cost against the horizon T (one trajectory) and the batch size N (median of repeats):")
+            for c in result.cost:
+                what = f"T = {c.t_end:g}" if c.axis == "T" else f"N = {c.n} (T = {c.t_end:g})"
+                kernel = f" ({c.kernel} kernel)" if c.kernel else ""
+                emit(f"  {c.config:34s} {what:22s} {c.seconds:10.4f} s{kernel}")
+        emit(level=0)
+        emit(result.note(), level=0)
+        for f in files:
+            emit(f"wrote {f}", level=0)
+    return 0

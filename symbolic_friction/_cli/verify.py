@@ -1,0 +1,133 @@
+"""``symbolic-friction verify FILE…``: exact re-check of certificate files.
+
+Each file is dispatched on its ``schema`` field: a stability certificate of
+the paper's model (:mod:`.._certify.verify`, exact rationals) or a hunting
+certificate (:mod:`.._hunting._certificate`, a Krawczyk proof in arb balls).
+
+Exit status: 0 if every file proves its claim; 1 if some inequality fails
+(each failing one is named with its exact numbers); 2 if a file is missing
+or malformed (not JSON, unknown schema, missing keys, a float where an exact
+rational string is required, …).
+"""
+
+from __future__ import annotations
+
+import argparse
+
+_LONG = 4000
+HELP = "exactly re-check certificate files (exit 0 only if every file proves its claim)"
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    """``FILE…``, ``--json`` and ``--junit-xml FILE``."""
+    parser.description = (
+        f"{HELP}. Exit status: 0 if every file proves its claim, 1 if an inequality fails "
+        "(named with its exact numbers), 2 if a file is missing or malformed."
+    )
+    parser.add_argument("files", nargs="+", metavar="FILE", help="certificate JSON files")
+    parser.add_argument("--json", action="store_true",
+                        help="print one JSON object (every file, its gains, verdict and inequalities) instead of text")
+    parser.add_argument("--junit-xml", metavar="FILE", default=None,
+                        help="also write a JUnit XML report, one test case per certificate")
+
+
+def run(args: argparse.Namespace) -> int:
+    """Verify each file; print one summary line per file, with its gains (and every check with ``--verbose``)."""
+    import json
+
+    from .._infra.rational import format_rational
+    from .._infra.errors import CertificateFormatError, InputFileError
+    from .._infra.junit import Case, write_junit
+    from .._infra.output import emit
+
+    if args.junit_xml is not None:
+        from .._infra.junit import check_writable
+
+        check_writable(args.junit_xml)
+    failed = False
+    malformed: list[Exception] = []
+    cases: list = []
+    payload: list[dict] = []
+    from .._certify.templates import verify_any_file
+
+    for name in args.files:
+        try:
+            # dispatch on the file's schema: a hunting certificate has its own proof
+            hunting, report = verify_any_file(name)
+        except (CertificateFormatError, InputFileError) as exc:
+            malformed.append(exc)
+            cases.append(Case(name=str(name), classname="verify", seconds=0.0, error=str(exc)))
+            payload.append({"file": str(name), "status": "malformed", "error": str(exc)})
+            if not args.json:
+                emit(f"MALFORMED {exc}", level=0)
+            continue
+        cert = report.certificate
+        if hunting:
+            _hunting_result(report, name, args, cases, payload)
+            failed = failed or not report.proved
+            continue
+        gains = cert.gains_text()
+        cases.append(Case(
+            name=str(name), classname="verify", seconds=0.0,
+            failure=None if report.proved else "; ".join(c.message for c in report.failures),
+            output=gains,
+        ))
+        payload.append({
+            "file": str(name),
+            "status": "proved" if report.proved else "failed",
+            "gains": {k: format_rational(v) for k, v in cert.parameters.items()},
+            "gains_text": gains,
+            "label": cert.provenance.label if cert.provenance is not None else "",
+            "overshoot_bound": cert.overshoot_bound,
+            "failures": [{"obligation": c.obligation, "inequality": c.name, "instance": c.instance} for c in report.failures],
+            **({"checks": [{"obligation": c.obligation, "inequality": c.name, "instance": c.instance, "holds": c.holds}
+                           for c in report.checks]} if args.verbose else {}),
+        })
+        if not args.json:
+            line = f"{report.summary()} [{gains}]"
+            if len(line) > _LONG and not args.verbose:
+                # numbers of thousands of digits: the verdict stays readable; --verbose or --json give them exactly
+                line = line[: _LONG - 200] + f" … ({len(line)} characters; --verbose or --json print the exact numbers)"
+            emit(line, level=0)
+            for check in report.checks:
+                emit(f"  {check}  [{check.obligation}]", level=2)
+        failed = failed or not report.proved
+    if args.junit_xml is not None:
+        write_junit(args.junit_xml, "symbolic-friction verify", cases)
+    if args.json:
+        emit(json.dumps({"files": payload, "passed": not failed and not malformed}, indent=2, ensure_ascii=False), level=0)
+    if malformed:
+        # the CLI turns this into "error: …" and exit status 2
+        if len(malformed) == 1:
+            raise malformed[0]
+        raise CertificateFormatError(f"{len(malformed)} files are missing or malformed; first: {malformed[0]}")
+    return 1 if failed else 0
+
+
+def _hunting_result(report, name, args, cases: list, payload: list) -> None:
+    """One hunting certificate's line, JUnit case and JSON record (its checks are the Krawczyk proof's)."""
+    from .._infra.junit import Case
+    from .._infra.output import emit
+
+    gains = str(report.certificate.params)
+    failures = [c for c in report.checks if not c.holds]
+    cases.append(Case(
+        name=str(name), classname="verify", seconds=0.0,
+        failure=None if report.proved else "; ".join(f"{c.name}: {c.detail}" for c in failures) or report.summary(),
+        output=gains,
+    ))
+    payload.append({
+        "file": str(name),
+        "kind": "hunting",
+        "status": "proved" if report.proved else "failed",
+        "gains": report.certificate.params.as_strings(),
+        "gains_text": gains,
+        "verdict": report.certificate.verdict,
+        "failures": [{"check": c.name, "detail": c.detail} for c in failures],
+        **({"checks": [{"check": c.name, "holds": c.holds, "detail": c.detail} for c in report.checks]}
+           if args.verbose else {}),
+    })
+    if not args.json:
+        emit(report.summary(), level=0)
+        for check in report.checks:
+            emit(f"  {check}", level=2)

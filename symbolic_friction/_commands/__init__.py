@@ -1,1 +1,0 @@
-"""Subcommands of the ``symbolic-friction`` CLI (stdlib-only imports at top level)."""

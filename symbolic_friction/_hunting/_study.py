@@ -1,0 +1,110 @@
+"""One hunting cycle studied end to end: found, proved, compared and certified.
+
+For a cycle found by :func:`._map.find_cycles`, :func:`study_cycle` proves it
+in arb balls (:func:`symbolic_friction._certify.hunting_proof.prove_cycle` on
+the box around it), optionally compares it with a long exact simulation
+(:func:`._report.simulation_agreement`) and with Corollary 1's empirical gain
+(:func:`._iss.iss_comparison`), and, when proved, builds the hunting
+certificate that ``symbolic-friction verify`` re-checks.  ``symbolic-friction
+hunting`` prints what this returns.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from fractions import Fraction
+from typing import Any
+
+from .._certify.hunting import HuntingCertificate
+from .._certify.hunting_proof import Box, CycleProof, box_around, prove_cycle
+from .._model.parameters import Parameters
+from ._map import HuntingCycle
+
+__all__ = ["CycleStudy", "study_cycle", "parse_sweep"]
+
+
+@dataclass(frozen=True)
+class CycleStudy:
+    """What is known about one symmetric hunting cycle.
+
+    Attributes
+    ----------
+    cycle : HuntingCycle
+        The cycle as found (floats).
+    box : Box
+        The exact box the proof is run on.
+    proof : CycleProof
+        The Krawczyk proof and its checks.
+    agreement : Agreement or None
+        The long exact simulation's agreement (None if not asked for).
+    inside_box : bool or None
+        Whether the simulated stick exits lie in the proved box.
+    iss : IssComparison or None
+        Corollary 1's empirical gain at ``ρ`` (None if not asked for).
+    certificate : HuntingCertificate or None
+        The certificate to write (None if not proved).
+    """
+
+    cycle: HuntingCycle
+    box: Box
+    proof: CycleProof
+    agreement: Any = None
+    inside_box: bool | None = None
+    iss: Any = None
+    certificate: HuntingCertificate | None = None
+
+
+def study_cycle(params: Parameters, cycle: HuntingCycle, *, simulate: bool = True, iss: bool = True) -> CycleStudy:
+    """Prove ``cycle`` exactly and, if proved, compare it and build its certificate."""
+    box = box_around(cycle.sigma, cycle.slip_time)
+    proof = prove_cycle(params, box)
+    if not proof.proved:
+        return CycleStudy(cycle, box, proof)
+    agreement = inside = None
+    if simulate:
+        from ._report import simulation_agreement
+
+        agreement = simulation_agreement(cycle)
+        lo, hi = box.sigma
+        inside = bool(agreement.last_sigmas) and all(lo <= Fraction(x) <= hi for x in agreement.last_sigmas)
+    comparison = None
+    if iss:
+        from ._iss import iss_comparison
+
+        comparison = iss_comparison(cycle)
+    m_lo, m_hi = proof.multiplier
+    info: dict[str, Any] = {
+        "sigma": f"{cycle.sigma:.17g}",
+        "period": f"{cycle.period:.17g}",
+        "slip_time": f"{cycle.slip_time:.17g}",
+        "stick_time": f"{cycle.stick_time:.17g}",
+        "amplitude_s": f"{cycle.amplitude_s:.17g}",
+        "amplitude_e_i": f"{cycle.amplitude_e_i:.17g}",
+        "amplitude_distance_z": f"{cycle.amplitude_distance:.17g}",
+        "multiplier": [f"{m_lo:.17g}", f"{m_hi:.17g}"],
+        "stable": proof.stable,
+    }
+    if comparison is not None:
+        info["iss"] = {"rho": f"{comparison.rho:.17g}", "gamma_hat": {k: f"{v:.17g}" for k, v in comparison.gamma.items()},
+                       "within": comparison.within}
+    certificate = HuntingCertificate(params=params, box=box, cycle=info)
+    return CycleStudy(cycle, box, proof, agreement, inside, comparison, certificate)
+
+
+def parse_sweep(text: str) -> list[Fraction]:
+    """Ratios ``f_s/f_c`` from ``"1.1,1.2"``, each exact and above 1.
+
+    Raises
+    ------
+    ParameterError
+        If a ratio is not a number or is not above 1.
+    """
+    from .._infra.errors import ParameterError
+
+    try:
+        ratios = [Fraction(r.strip()) for r in text.split(",") if r.strip()]
+    except ValueError:
+        raise ParameterError(f"--sweep must be comma-separated ratios f_s/f_c like 1.1,1.2; got {text!r}") from None
+    if any(r <= 1 for r in ratios):
+        raise ParameterError(f"--sweep ratios must exceed 1 (f_s > f_c); got {text!r}")
+    return ratios

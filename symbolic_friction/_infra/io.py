@@ -1,0 +1,179 @@
+"""Atomic file writes: the one way this package writes a file.
+
+A write to ``proofs/`` (or any output) must never leave a
+truncated file behind.  Every writer goes through :func:`atomic_write`,
+which writes a temporary file in the target's directory, flushes it to disk
+and renames it over the target with ``os.replace`` (atomic on POSIX and
+Windows).  Readers see the old file or the complete new one.
+"""
+
+from __future__ import annotations
+
+import errno
+import os
+import stat
+import tempfile
+from collections.abc import Callable
+from pathlib import Path
+from typing import IO
+
+from .errors import InputFileError, OutputPathError
+
+__all__ = ["atomic_write", "atomic_write_text", "read_limited", "ensure_directory", "check_output_directory", "describe_os_error"]
+
+
+def describe_os_error(exc: OSError, path: str | os.PathLike[str] | None = None) -> str:
+    """``"<path>: <what went wrong>"`` for an OS error, in words a user can act on."""
+    if exc.errno is None and exc.filename is None and path is None:
+        return str(exc) or type(exc).__name__  # an OSError raised with a message of its own
+    name = exc.filename if exc.filename is not None else path
+    what = {
+        errno.ENAMETOOLONG: "file name too long",
+        errno.ELOOP: "too many levels of symbolic links (a symlink loop?)",
+        errno.ENOTDIR: "a component of the path is a file, not a directory",
+        errno.EISDIR: "is a directory",
+        errno.ENOENT: "no such file or directory",
+        errno.EACCES: "permission denied",
+        errno.EEXIST: "already exists",
+        errno.ENOSPC: "no space left on the device",
+        errno.EROFS: "read-only file system",
+    }.get(exc.errno or 0, exc.strerror or type(exc).__name__)
+    text = str(name) if name is not None else "?"
+    if len(text) > 120:
+        text = text[:60] + "…" + text[-40:] + f" ({len(text)} characters)"
+    return f"{text}: {what}"
+
+
+def read_limited(path: str | os.PathLike[str], *, limit: int, what: str = "file") -> bytes:
+    """Read a regular file of at most ``limit`` bytes, refusing anything else.
+
+    A FIFO, a device such as ``/dev/zero``, a directory, a symlink loop or a
+    file larger than ``limit`` raises :class:`~symbolic_friction.InputFileError`
+    with one line saying so, without blocking and without reading it whole.
+    """
+    path = Path(path)
+    try:
+        # O_NONBLOCK: opening a FIFO must not wait for a writer.
+        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+    except OSError as exc:
+        raise InputFileError(f"cannot read {what} {describe_os_error(exc, path)}") from None
+    try:
+        info = os.fstat(fd)
+        if stat.S_ISDIR(info.st_mode):
+            raise InputFileError(f"cannot read {what} {path}: is a directory")
+        if not stat.S_ISREG(info.st_mode):
+            raise InputFileError(f"cannot read {what} {path}: not a regular file (a FIFO, socket or device)")
+        if info.st_size > limit:
+            raise InputFileError(f"{what} {path} has {info.st_size} bytes; at most {limit} are accepted")
+        with os.fdopen(fd, "rb", closefd=False) as handle:
+            data = handle.read(limit + 1)
+    except InputFileError:
+        raise
+    except OSError as exc:
+        raise InputFileError(f"cannot read {what} {describe_os_error(exc, path)}") from None
+    finally:
+        os.close(fd)
+    if len(data) > limit:
+        raise InputFileError(f"{what} {path} has more than {limit} bytes; at most {limit} are accepted")
+    return data
+
+
+def ensure_directory(path: str | os.PathLike[str], *, what: str = "output directory") -> Path:
+    """Create ``path`` (and its parents) if needed and check it is a writable directory.
+
+    Called before any long computation, so that an unusable ``--out`` fails
+    at once with one line instead of after the work.
+    """
+    path = Path(path)
+    try:
+        if path.is_symlink() and not path.exists():
+            raise OutputPathError(f"{what} {path} is a broken symbolic link or a symlink loop")
+        if path.exists() and not path.is_dir():
+            raise OutputPathError(f"{what} {path} exists and is not a directory")
+        path.mkdir(parents=True, exist_ok=True)
+        if not os.access(path, os.W_OK | os.X_OK):
+            raise OutputPathError(f"{what} {path} is not writable")
+    except OutputPathError:
+        raise
+    except OSError as exc:
+        raise OutputPathError(f"cannot use {what} {describe_os_error(exc, path)}") from None
+    return path
+
+
+def atomic_write(path: str | os.PathLike[str], write: Callable[[IO[bytes]], object]) -> Path:
+    """Call ``write(handle)`` on a binary temporary file, then rename it to ``path``.
+
+    Parameters
+    ----------
+    path : path-like
+        Target file; its parent directories are created.
+    write : callable
+        Receives the open binary handle and writes the whole content.
+
+    Returns
+    -------
+    Path
+        ``path``.
+    """
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    # mkstemp creates the file 0600; give the result the mode of the file it
+    # replaces (or the usual 0644) so committed files stay world-readable.
+    mode = path.stat().st_mode & 0o777 if path.exists() else 0o644
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    try:
+        os.chmod(tmp, mode)
+        with os.fdopen(fd, "wb") as handle:
+            write(handle)
+            handle.flush()
+            os.fsync(handle.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        try:
+            os.unlink(tmp)
+        except FileNotFoundError:
+            pass
+        raise
+    return path
+
+
+def atomic_write_text(path: str | os.PathLike[str], text: str) -> Path:
+    """Write ``text`` as UTF-8 with ``\\n`` line endings, atomically (see :func:`atomic_write`)."""
+    data = text.encode("utf-8")
+    return atomic_write(path, lambda handle: handle.write(data))
+
+
+def check_output_directory(path: str | os.PathLike[str], *, what: str = "output directory") -> Path:
+    """Check, without creating anything, that ``path`` could be created (or is) a writable directory.
+
+    For outputs written only sometimes (counterexamples): the run fails at
+    once on an unusable path, and a run that writes nothing leaves no empty
+    directory behind.
+    """
+    path = Path(path)
+    try:
+        for part in path.parts:
+            if len(part.encode("utf-8", "surrogateescape")) > 255:
+                raise OSError(errno.ENAMETOOLONG, os.strerror(errno.ENAMETOOLONG), str(path))
+        if path.is_symlink() and not path.exists():
+            raise OutputPathError(f"{what} {path} is a broken symbolic link or a symlink loop")
+        if path.exists():
+            if not path.is_dir():
+                raise OutputPathError(f"{what} {path} exists and is not a directory")
+            existing = path
+        else:
+            os.lstat(path.parent) if str(path.parent) else None  # raises ENOTDIR / ELOOP on a bad component
+            existing = path.parent
+            while not existing.exists():
+                existing = existing.parent
+            if not existing.is_dir():
+                raise OutputPathError(f"cannot use {what} {path}: {existing} is a file, not a directory")
+        if not os.access(existing, os.W_OK | os.X_OK):
+            raise OutputPathError(f"{what} {path} is not writable")
+    except FileNotFoundError:
+        pass  # a missing parent is created when the output is written
+    except OSError as exc:
+        if isinstance(exc, OutputPathError):
+            raise
+        raise OutputPathError(f"cannot use {what} {describe_os_error(exc, path)}") from None
+    return path

@@ -1,0 +1,239 @@
+"""Normalised PID and friction parameters (paper §II-A, eq. (basic)) and
+Assumption 1.
+
+The paper normalises the physical model by the mass ``m``:
+
+.. math::
+
+    k_p = \\bar k_p/m,\\quad k_v = (\\bar k_d + \\alpha_v)/m,\\quad
+    k_i = \\bar k_i/m,\\quad f_c = \\bar f_c/m,
+
+and every result holds under **Assumption 1**: ``k_i > 0``, ``k_p > 0`` and
+``k_v k_p > k_i`` (with ``f_c > 0`` from the friction model).  The
+parameters are held as exact :class:`~fractions.Fraction` values; floats appear
+only at the numerical boundary (:meth:`Parameters.as_floats`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from fractions import Fraction
+from typing import ClassVar
+
+from .._infra.errors import AssumptionError
+from .._infra.rational import format_rational, short_rational, to_rational
+
+__all__ = ["Parameters", "TABLE_I"]
+
+
+def _float(q: Fraction, name: str) -> float:
+    from .._infra.errors import ParameterError
+
+    try:
+        value = float(q)
+    except OverflowError:
+        value = float("inf")
+    if value == 0.0 or value == float("inf"):
+        raise ParameterError(
+            f"{name} = {_fmt(q)} is outside the range of floating point "
+            "(about 1e-308 to 1e308) that the numerical search and the simulators use"
+        )
+    return value
+
+
+def _fmt(q: Fraction) -> str:
+    # messages stay one readable line: a 300-digit value is shown as ≈1e-300
+    return short_rational(q)
+
+
+@dataclass(frozen=True)
+class Parameters:
+    """Normalised gains ``(k_p, k_i, k_v)``, Coulomb level ``f_c`` and static level ``f_s``.
+
+    Parameters
+    ----------
+    k_p, k_i, k_v, f_c : int, Fraction, sympy Rational, str or float
+        Normalised proportional, integral and velocity gains and Coulomb
+        friction level.  Converted exactly with :func:`to_rational` (a float
+        through its decimal ``repr``).
+    f_s : number or None, default None (``f_s = f_c``)
+        Normalised static friction level, ``f_s ≥ f_c``: the mass at rest
+        sticks while ``|k_i e_i + k_p s| ≤ f_s`` and slips with kinetic
+        friction ``f_c``.  ``f_s = f_c`` is the paper's model (eq. basic);
+        ``f_s > f_c`` is the stiction its conclusion names as future work
+        (see :mod:`symbolic_friction._hunting`).  A gain set with
+        ``f_s = f_c`` compares, hashes and prints exactly as one without it.
+
+    Raises
+    ------
+    InvalidNumberError, NonFiniteError
+        If a value is not a finite number.
+    AssumptionError
+        If Assumption 1 (``k_i > 0``, ``k_p > 0``, ``k_v k_p > k_i``),
+        ``f_c > 0`` or ``f_s ≥ f_c`` is violated; the message gives the numbers.
+
+    Examples
+    --------
+    >>> p = Parameters(k_p=3, k_i=4, k_v="6.4", f_c=1)
+    >>> p.k_v
+    Fraction(32, 5)
+    >>> p.c
+    Fraction(152, 5)
+    """
+
+    k_p: Fraction
+    k_i: Fraction
+    k_v: Fraction
+    f_c: Fraction = field(default=Fraction(1))
+    f_s: Fraction = field(default=None)  # type: ignore[assignment]  # None: f_s = f_c
+
+    _names: ClassVar[tuple[str, ...]] = ("k_p", "k_i", "k_v", "f_c")
+
+    def __post_init__(self) -> None:
+        for name in self._names:
+            object.__setattr__(self, name, to_rational(getattr(self, name), name=name))
+        k_p, k_i, k_v, f_c = self.k_p, self.k_i, self.k_v, self.f_c
+        if not k_i > 0:
+            raise AssumptionError(f"Assumption 1 needs k_i > 0; got k_i = {_fmt(k_i)}")
+        if not k_p > 0:
+            raise AssumptionError(f"Assumption 1 needs k_p > 0; got k_p = {_fmt(k_p)}")
+        if not k_v * k_p > k_i:
+            raise AssumptionError(
+                "Assumption 1 needs k_v·k_p > k_i; got "
+                f"{_fmt(k_v * k_p)} ≤ {_fmt(k_i)} (k_v = {_fmt(k_v)}, k_p = {_fmt(k_p)}, k_i = {_fmt(k_i)})"
+            )
+        if not f_c > 0:
+            raise AssumptionError(f"the Coulomb level needs f_c > 0; got f_c = {_fmt(f_c)}")
+        f_s = f_c if self.f_s is None else to_rational(self.f_s, name="f_s")
+        if not f_s >= f_c:
+            raise AssumptionError(
+                f"the static level needs f_s ≥ f_c; got f_s = {_fmt(f_s)} < f_c = {_fmt(f_c)}"
+            )
+        object.__setattr__(self, "f_s", f_s)
+
+    def __hash__(self) -> int:
+        # hashing four Fractions costs microseconds, and every simulation looks its gains up
+        cached = self.__dict__.get("_hash")
+        if cached is None:
+            key = (self.k_p, self.k_i, self.k_v, self.f_c)
+            cached = hash(key if self.f_s == self.f_c else key + (self.f_s,))
+            object.__setattr__(self, "_hash", cached)
+        return cached
+
+    @classmethod
+    def from_physical(
+        cls,
+        *,
+        m: object,
+        k_p_bar: object,
+        k_i_bar: object,
+        k_d_bar: object,
+        alpha_v: object = 0,
+        f_c_bar: object,
+        f_s_bar: object = None,
+    ) -> "Parameters":
+        """Build normalised parameters from physical ones (paper §II-A).
+
+        Parameters
+        ----------
+        m : number, keyword-only
+            Mass, ``m > 0``.
+        k_p_bar, k_i_bar, k_d_bar : number, keyword-only
+            Physical PID gains.
+        alpha_v : number, keyword-only
+            Viscous friction coefficient, ``alpha_v >= 0`` (default 0).
+        f_c_bar : number, keyword-only
+            Coulomb friction force, ``f_c_bar > 0``.
+        f_s_bar : number or None, keyword-only
+            Static friction force, ``f_s_bar ≥ f_c_bar`` (default: ``f_c_bar``).
+
+        Raises
+        ------
+        AssumptionError
+            If ``m <= 0``, ``alpha_v < 0`` or the normalised gains violate
+            Assumption 1 or ``f_c > 0``.
+
+        Examples
+        --------
+        >>> Parameters.from_physical(m=2, k_p_bar=6, k_i_bar=8, k_d_bar="12.3", alpha_v="0.5", f_c_bar=2).k_v
+        Fraction(32, 5)
+        """
+        m_q = to_rational(m, name="m")
+        if not m_q > 0:
+            raise AssumptionError(f"the mass needs m > 0; got m = {_fmt(m_q)}")
+        a_q = to_rational(alpha_v, name="alpha_v")
+        if a_q < 0:
+            raise AssumptionError(f"the viscous coefficient needs alpha_v ≥ 0; got alpha_v = {_fmt(a_q)}")
+        return cls(
+            k_p=to_rational(k_p_bar, name="k_p_bar") / m_q,
+            k_i=to_rational(k_i_bar, name="k_i_bar") / m_q,
+            k_v=(to_rational(k_d_bar, name="k_d_bar") + a_q) / m_q,
+            f_c=to_rational(f_c_bar, name="f_c_bar") / m_q,
+            f_s=None if f_s_bar is None else to_rational(f_s_bar, name="f_s_bar") / m_q,
+        )
+
+    @classmethod
+    def table_i(cls, case: str) -> "Parameters":
+        """The paper's Table I gains, ``case`` ``"a"`` or ``"b"``, with ``f_c = 1``.
+
+        >>> Parameters.table_i("b").k_p
+        Fraction(33, 50)
+        """
+        try:
+            return TABLE_I[case]
+        except KeyError:
+            raise AssumptionError(f"Table I has cases 'a' and 'b'; got {case!r}") from None
+
+    @property
+    def c(self) -> Fraction:
+        """Decrease rate ``c = 2(k_v k_p - k_i)`` of Lemma 2, item 2."""
+        return 2 * (self.k_v * self.k_p - self.k_i)
+
+    @property
+    def stiction(self) -> bool:
+        """``f_s > f_c``: static friction above the Coulomb level (the paper's model has ``f_s = f_c``)."""
+        return self.f_s > self.f_c
+
+    @property
+    def rho(self) -> Fraction:
+        """``ρ = (f_s - f_c)/f_c``: the stiction law lies in ``f_c SGN_ρ`` of Corollary 1 (eq. perturbed)."""
+        return (self.f_s - self.f_c) / self.f_c
+
+    @property
+    def routh_margin(self) -> Fraction:
+        """``k_v k_p / k_i``; Assumption 1 holds iff this exceeds 1."""
+        return self.k_v * self.k_p / self.k_i
+
+    def as_floats(self) -> tuple[float, float, float, float]:
+        """``(k_p, k_i, k_v, f_c)`` as floats, for numerical code.
+
+        Raises
+        ------
+        ParameterError
+            If a value is beyond the range of float64 or so small it rounds to 0
+            (numerical code would compute with inf or 0, not with the gain).
+        """
+        cached = self.__dict__.get("_floats")
+        if cached is None:
+            cached = tuple(_float(getattr(self, name), name) for name in self._names)
+            object.__setattr__(self, "_floats", cached)
+        return cached  # type: ignore[return-value]
+
+    def as_strings(self) -> dict[str, str]:
+        """The parameters as exact ``"p/q"`` strings (file format); ``f_s`` only when it differs from ``f_c``."""
+        out = {name: format_rational(getattr(self, name)) for name in self._names}
+        if self.stiction:
+            out["f_s"] = format_rational(self.f_s)
+        return out
+
+    def __str__(self) -> str:
+        names = (*self._names, "f_s") if self.stiction else self._names
+        inner = ", ".join(f"{k}={_fmt(getattr(self, k))}" for k in names)
+        return f"Parameters({inner})"
+
+
+TABLE_I: dict[str, Parameters] = {
+    "a": Parameters(k_v="6.4", k_p=3, k_i=4, f_c=1),
+    "b": Parameters(k_v="1.5", k_p="0.66", k_i="0.08", f_c=1),
+}
+"""Table I of the paper: case (a) complex roots, case (b) three real roots."""

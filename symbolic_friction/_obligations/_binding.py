@@ -1,0 +1,196 @@
+"""The machinery of the binding obligations (:mod:`.model`).
+
+Exact instances and their points, and the comparison of one package function
+with the paper's definition per sign class.
+
+A binding compares the package's function, evaluated in the sympy kind, with the
+paper's definition on every class of the case split (a sympy identity), and its
+exact and float evaluations with the symbolic one at a point of every class and
+boundary, at gains whose float arithmetic is exact; never with a tolerance."""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Callable
+from dataclasses import dataclass
+from fractions import Fraction
+from typing import Any
+
+import numpy as np
+import sympy as sp
+
+from .._model import symbolic as _symbolic
+from .._model.attractor import dz
+from .._model.lyapunov import V
+from .._model.parameters import Parameters
+from ._base import Obligation, Outcome
+from ._decide import G, Undecided, decide, is_zero, latex, resolve_piecewise, sign_of
+from ._inequalities import Case, case_grid, phi_cases, sign_cases
+
+
+INSTANCE = Parameters(k_p=3, k_i=2, k_v=1, f_c=2)
+"""Gains of the exact instances: Assumption 1 holds (1·3 > 2), every
+parameter and ``k_v/k_i`` is dyadic and all four differ, so a swapped gain
+changes a value and float arithmetic on the points below is exact."""
+
+
+K_INSTANCE = (Fraction(1), Fraction(2), Fraction(3), Fraction(5))
+"""Constants ``k₁ … k₄`` of the ``V̂`` instances (distinct, dyadic)."""
+
+
+_SIGMAS = (Fraction(-1), Fraction(0), Fraction(1))
+
+
+_VS = (Fraction(-1, 2), Fraction(0), Fraction(1, 2))
+
+
+def instance_points(f_c: Fraction = INSTANCE.f_c) -> tuple[tuple[Fraction, Fraction, Fraction], ...]:
+    """``(σ, φ, v)`` with a point in every class of ``σ ≷ 0``, ``v ≷ 0`` and ``φ`` against ``±f_c``.
+
+    ``φ`` takes ``-3f_c/2, -f_c, -f_c/2, 0, f_c/2, f_c, 3f_c/2``: both
+    boundaries, both outer pieces and the inner piece on both sides of 0.
+    """
+    phis = tuple(f_c * Fraction(n, 2) for n in (-3, -2, -1, 0, 1, 2, 3))
+    return tuple(itertools.product(_SIGMAS, phis, _VS))
+
+
+def _state_cases(g: _symbolic.Gains) -> list[Case]:
+    return case_grid(sign_cases(g.sigma, "σ", "a_sigma"), sign_cases(g.v, "v", "a_v"), phi_cases(g.phi, g.f_c))
+
+
+def _gain_values(g: _symbolic.Gains, p: Parameters) -> dict[sp.Symbol, sp.Expr]:
+    return {g.k_p: sp.Rational(p.k_p), g.k_i: sp.Rational(p.k_i), g.k_v: sp.Rational(p.k_v), g.f_c: sp.Rational(p.f_c)}
+
+
+def _as_exact(x: Any) -> Fraction | bool:
+    x = sp.sympify(x)
+    if x in (sp.true, sp.false):
+        return bool(x)
+    if not x.is_Rational:
+        raise Undecided(f"{x} is not an exact rational")
+    return Fraction(int(x.p), int(x.q))
+
+
+def _sign(case: Case, var: sp.Symbol) -> int:
+    value = sign_of(case(var))
+    if value is None:
+        raise Undecided(f"cannot decide the sign of {case(var)}")
+    return value
+
+
+@dataclass(frozen=True)
+class BindingSubject:
+    """A runtime model function in its three kinds, and the paper's definition.
+
+    Attributes
+    ----------
+    name : str
+        The paper object, e.g. ``"V"``.
+    symbolic : sympy expression or relational
+        The package function evaluated in the sympy kind on ``state``.
+    paper : callable
+        ``paper(case) -> expr``: the paper's definition on one case of the split.
+    cases : tuple of Case
+        The case split (every sign class and every piece of ``dz``).
+    exact, floats : callable
+        ``exact(params, point)`` evaluates the package function on one exact
+        point (a list of Fractions); ``floats(params, array)`` on an ``(n, 3)``
+        float array, vectorised.
+    params : Parameters
+        The instance gains.
+    constants : dict
+        Symbol → exact value at the instance (gains, and ``k₁ … k₄`` for ``V̂``).
+    points : tuple
+        Exact states, one in every class and on every boundary.
+    state : tuple of Symbol
+        The state symbols ``symbolic`` is written in.
+    relation : bool
+        The object is a set: compare truth values, not values.
+    """
+
+    name: str
+    symbolic: Any
+    paper: Callable[[Case], Any]
+    cases: tuple[Case, ...]
+    exact: Callable[[Parameters, Any], Any]
+    floats: Callable[[Parameters, np.ndarray], Any]
+    params: Parameters
+    constants: dict
+    points: tuple[tuple[Fraction, Fraction, Fraction], ...]
+    state: tuple[sp.Symbol, sp.Symbol, sp.Symbol]
+    relation: bool = False
+
+
+def _verify_binding(s: BindingSubject) -> Outcome:
+    """Symbolic equality with the paper on every case, then the three kinds at every point."""
+    for case in s.cases:
+        try:
+            got = resolve_piecewise(case(s.symbolic))
+            want = resolve_piecewise(s.paper(case))
+            if s.relation:
+                a, b = decide(got), decide(want)
+                if a is None or b is None or a != b:
+                    return Outcome.fail(f"{case.label}: the package's {s.name} gives {got} ({a}), the paper {want} ({b})")
+            elif not is_zero(sp.expand(got - want)):
+                return Outcome.fail(f"{case.label}: the package's {s.name} = {got} differs from the paper's {want}")
+        except Undecided as exc:
+            return Outcome.fail(f"{case.label}: {exc}")
+    floats = s.floats(s.params, np.array([[float(c) for c in p] for p in s.points]))
+    floats = np.broadcast_to(np.asarray(floats), (len(s.points),))
+    for i, point in enumerate(s.points):
+        where = "(" + ", ".join(str(c) for c in point) + ")"
+        at = dict(s.constants)
+        at.update(dict(zip(s.state, (sp.Rational(c) for c in point))))
+        try:
+            want = _as_exact(resolve_piecewise(sp.sympify(s.symbolic).xreplace(at)))
+        except Undecided as exc:
+            return Outcome.fail(f"at {where}: {exc}")
+        got = s.exact(s.params, list(point))
+        kind_ok = isinstance(got, bool) if s.relation else isinstance(got, (Fraction, int)) and not isinstance(got, bool)
+        if not kind_ok or got != want:
+            return Outcome.fail(f"at {where}: the exact {s.name} is {got!r}, the symbolic one {want}")
+        f = floats[i]
+        if (bool(f) != want) if s.relation else (float(f) != float(want)):
+            return Outcome.fail(f"at {where}: the float {s.name} is {f!r}, the exact one {want}")
+    details = (
+        (f"{s.name}\\ \\text{{(package, sympy kind)}}", latex(s.symbolic)),
+        ("\\text{classes, exact points}", f"{len(s.cases)},\\ {len(s.points)}"),
+    )
+    return Outcome(
+        True,
+        f"equal to the paper on {len(s.cases)} classes; exact, float and sympy agree at {len(s.points)} points",
+        details,
+    )
+
+
+class _Binding(Obligation):
+    """A binding obligation: subclasses build a :class:`BindingSubject`."""
+
+    method = (
+        "sympy identity per class of the case split; the package function evaluated exactly and on "
+        "float arrays at a dyadic point of every class and boundary, compared with == (no tolerance)"
+    )
+
+    def verify(self, subject: BindingSubject) -> Outcome:
+        return _verify_binding(subject)
+
+
+def _paper_dz(case: Case, y: sp.Expr, c: sp.Expr) -> sp.Expr:
+    """``dz_c(y) = y - c·sat(y/c)`` (Notation, §I), by the class of ``y`` in the case."""
+    value, bound = case(y), case(c)
+    above, below = decide(sp.StrictGreaterThan(value, bound)), decide(sp.StrictLessThan(value, -bound))
+    if above is None or below is None:
+        raise Undecided(f"cannot place {value} against ±{bound}")
+    return value - bound if above else value + bound if below else sp.Integer(0)
+
+
+def _x_subject(name: str, function: Callable[[Any, Any], Any], paper: Callable[[Case], Any], **fields: Any) -> BindingSubject:
+    """The subject binding ``function(params, x)`` of the state ``x = (σ, φ, v)`` to ``paper``."""
+    g = G()
+    state = [g.sigma, g.phi, g.v]
+    defaults = dict(
+        symbolic=function(g, state), exact=function, floats=function, params=INSTANCE,
+        constants=_gain_values(g, INSTANCE), cases=tuple(_state_cases(g)), points=instance_points(), state=tuple(state),
+    )
+    defaults.update(fields)
+    return BindingSubject(name=name, paper=paper, **defaults)
