@@ -290,12 +290,15 @@ def _fallback(
     keep = batch.t <= t_stop
     later = batch.t[~keep]
     scale = max(1.0, float(np.max(np.abs(z_stop))), float(params.f_c) / float(params.k_i))
-    radau = IvpEvents(integrator=FALLBACK_INTEGRATOR, rtol=FALLBACK_RTOL, atol=FALLBACK_RTOL * scale, max_events=max_events)
+    # the rest of the event budget (the kernel's events count), at least one mode change
+    radau = IvpEvents(
+        integrator=FALLBACK_INTEGRATOR, rtol=FALLBACK_RTOL, atol=FALLBACK_RTOL * scale, max_events=max(max_events - n, 1)
+    )
     horizon = t_end - t_stop
-    rest = radau._solve(params, z_stop, horizon, np.concatenate([later - t_stop, [horizon]]) if later.size else None, radau.options)
-    rt, rz, rmode = rest.t + t_stop, rest.z, rest.mode
-    if later.size:  # the requested samples only (the last one was added to reach t_end)
-        rt, rz, rmode = rt[:-1], rz[:-1], rmode[:-1]
+    # the requested samples after the stop, and t_end so that Radau runs to the horizon (dropped below)
+    rest = radau._solve(params, z_stop, horizon, np.concatenate([later - t_stop, [horizon]]), radau.options)
+    end = -1 if rest.t.size and rest.t[-1] == horizon else None  # an incomplete rest keeps its last sample
+    rt, rz, rmode = rest.t[:end] + t_stop, rest.z[:end], rest.mode[:end]
     events = tuple((float(batch.event_t[0, j]), int(batch.event_before[0, j]), int(batch.event_after[0, j])) for j in range(n))
     events += tuple((t + t_stop, a, b) for t, a, b in rest.events)
     complete = rest.status in Status.COMPLETE
