@@ -1,10 +1,18 @@
 """Atomic writes: nothing is lost when a write fails."""
 
 import os
+import socket
+import stat
+import subprocess
+import sys
+import threading
+from pathlib import Path
 
 import pytest
 
+from symbolic_friction._infra.errors import OutputPathError
 from symbolic_friction._infra.io import atomic_write, atomic_write_text
+from symbolic_friction._infra.io import atomic_write_text as _write
 
 
 def test_writes_text_and_keeps_no_temporary(tmp_path):
@@ -78,3 +86,125 @@ def test_ensure_directory_and_check_output_directory(tmp_path):
         check_output_directory(tmp_path / "file" / "sub")
     with pytest.raises(OutputPathError, match="file name too long"):
         check_output_directory(tmp_path / ("n" * 300))
+
+
+# -- special files given as the output: written into, or refused, never replaced ----------------
+
+
+def test_dev_null_is_written_into_and_stays_a_character_device():
+    before = os.stat("/dev/null")
+    assert stat.S_ISCHR(before.st_mode)
+    _write("/dev/null", "some text\n")
+    after = os.stat("/dev/null")
+    assert stat.S_ISCHR(after.st_mode) and after.st_rdev == before.st_rdev and after.st_ino == before.st_ino
+
+
+def test_dev_full_is_an_error_that_says_so():
+    if not os.path.exists("/dev/full"):
+        pytest.skip("no /dev/full here")
+    with pytest.raises(OutputPathError, match="no space left"):
+        _write("/dev/full", "x" * 100_000)
+    assert stat.S_ISCHR(os.stat("/dev/full").st_mode)
+
+
+def test_a_fifo_without_a_reader_is_refused_not_waited_on(tmp_path):
+    fifo = tmp_path / "pipe"
+    os.mkfifo(fifo)
+    with pytest.raises(OutputPathError, match="FIFO with no reader"):
+        _write(fifo, "hello\n")
+    assert stat.S_ISFIFO(os.lstat(fifo).st_mode)
+
+
+def test_a_fifo_with_a_reader_receives_the_whole_text(tmp_path):
+    fifo = tmp_path / "pipe"
+    os.mkfifo(fifo)
+    got = []
+    fd = os.open(fifo, os.O_RDONLY | os.O_NONBLOCK)  # a reader is there before the write
+    text = "line\n" * 50_000  # more than a pipe buffer: the writer must block until read
+
+    def read():
+        # until the writer has opened, a read sees end-of-file: keep reading until all has come
+        import time
+
+        data, deadline = b"", time.monotonic() + 10
+        while len(data) < len(text) and time.monotonic() < deadline:
+            try:
+                chunk = os.read(fd, 1 << 16)
+            except BlockingIOError:
+                chunk = b""
+            data += chunk
+            if not chunk:
+                time.sleep(0.001)
+        os.close(fd)
+        got.append(data)
+
+    reader = threading.Thread(target=read)
+    reader.start()
+    _write(fifo, text)
+    reader.join(10)
+    assert got == [text.encode()] and stat.S_ISFIFO(os.lstat(fifo).st_mode)
+
+
+def test_a_symbolic_link_is_refused_and_left_alone(tmp_path):
+    target = tmp_path / "target.txt"
+    target.write_text("keep\n")
+    link = tmp_path / "link.txt"
+    os.symlink(target, link)
+    with pytest.raises(OutputPathError, match="symbolic link"):
+        _write(link, "new\n")
+    assert os.path.islink(link) and target.read_text() == "keep\n"
+
+
+def test_a_socket_is_refused(tmp_path):
+    path = tmp_path / "sock"
+    with socket.socket(socket.AF_UNIX) as s:
+        s.bind(str(path))
+        with pytest.raises(OutputPathError, match="not a regular file"):
+            _write(path, "x\n")
+        assert stat.S_ISSOCK(os.lstat(path).st_mode)
+
+
+def test_a_regular_file_is_still_replaced_atomically(tmp_path):
+    path = tmp_path / "out.txt"
+    path.write_text("old\n")
+    _write(path, "new\n")
+    assert path.read_text() == "new\n" and stat.S_ISREG(os.lstat(path).st_mode)
+
+
+@pytest.mark.parametrize("target, code, says", [("/dev/null", 0, None), ("/dev/full", 2, "no space left")])
+def test_verify_junit_xml_to_a_device(target, code, says):
+    """``verify … --junit-xml /dev/null`` leaves /dev/null a device; ``/dev/full`` is exit 2 with one line."""
+    if not os.path.exists(target):
+        pytest.skip(f"no {target} here")
+    root = Path(__file__).resolve().parents[1]
+    run = subprocess.run(
+        [sys.executable, "-m", "symbolic_friction", "verify", str(root / "proofs" / "case_a_feasible.json"),
+         "--junit-xml", target],
+        capture_output=True, text=True, timeout=120,
+    )
+    assert run.returncode == code, run.stderr
+    assert stat.S_ISCHR(os.stat(target).st_mode)
+    if says:
+        lines = run.stderr.strip().splitlines()
+        assert len(lines) == 1 and says in lines[0] and "Traceback" not in run.stderr
+
+
+@pytest.mark.parametrize("stem", ["../x", "/abs/path", "a/b", " ", " x", "x ", ".hidden", "..", "", "a\nb", "x" * 201])
+def test_a_name_is_a_plain_stem(stem):
+    from symbolic_friction._infra.io import check_stem
+
+    with pytest.raises(OutputPathError):
+        check_stem(stem)
+
+
+@pytest.mark.parametrize("command", [["certify", "--k-p", "3", "--k-i", "4", "--k-v", "6.4", "--f-c", "1"],
+                                     ["hunting", "--k-p", "3", "--k-i", "4", "--k-v", "6.4", "--f-c", "1", "--f-s", "1.2"]])
+@pytest.mark.parametrize("stem", ["../x", "/tmp/abs", " "])
+def test_certify_and_hunting_refuse_a_name_outside_out(command, stem, tmp_path):
+    run = subprocess.run(
+        [sys.executable, "-m", "symbolic_friction", *command, "--out", str(tmp_path / "out"), "--name", stem],
+        capture_output=True, text=True, timeout=120, cwd=tmp_path,
+    )
+    assert run.returncode == 2, run.stderr
+    assert len(run.stderr.strip().splitlines()) == 1 and "--name" in run.stderr and "Traceback" not in run.stderr
+    assert not (tmp_path / "x.json").exists() and not any(tmp_path.rglob("*.json"))

@@ -127,22 +127,6 @@ def _physical(args: argparse.Namespace) -> dict | None:
     return {n: values[n] for n in ("m", "k_p_bar", "k_i_bar", "k_d_bar", "alpha_v", "f_c_bar")}
 
 
-_STEM_MAX = 200
-
-
-def check_stem(stem: str) -> str:
-    """A ``--name`` must be a plain file stem: no directory part, no ``..``, printable, not too long."""
-    if not stem or stem in (".", "..") or "/" in stem or "\\" in stem or stem.startswith("."):
-        raise ParameterError(
-            f"--name must be a plain file name without directories (it is written inside --out); got {stem!r}"
-        )
-    if len(stem) > _STEM_MAX:
-        raise ParameterError(f"--name must be at most {_STEM_MAX} characters; got {len(stem)} characters")
-    if not stem.isprintable():
-        raise ParameterError(f"--name must hold printable characters only (no newlines or control characters); got {stem!r}")
-    return stem
-
-
 def run(args: argparse.Namespace) -> int:
     """Certify, verify, write; print one line per certificate written."""
     from pathlib import Path
@@ -150,7 +134,7 @@ def run(args: argparse.Namespace) -> int:
     from .._certify import MODES, certify, default_stem, write_certificate
     from .._certify.pipeline import TABLE_I_LABELS, table_i_stem
     from .._certify.search import check_margin
-    from .._infra.io import ensure_directory
+    from .._infra.io import check_stem, ensure_directory
     from .._model.parameters import Parameters
     from .._infra.rational import format_rational
     from .._infra.output import emit

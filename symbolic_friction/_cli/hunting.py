@@ -58,10 +58,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from .._infra.io import check_stem
     from .._infra.output import emit
     from .._model.parameters import Parameters
 
     params = Parameters(**{name: getattr(args, name) for name in _NAMES})
+    if args.name is not None:  # refused before any work, as certify's
+        check_stem(args.name)
     if not params.stiction:
         emit(
             f"{params}: f_s = f_c, the paper's model. Proposition 1: 𝒜 is globally asymptotically stable, so no "
@@ -91,7 +94,7 @@ def run(args: argparse.Namespace) -> int:
     if not cycles:
         emit("no symmetric hunting cycle found (stick exits with σ in [Δ·1e-4, Δ·1e4], Δ = f_s - f_c): nothing certified", level=0)
         return 1
-    stem = args.name or "hunting_" + hashlib.sha256(str(params).encode()).hexdigest()[:10]
+    stem = check_stem(args.name) if args.name is not None else "hunting_" + hashlib.sha256(str(params).encode()).hexdigest()[:10]
     failed = False
     for n, cycle in enumerate(cycles, start=1):
         k_i = float(params.k_i)

@@ -4,7 +4,10 @@ A write to ``proofs/`` (or any output) must never leave a
 truncated file behind.  Every writer goes through :func:`atomic_write`,
 which writes a temporary file in the target's directory, flushes it to disk
 and renames it over the target with ``os.replace`` (atomic on POSIX and
-Windows).  Readers see the old file or the complete new one.
+Windows).  Readers see the old file or the complete new one.  Only a regular
+file (or a new one) is replaced: a character device or a FIFO given as the
+target (``/dev/null``, a pipe) is written into, never replaced, and a
+symbolic link, a directory or any other special file is refused.
 """
 
 from __future__ import annotations
@@ -19,7 +22,13 @@ from typing import IO
 
 from .errors import InputFileError, OutputPathError
 
-__all__ = ["atomic_write", "atomic_write_text", "read_limited", "ensure_directory", "check_output_directory", "describe_os_error"]
+__all__ = [
+    "atomic_write", "atomic_write_text", "read_limited", "ensure_directory", "check_output_directory", "check_stem",
+    "describe_os_error",
+]
+
+# The longest file stem a --name may give.
+STEM_MAX = 200
 
 
 def describe_os_error(exc: OSError, path: str | os.PathLike[str] | None = None) -> str:
@@ -116,10 +125,18 @@ def atomic_write(path: str | os.PathLike[str], write: Callable[[IO[bytes]], obje
         ``path``.
     """
     path = Path(path)
+    try:
+        st = os.lstat(path)
+    except FileNotFoundError:
+        st = None
+    except OSError as exc:
+        raise OutputPathError(describe_os_error(exc, path)) from None
+    if st is not None and not stat.S_ISREG(st.st_mode):
+        return _write_through(path, st, write)
     path.parent.mkdir(parents=True, exist_ok=True)
     # mkstemp creates the file 0600; give the result the mode of the file it
     # replaces (or the usual 0644) so committed files stay world-readable.
-    mode = path.stat().st_mode & 0o777 if path.exists() else 0o644
+    mode = st.st_mode & 0o777 if st is not None else 0o644
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     try:
         os.chmod(tmp, mode)
@@ -134,6 +151,40 @@ def atomic_write(path: str | os.PathLike[str], write: Callable[[IO[bytes]], obje
         except FileNotFoundError:
             pass
         raise
+    return path
+
+
+def _write_through(path: Path, st: os.stat_result, write: Callable[[IO[bytes]], object]) -> Path:
+    """Write into a character device or a FIFO (``/dev/null``, a pipe), never replace it; refuse anything else.
+
+    Replacing ``/dev/null`` by a regular file (as root, in a CI container) would
+    break the system; a symbolic link is refused rather than followed or
+    replaced, and so are directories, sockets and block devices.  A FIFO
+    without a reader is refused rather than waited on; a write that fails
+    (``/dev/full``: no space left) is an error.
+    """
+    mode = st.st_mode
+    if stat.S_ISLNK(mode):
+        raise OutputPathError(f"{path}: is a symbolic link; give the file it points to (it is not replaced)")
+    if stat.S_ISDIR(mode):
+        raise OutputPathError(f"{path}: is a directory; give a file name")
+    if not (stat.S_ISCHR(mode) or stat.S_ISFIFO(mode)):
+        raise OutputPathError(f"{path}: is not a regular file, a character device or a FIFO; refusing to write to it")
+    flags = os.O_WRONLY | (os.O_NONBLOCK if stat.S_ISFIFO(mode) else 0)
+    try:
+        fd = os.open(path, flags)
+    except OSError as exc:
+        if exc.errno == errno.ENXIO:  # a FIFO with no reader
+            raise OutputPathError(f"{path}: is a FIFO with no reader; refusing to wait for one") from None
+        raise OutputPathError(describe_os_error(exc, path)) from None
+    try:
+        if stat.S_ISFIFO(mode):
+            os.set_blocking(fd, True)  # a reader is there: write all of it
+        with os.fdopen(fd, "wb") as handle:
+            write(handle)
+            handle.flush()
+    except OSError as exc:
+        raise OutputPathError(describe_os_error(exc, path)) from None
     return path
 
 
@@ -177,3 +228,24 @@ def check_output_directory(path: str | os.PathLike[str], *, what: str = "output 
             raise
         raise OutputPathError(f"cannot use {what} {describe_os_error(exc, path)}") from None
     return path
+
+
+def check_stem(stem: str, *, what: str = "--name") -> str:
+    """A file stem written inside an output directory: no directory part, no ``..``, printable, not blank, bounded.
+
+    Raises
+    ------
+    OutputPathError
+        Naming what is wrong with ``stem`` (``certify --name ../x``, ``hunting --name /abs``, ``" "``).
+    """
+    if not stem or stem in (".", "..") or "/" in stem or "\\" in stem or stem.startswith("."):
+        raise OutputPathError(
+            f"{what} must be a plain file name without directories (it is written inside --out); got {stem!r}"
+        )
+    if len(stem) > STEM_MAX:
+        raise OutputPathError(f"{what} must be at most {STEM_MAX} characters; got {len(stem)} characters")
+    if not stem.isprintable():
+        raise OutputPathError(f"{what} must hold printable characters only (no newlines or control characters); got {stem!r}")
+    if stem != stem.strip():
+        raise OutputPathError(f"{what} must not begin or end with white space; got {stem!r}")
+    return stem
