@@ -68,11 +68,13 @@ def resolve_target(args: argparse.Namespace) -> Target:
     if cached is not None:
         return cached
     from .._infra.config import find_config, load_config
-    from .._infra.errors import ConfigError
+    from .._infra.errors import ConfigError, UsageError
 
     config_file = getattr(args, "config", None)
     config = load_config(config_file) if config_file is not None else find_config()
     proofs_arg = getattr(args, "proofs", None)
+    if proofs_arg is not None and not str(proofs_arg).strip():
+        raise UsageError("--proofs must name a directory; got an empty string")
     if config is not None:
         proofs = Path(proofs_arg) if proofs_arg is not None else _relative(config.proofs)
         target = Target(proofs, config.certificates, config.report, str(config.source))

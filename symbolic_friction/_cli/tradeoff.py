@@ -27,6 +27,10 @@ DEFAULT_Z0 = {"a": "0,1,0", "b": "0,3,0"}
 DEFAULT_T = {"a": 30.0, "b": 60.0}
 
 
+# Bounds checked before any work: the horizon and the sample count of one run.
+MAX_T_END, MAX_SAMPLES = 1e4, 100_000
+
+
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Gains (as ``certify``), ``--case``, ``--z0``, ``--t-end``, ``--samples``, ``--repeats``, output options."""
     from .certify import add_gain_arguments
@@ -90,8 +94,10 @@ def run(args: argparse.Namespace) -> int:
         case, label, stem = None, "user gains", "tradeoff_user"
     z0s = [_state(z) for z in (args.z0 or [DEFAULT_Z0.get(case, "0,1,0")])]
     t_end = args.t_end if args.t_end is not None else DEFAULT_T.get(case, 30.0)
-    if not (math.isfinite(t_end) and t_end > 0):
-        raise UsageError(f"--t-end must be finite and > 0; got {t_end}")
+    if not (math.isfinite(t_end) and 0 < t_end <= MAX_T_END):
+        raise UsageError(f"--t-end must be > 0 and at most {MAX_T_END:g} (the reference's cost grows with it); got {t_end:g}")
+    if not 2 <= args.samples <= MAX_SAMPLES:
+        raise UsageError(f"--samples must be between 2 and {MAX_SAMPLES}; got {args.samples}")
     if not args.no_figures:
         ensure_directory(args.out)  # an unusable --out fails now, not after the measurements
     result = measure_tradeoff(params, z0s, t_end, label=label, samples=args.samples, repeats=args.repeats, quick=args.quick)

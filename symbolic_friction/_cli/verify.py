@@ -13,6 +13,7 @@ rational string is required, …).
 from __future__ import annotations
 
 import argparse
+import os
 
 _LONG = 4000
 HELP = "exactly re-check certificate files (exit 0 only if every file proves its claim)"
@@ -52,6 +53,8 @@ def run(args: argparse.Namespace) -> int:
 
     for name in args.files:
         try:
+            if str(name).endswith(("/", os.sep)):  # pathlib would drop the slash and read the file
+                raise InputFileError(f"cannot read certificate {name}: a trailing / names a directory, not a file")
             # dispatch on the file's schema: a hunting certificate has its own proof
             hunting, report = verify_any_file(name)
         except (CertificateFormatError, InputFileError) as exc:

@@ -100,11 +100,17 @@ def parse_sweep(text: str) -> list[Fraction]:
         If a ratio is not a number or is not above 1.
     """
     from .._infra.errors import ParameterError
+    from .._infra.rational import to_rational
 
-    try:
-        ratios = [Fraction(r.strip()) for r in text.split(",") if r.strip()]
-    except ValueError:
-        raise ParameterError(f"--sweep must be comma-separated ratios f_s/f_c like 1.1,1.2; got {text!r}") from None
-    if any(r <= 1 for r in ratios):
-        raise ParameterError(f"--sweep ratios must exceed 1 (f_s > f_c); got {text!r}")
+    parts = [r.strip() for r in text.split(",") if r.strip()]
+    if not parts or len(parts) > MAX_SWEEP:
+        raise ParameterError(f"--sweep takes 1 to {MAX_SWEEP} comma-separated ratios f_s/f_c like 1.1,1.2; got {len(parts)}")
+    ratios = [to_rational(r, name="a --sweep ratio") for r in parts]
+    bad = [r for r in ratios if not 1 < r <= MAX_RATIO]
+    if bad:
+        raise ParameterError(f"--sweep ratios f_s/f_c must lie in (1, {MAX_RATIO}] (f_s > f_c); got {float(bad[0]):g}")
     return ratios
+
+
+# Bounds on --sweep: at most this many ratios, each at most this large (static friction this far above Coulomb).
+MAX_SWEEP, MAX_RATIO = 50, 100

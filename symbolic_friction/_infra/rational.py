@@ -138,7 +138,7 @@ def to_rational(value: object, *, name: str = "value", binary: bool = False) -> 
             raise InvalidNumberError(
                 f"{name} has the exponent {exponent.group(1)}; exponents beyond ±{MAX_EXPONENT} are refused"
             )
-        num = text.replace(" ", "")
+        num = "".join(text.split())  # white space around the slash (tabs, newlines too) is not part of the number
         if "/" in num and int(num.split("/")[1]) == 0:
             raise InvalidNumberError(f"{name} has a zero denominator: {value!r}")
         return Fraction(num)

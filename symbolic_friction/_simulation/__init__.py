@@ -13,7 +13,7 @@ from typing import Any
 
 from .._infra.errors import SimulationError
 from .._model.parameters import Parameters
-from ._base import SimulationMethod, Solution, _check_horizon, _check_state, _check_t_eval
+from ._base import SimulationMethod, Solution, _check_float_model, _check_horizon, _check_state, _check_t_eval
 from ._trajectories import Status, Trajectories
 
 __all__ = [
@@ -133,6 +133,7 @@ def simulate(
             f"method {solver.name!r} models Coulomb friction only (f_s = f_c); got f_s = {params.f_s} > f_c = {params.f_c}: "
             "use the event-driven method"
         )
+    _check_float_model(params)
     z = _check_state(z0)
     t = _check_horizon(t_end)
     te = _check_t_eval(t_eval, t)

@@ -48,6 +48,28 @@ def finite_or_raise(method: str, t: np.ndarray, z: np.ndarray) -> None:
 
 
 # -- the arguments of simulate and simulate_batch, checked once for every method --
+def _check_float_model(params: Parameters) -> None:
+    """Refuse gains whose float64 model does not exist: the coordinate change ``z = T⁻¹ x`` (eq. CoC) and ``A``
+    need ``k_i²``, ``k_p/k_i²``, ``k_v`` and ``f_c`` representable, neither zero nor infinite.
+
+    Exact work (``certify``, the obligations) takes any positive rational; a simulation computes in float64.
+    """
+    from .._model.coordinates import coc_inverse_entries
+
+    k_p, k_i, k_v, f_c = params.as_floats()
+    try:
+        entries = [x for row in coc_inverse_entries(k_p, k_i) for x in row]
+        ok = all(math.isfinite(x) for x in (*entries, k_p, k_i, k_v, f_c)) and min(k_p, k_i, k_v, f_c, k_i * k_i) > 0
+    except (ZeroDivisionError, OverflowError):
+        ok = False
+    if not ok:
+        raise SimulationError(
+            f"these gains are beyond what a float64 simulation can represent (k_p = {k_p:g}, k_i = {k_i:g}, "
+            f"k_v = {k_v:g}, f_c = {f_c:g}: k_i², k_p/k_i² and the gains must be finite and nonzero in float64); "
+            "rescale time or the state (the exact commands, certify and check, take them as they are)"
+        )
+
+
 def _check_state(z0: Any) -> np.ndarray:
     try:
         arr = np.asarray(z0, dtype=float)

@@ -17,7 +17,7 @@ import numpy as np
 from .._infra.errors import SimulationError
 from .._model.parameters import Parameters
 from ._trajectories import Trajectories
-from ._base import _check_horizon, _check_t_eval
+from ._base import _check_float_model, _check_horizon, _check_t_eval
 from .event import _check_positive_int, run
 
 __all__ = ["simulate_batch", "iter_batches", "DEFAULT_CHUNK"]
@@ -97,6 +97,7 @@ def _validated(params: Parameters, Z0: Any, t_end: Any, t_eval: Any, max_events:
         raise SimulationError(f"params must be a Parameters instance; got {type(params).__name__}")
     _check_positive_int("max_events", max_events, 1)
     _check_positive_int("grid_points", grid_points, 2)
+    _check_float_model(params)
     Z0 = _check_states(Z0)
     t_end = _check_horizon(t_end)
     t_eval = _check_t_eval(t_eval, t_end)
