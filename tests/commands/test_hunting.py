@@ -42,4 +42,4 @@ def test_static_below_coulomb_is_a_usage_error(tmp_path, capsys):
 
 def test_bad_sweep_is_a_usage_error(tmp_path, capsys):
     assert main(["hunting", *A, "--f-s", "1.2", "--out", str(tmp_path), "--sweep", "0.5", "--no-iss", "--no-simulation"]) == 2
-    assert "--sweep ratios must exceed 1" in capsys.readouterr().err
+    assert "--sweep ratios f_s/f_c must lie in (1, 100] (f_s > f_c); got 0.5" in capsys.readouterr().err
