@@ -118,7 +118,7 @@ def cells() -> list[Cell]:
     for e in (4, 8):
         # (s + 10^e)(s² + 0.2 s + 1): a fast root 10^e times the slow pair's frequency
         p = _fast_and_pair(F(10) ** e, F(1, 10), F(1))
-        out.append(Cell("stiff", f"fast/slow 1e{e}, slow pair zeta 0.1", p, (0.0, 1.0, 0.0), 20.0))
+        out.append(Cell("stiff", f"fast/slow 1e{e}, slow pair zeta 0.1", p, (0.0, 1.0, 0.0), 5.0))
     out.extend(random_cells())
     for e in (-9, -3, 3, 9):
         p = Parameters(k_p=a.k_p, k_i=a.k_i, k_v=a.k_v, f_c=F(10) ** e)
