@@ -39,8 +39,8 @@ MAX_STEPS = 2000
 
 __all__ = [
     "p_norm", "MAX_STEPS", "pair_cd", "w3", "w_many", "cofactors", "slip_q", "flow", "modal",
-    "first_zero", "_apply3", "_basis", "_newton", "_modal_bound", "_march", "_march_cell", "_scan_fast",
-    "_scan_slow",
+    "first_zero", "_apply3", "_basis", "_newton", "_modal_bound", "_march", "_march_cell", "_scan_cells",
+    "_scan_fast", "_scan_slow",
 ]
 
 
@@ -327,8 +327,39 @@ def _march_cell(K, q, d, a_w, j, dt, s, p, v, horizon, fast0):
 
 
 @kernel
+def _scan_cells(K, q, d, a_w, s, p, v, horizon, fast0, dt, last, grow, extra, cu, U0, U1, U2, V0, V1, V2, cn, N0, N1, N2):
+    """The cells ``j < last`` of one window from ``a_w`` (offset ``(s, p, v)`` there): the first zero, or ``NONE``.
+
+    On the cell's ends ``u_j = d Σ cuₖ Uₖ[j]`` and ``u''_j = Σ cuₖ Vₖ[j]``; ``|u''|`` on
+    the cell is at most the larger end plus ``extra/grow``, ``u`` is within
+    ``grow·max|u''|`` of its chord, and ``Σ cnₖ Nₖ[j]`` bounds the rounding (and,
+    on the slow table, the decayed fast part).  A cell whose ends both exceed
+    the sum has no zero; the first one that does not is marched.
+    """
+    c0, c1, c2 = cu
+    m0, m1, m2 = cn
+    u_prev = d * (c0 * U0[0] + c1 * U1[0] + c2 * U2[0])
+    u2_prev = abs(c0 * V0[0] + c1 * V1[0] + c2 * V2[0])
+    for j in range(last):
+        u_next = d * (c0 * U0[j + 1] + c1 * U1[j + 1] + c2 * U2[j + 1])
+        u2_next = abs(c0 * V0[j + 1] + c1 * V1[j + 1] + c2 * V2[j + 1])
+        slack = grow * (max(u2_prev, u2_next) + extra)
+        noise = m0 * N0[j] + m1 * N1[j] + m2 * N2[j]
+        if not min(u_prev, u_next) > slack + noise:
+            code, tau, ys, yp, yv = _march_cell(K, q, d, a_w, j, dt, s, p, v, horizon, fast0)
+            if code != NONE:
+                return code, tau, ys, yp, yv
+        u_prev, u2_prev = u_next, u2_next
+    return NONE, a_w, s, p, v
+
+
+@kernel
 def _scan_fast(K, W, N, q, d, a_w, s, p, v, horizon, fast0):
-    """One window of the scan of ``w`` (:class:`.affine.ScanTable`) from ``a_w``, offset ``(s, p, v)`` there."""
+    """One window of the scan of ``w`` (:class:`.affine.ScanTable`) from ``a_w``, offset ``(s, p, v)`` there.
+
+    ``u = d(σ w + p w' + v w'')`` and ``u'' = d(σ w'' + p w⁽³⁾ + v w⁽⁴⁾)`` on the
+    table's grid; ``|u⁽⁴⁾| ≤ m₄|y|_P`` (or the split's bound on stiff gains).
+    """
     dt, n_cells = K[I_DT], int(K[I_CELLS])
     kv_ki, k_p, m4 = K[I_KVKI], K[I_KP], K[I_M4]
     grow = 0.125 * dt * dt
@@ -338,22 +369,10 @@ def _scan_fast(K, W, N, q, d, a_w, s, p, v, horizon, fast0):
     r_p = p_norm(s, p, v, kv_ki, k_p)
     last = min(n_cells, int(math.ceil((horizon - a_w) / dt)))
     extra = grow * min(m4 * r_p, _modal_bound(K, s, p, v, 4, fast0 * math.exp(K[I_R] * a_w)))
-    abs_s, abs_p, abs_v = abs(s), abs(p), abs(v)
-    u_prev = d * (s * W0[0] + p * W1[0] + v * W2[0])
-    u2_prev = abs(s * W2[0] + p * W3[0] + v * W4[0])
-    for j in range(last):
-        u_next = d * (s * W0[j + 1] + p * W1[j + 1] + v * W2[j + 1])
-        u2_next = abs(s * W2[j + 1] + p * W3[j + 1] + v * W4[j + 1])
-        # |u''| on the cell ≤ max of its ends + Δ² max|u⁗|/8; u is within Δ² max|u''|/8
-        # of its chord; plus the rounding of the products that gave u and u''
-        slack = grow * (max(u2_prev, u2_next) + extra)
-        noise = abs_s * N0[j] + abs_p * N1[j] + abs_v * N2[j]
-        if not min(u_prev, u_next) > slack + noise:
-            code, tau, ys, yp, yv = _march_cell(K, q, d, a_w, j, dt, s, p, v, horizon, fast0)
-            if code != NONE:
-                return code, tau, ys, yp, yv
-        u_prev, u2_prev = u_next, u2_next
-    return NONE, a_w, s, p, v
+    return _scan_cells(
+        K, q, d, a_w, s, p, v, horizon, fast0, dt, last, grow, extra,
+        (s, p, v), W0, W1, W2, W2, W3, W4, (abs(s), abs(p), abs(v)), N0, N1, N2,
+    )
 
 
 @kernel
@@ -376,21 +395,11 @@ def _scan_slow(K, W, N, q, d, a_w, s, p, v, horizon, fast0):
     c, c1, c2, ac, e1, e2, sqrt_e = modal(K, s / size, p / size, v / size)
     ac = min(ac, fast0 * math.exp(K[I_R] * a_w) / size)
     extra = grow * K[I_MU + 4] * sqrt_e
-    n1 = 8.0 * EPS * abs(c1) + e1
-    n2 = 8.0 * EPS * abs(c2) + e2
-    u_prev = d * (c1 * WC[0] + c2 * WD[0])
-    u2_prev = abs(c1 * WC2[0] + c2 * WD2[0])
-    for j in range(last):
-        u_next = d * (c1 * WC[j + 1] + c2 * WD[j + 1])
-        u2_next = abs(c1 * WC2[j + 1] + c2 * WD2[j + 1])
-        slack = grow * (max(u2_prev, u2_next) + extra)
-        noise = n1 * NC[j] + n2 * ND[j] + ac * WF[j]
-        if not min(u_prev, u_next) > slack + noise:
-            code, tau, ys, yp, yv = _march_cell(K, q, d, a_w, j, dt, s, p, v, horizon, fast0)
-            if code != NONE:
-                return code, tau, ys, yp, yv
-        u_prev, u2_prev = u_next, u2_next
-    return NONE, a_w, s, p, v
+    # S = c₁C + c₂D (no third term); the rounding of c₁, c₂, and |c| e^{rτ} on the cell
+    return _scan_cells(
+        K, q, d, a_w, s, p, v, horizon, fast0, dt, last, grow, extra,
+        (c1, c2, 0.0), WC, WD, WC, WC2, WD2, WC2, (8.0 * EPS * abs(c1) + e1, 8.0 * EPS * abs(c2) + e2, ac), NC, ND, WF,
+    )
 
 
 @kernel
