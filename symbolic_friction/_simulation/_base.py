@@ -10,6 +10,7 @@ slip ``v < 0``: ``x' = Ax + b``).  Every method below approximates (or, for
 from __future__ import annotations
 
 import abc
+import functools
 import math
 from dataclasses import dataclass, fields
 from typing import Any, ClassVar
@@ -48,6 +49,7 @@ def finite_or_raise(method: str, t: np.ndarray, z: np.ndarray) -> None:
 
 
 # -- the arguments of simulate and simulate_batch, checked once for every method --
+@functools.lru_cache(maxsize=256)  # once per gain set: simulate() is called per trajectory
 def _check_float_model(params: Parameters) -> None:
     """Refuse gains whose float64 model does not exist: the coordinate change ``z = T⁻¹ x`` (eq. CoC) and ``A``
     need ``k_i²``, ``k_p/k_i²``, ``k_v`` and ``f_c`` representable, neither zero nor infinite.
