@@ -267,8 +267,8 @@ def classify_certify(cell: Cell, ref: _Ref, cache: dict) -> Outcome:
 
 
 def _md(text: str) -> str:
-    """A Markdown table cell: ``|`` (as in ``|z0|``) escaped."""
-    return text.replace("|", "\\|")
+    """A Markdown table cell: ``|`` (as in ``|z0|``) escaped, line breaks folded (a row is one line)."""
+    return " ".join(text.split()).replace("|", "\\|")
 
 
 def _name(method: Any) -> str:
@@ -329,7 +329,7 @@ class Extremes:
                 elif o.outcome == PROVED:
                     entries.append(f"proved ({o.reason})")
                 elif o.outcome == REFUSED:
-                    entries.append(f"refused: {o.reason[:90]}")
+                    entries.append(f"refused: {o.reason}")  # whole: a cut reason hides what to change
                 elif o.outcome == HUNG:
                     entries.append(f"no answer: {o.reason}")
                 else:

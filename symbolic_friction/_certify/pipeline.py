@@ -64,6 +64,7 @@ def certify(
         The physical parameters ``params`` came from (``m``, ``k_p_bar``,
         ``k_i_bar``, ``k_d_bar``, ``alpha_v``, ``f_c_bar``), recorded in the
         certificate; the verifier checks that they normalise to ``params``.
+        Default: ``params.physical`` (set by :meth:`Parameters.from_physical`).
 
     Returns
     -------
@@ -93,6 +94,8 @@ def certify(
         )
     candidate = find_candidate(params, mode=mode, margin=margin)
     certificate = to_certificate(candidate, label=label)
+    if physical is None and params.physical is not None:  # gains from Parameters.from_physical
+        physical = params.physical.as_dict()
     if physical is not None:
         certificate = dataclasses.replace(certificate, physical=physical)
     report = verify_certificate(certificate)

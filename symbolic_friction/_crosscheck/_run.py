@@ -26,7 +26,7 @@ from ._claims import Claims
 from ._outcome import CertificateCheck, CrosscheckReport, default_horizon, sample_times, search_mode, SEARCH_MODES
 from ._property import DEFAULT_RTOL, DEFAULT_THETA
 
-__all__ = ["default_certificate_files", "CertificateCheck", "CrosscheckReport", "crosscheck", "default_horizon", "sample_times", "SEARCH_MODES", "search_mode", "GroupRun"]
+__all__ = ["default_certificate_files", "default_certificate_selection", "CertificateCheck", "CrosscheckReport", "crosscheck", "default_horizon", "sample_times", "SEARCH_MODES", "search_mode", "GroupRun"]
 
 def _as_claims(items: Iterable[Any], *, require_proved: bool) -> list[tuple[Claims, str, bool | None]]:
     """``(claims, source, proved)`` per item; with ``require_proved`` every certificate is verified exactly first.
@@ -228,6 +228,10 @@ def crosscheck(
     )
 
 
+HUNTING_SKIPPED = "a hunting certificate: it proves a cycle of the stiction model, not the paper's inequalities (verify checks it)"
+"""Why :func:`default_certificate_files` leaves a hunting certificate out."""
+
+
 def default_certificate_files() -> list[str]:
     """The certificates ``crosscheck`` checks when none is given.
 
@@ -239,6 +243,17 @@ def default_certificate_files() -> list[str]:
     ------
     FileNotFoundError
         If there is none.
+    """
+    return default_certificate_selection()[0]
+
+
+def default_certificate_selection() -> tuple[list[str], list[tuple[str, str]]]:
+    """:func:`default_certificate_files`, and the files left out with the reason for each.
+
+    Raises
+    ------
+    FileNotFoundError
+        If no certificate is left.
     """
     from pathlib import Path
 
@@ -258,10 +273,12 @@ def default_certificate_files() -> list[str]:
             files.append(str(path))
     else:
         files = sorted(str(p) for p in Path("proofs").glob("*.json"))
-    files = [f for f in files if not is_hunting_file(f)]
+    skipped = [(f, HUNTING_SKIPPED) for f in files if is_hunting_file(f)]
+    files = [f for f in files if (f, HUNTING_SKIPPED) not in skipped]
     if not files:
-        raise FileNotFoundError("no certificate given and no proofs/*.json in the current directory")
-    return files
+        raise FileNotFoundError("no certificate given and no proofs/*.json in the current directory"
+                                + (f" (skipped {len(skipped)} hunting certificate(s))" if skipped else ""))
+    return files, skipped
 
 
 class GroupRun:

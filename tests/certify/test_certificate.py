@@ -67,7 +67,8 @@ def test_no_timestamps_timings_or_library_versions(data):
 
 def test_kappa_squared_and_kappa(cert):
     assert cert.kappa_squared == cert.c2 * cert.c2_hat / (cert.c1 * cert.c1_hat)
-    assert cert.kappa == float(cert.overshoot_bound)
+    assert cert.kappa == F(cert.overshoot_bound) and isinstance(cert.kappa, F)
+    assert cert.kappa**2 >= cert.kappa_squared  # the claim, exactly
     assert list(cert.constants) == ["k1", "k2", "k3", "k4", "c1", "c2", "c1_hat", "c2_hat", "c"]
     assert list(cert.parameters) == ["k_p", "k_i", "k_v", "f_c"]
 

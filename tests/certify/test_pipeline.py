@@ -20,6 +20,7 @@ from symbolic_friction._certify import (
     dumps,
     regenerate,
     render_files,
+    verify_certificate,
     write_certificate,
 )
 from symbolic_friction._certify import pipeline as pipeline_module
@@ -157,3 +158,14 @@ def test_write_listed_certificates_regenerates_from_provenance_and_never_invents
     entries = check_listed_certificates(tmp_path, ["mine.json", "absent.json"])
     assert [e.ok for e in entries] == [True, False]
     assert entries[1].reason.startswith("missing; create it with `symbolic-friction certify")
+
+
+def test_physical_values_reach_the_certificate():
+    params = Parameters.from_physical(m=2, k_p_bar=6, k_i_bar=8, k_d_bar="12.3", alpha_v="0.5", f_c_bar=2)
+    cert = certify(params, mode="feasible")
+    assert cert.physical == params.physical.as_dict()
+    assert verify_certificate(cert).proved
+    # the verifier re-derives the gains from them: a forged mass fails
+    forged = replace(cert, physical={**cert.physical, "m": F(3)})
+    assert not verify_certificate(forged).proved
+    assert certify(Parameters.table_i("a"), mode="feasible").physical is None
