@@ -5,7 +5,8 @@ from fractions import Fraction
 
 import pytest
 
-from symbolic_friction import TABLE_I, AssumptionError, InvalidNumberError, NonFiniteError, Parameters
+from symbolic_friction import TABLE_I, Parameters
+from symbolic_friction.errors import AssumptionError, InvalidNumberError, NonFiniteError
 
 
 def test_exact_storage_and_c():

@@ -161,6 +161,15 @@ def prove_cycle(params: Parameters, box: Box, *, precision: int = PRECISION) -> 
     CycleProof
         ``proved`` only if every check holds; a failing check is named with
         the enclosures that decided it.
+
+    Examples
+    --------
+    >>> from symbolic_friction import Parameters, find_cycles, prove_cycle
+    >>> from symbolic_friction.studies import box_around
+    >>> p = Parameters(k_p=3, k_i=4, k_v="6.4", f_s="1.2")
+    >>> cycle = find_cycles(p, points=40, general=False)[0]
+    >>> prove_cycle(p, box_around(cycle.sigma, cycle.slip_time)).proved
+    True
     """
     from flint import ctx
 

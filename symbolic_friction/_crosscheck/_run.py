@@ -91,6 +91,16 @@ def crosscheck(
 ) -> CrosscheckReport:
     """Check certificates on exact simulated trajectories.
 
+    Examples
+    --------
+    >>> from symbolic_friction import certify, crosscheck, Parameters
+    >>> report = crosscheck([certify(Parameters.table_i("a"), mode="feasible")],
+    ...                     trajectories=10, samples=21, adversarial=False, progress=False)
+    >>> report.passed
+    True
+    >>> report.summary()
+    'crosscheck: PASSED — 1 certificate(s), 10 trajectories (0 incomplete), ... properties checked (...)'
+
     Parameters
     ----------
     certificates : sequence

@@ -10,7 +10,8 @@ from fractions import Fraction as F
 
 import pytest
 
-from symbolic_friction import CertificateFormatError, Parameters
+from symbolic_friction import Parameters
+from symbolic_friction.errors import CertificateFormatError
 from symbolic_friction._certify import OBLIGATIONS, SCHEMA, Certificate, Provenance, certify, dumps, load, loads
 from symbolic_friction._certify import certificate as certificate_module
 from symbolic_friction._certify.certificate import atomic_write_text
@@ -301,7 +302,7 @@ def test_atomic_write_keeps_the_old_file_when_replacing_fails(tmp_path, monkeypa
 
 
 def test_as_parameters(cert):
-    from symbolic_friction import AssumptionError
+    from symbolic_friction.errors import AssumptionError
 
     assert cert.as_parameters() == Parameters.table_i("a")
     with pytest.raises(AssumptionError, match=r"Assumption 1 needs k_v·k_p > k_i; got 3 ≤ 4"):

@@ -10,7 +10,8 @@ from pathlib import Path
 
 import pytest
 
-from symbolic_friction import CertificateError, CertificateFormatError, Parameters, ParameterError
+from symbolic_friction import Parameters
+from symbolic_friction.errors import CertificateError, CertificateFormatError, ParameterError
 from symbolic_friction._certify import (
     TABLE_I_FILES,
     certify,

@@ -8,7 +8,8 @@ from pathlib import Path
 
 import pytest
 
-from symbolic_friction import CertificateFormatError, Parameters
+from symbolic_friction import Parameters
+from symbolic_friction.errors import CertificateFormatError
 from symbolic_friction._hunting import HuntingCertificate, box_around, find_cycles, verify_hunting_file, write_hunting
 from symbolic_friction._hunting._report import with_static
 from symbolic_friction._cli.main import main
