@@ -238,16 +238,20 @@ def crosscheck(
     )
 
 
-HUNTING_SKIPPED = "a hunting certificate: it proves a cycle of the stiction model, not the paper's inequalities (verify checks it)"
-"""Why :func:`default_certificate_files` leaves a hunting certificate out."""
+SKIPPED = {
+    "hunting-cycle/v1": "a hunting certificate: it proves a cycle of the stiction model, not the paper's "
+                        "inequalities (verify checks it)",
+}
+"""Why :func:`default_certificate_files` leaves a file of another template out (by template id)."""
 
 
 def default_certificate_files() -> list[str]:
     """The certificates ``crosscheck`` checks when none is given.
 
     The project's configured certificates (``[tool.symbolic-friction]``, as for
-    ``check``), else ``proofs/*.json``; hunting certificates are left out (they
-    prove a cycle of the stiction model, not the paper's inequalities).
+    ``check``), else ``proofs/*.json``; only the paper's template is checked on
+    trajectories: hunting certificates (a cycle of the stiction model) and the
+    quadratic template's files are left out.
 
     Raises
     ------
@@ -267,8 +271,18 @@ def default_certificate_selection() -> tuple[list[str], list[tuple[str, str]]]:
     """
     from pathlib import Path
 
-    from .._certify.hunting import is_hunting_file
+    from .._certify.certificate import TEMPLATE_ID
+    from .._certify.templates import read_certificate_file
     from .._infra.config import find_config
+    from .._infra.errors import CertificateFormatError, InputFileError
+
+    def other_template(name: str) -> str | None:
+        """The template id of a file that is not the paper's template, else None."""
+        try:
+            template = read_certificate_file(name)[0].id
+        except (CertificateFormatError, InputFileError):
+            return None  # the certificate loader says what is wrong with it
+        return None if template == TEMPLATE_ID else template
 
     config = find_config()
     if config is not None and config.certificates:
@@ -283,11 +297,16 @@ def default_certificate_selection() -> tuple[list[str], list[tuple[str, str]]]:
             files.append(str(path))
     else:
         files = sorted(str(p) for p in Path("proofs").glob("*.json"))
-    skipped = [(f, HUNTING_SKIPPED) for f in files if is_hunting_file(f)]
-    files = [f for f in files if (f, HUNTING_SKIPPED) not in skipped]
+    skipped = []
+    for f in files:
+        template = other_template(f)
+        if template is not None:
+            skipped.append((f, SKIPPED.get(template, f"a {template} certificate: the cross-check's properties "
+                                                      "instantiate the paper's template only (verify checks it)")))
+    files = [f for f in files if f not in {name for name, _ in skipped}]
     if not files:
         raise FileNotFoundError("no certificate given and no proofs/*.json in the current directory"
-                                + (f" (skipped {len(skipped)} hunting certificate(s))" if skipped else ""))
+                                + (f" (skipped {len(skipped)} of another template)" if skipped else ""))
     return files, skipped
 
 
