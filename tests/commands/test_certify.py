@@ -21,7 +21,7 @@ def test_no_arguments_regenerates_table_i_in_both_modes(tmp_path, capsys):
     assert main(["certify", "--out", str(tmp_path)]) == 0
     out = capsys.readouterr().out.splitlines()
     assert len(out) == 4 and all(line.startswith("wrote ") for line in out)
-    assert "case_a_tightest.json and case_a_tightest.md (tightest): |x(t)|_A <= 3.46703" in out[1]
+    assert "case_a_tightest.json and case_a_tightest.md (tightest) for k_p=3, k_i=4, k_v=32/5, f_c=1: |x(t)|_A <= 3.46703" in out[1]
     for name in TABLE_I_FILES:
         assert verify_file(tmp_path / name).proved
         # identical to the committed proofs/ (the CLI is what generated them)
