@@ -154,3 +154,14 @@ def test_reasons_are_never_cut():
     ).report()
     row = next(line for line in report.splitlines() if line.startswith("| ") and cell.label in line)
     assert f"refused: {reason} second line" in row  # whole, and the row stays one line
+
+
+def test_repr_is_the_counts():
+    from symbolic_friction._extremes import Extremes, Outcome
+
+    cell = cells()[0]
+    result = Extremes(cells=(cell,), methods=("moreau",),
+                      outcomes=(Outcome(cell.label, "moreau", OK, 1e-9, 1.0),
+                                Outcome(cell.label, "certify", PROVED, 0.5, 1.0, "kappa = 3.467")),
+                      seconds=2.0, reference_seconds=1.0)
+    assert repr(result) == "Extremes(1 cells × 2 columns: 1 ok, 1 proved; 2.0 s)"
