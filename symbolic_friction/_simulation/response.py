@@ -180,7 +180,18 @@ def _times(params: Parameters, T: Any) -> np.ndarray:
         return np.linspace(0.0, t_end, DEFAULT_SAMPLES)
     if np.size(T) > MAX_SAMPLES:
         raise SimulationError(f"at most {MAX_SAMPLES} sample times are supported (a bound on memory); got {np.size(T)}")
-    return np.asarray(T, dtype=float).reshape(-1)
+    if np.size(T) == 0:
+        raise SimulationError("T must hold at least one sample time; got an empty array")
+    try:
+        t = np.asarray(T, dtype=float).reshape(-1)
+    except (TypeError, ValueError):
+        raise SimulationError(f"T must be a final time or an array of sample times; got {T!r}"[:300]) from None
+    if not (np.all(np.isfinite(t)) and t[0] >= 0 and t[-1] > 0 and np.all(np.diff(t) >= 0)):
+        raise SimulationError(
+            f"the sample times T must be finite, nondecreasing, from t ≥ 0 to a final time > 0; "
+            f"got {t.size} times from {t[0]:g} to {t[-1]:g}"
+        )
+    return t
 
 
 def initial_response(params: Parameters, T: Any = None, z0: Any = (0, 1, 0)) -> Response:

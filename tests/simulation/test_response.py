@@ -96,6 +96,14 @@ def test_default_horizon_and_bad_input():
         step_response(CASE_A, -1)
     with pytest.raises(SimulationError, match="T must be a final time or an array of sample times; got 'x'"):
         step_response(CASE_A, "x")
+    with pytest.raises(SimulationError, match="T must hold at least one sample time; got an empty array"):
+        step_response(CASE_A, [])
+    with pytest.raises(SimulationError, match="T must be a final time or an array of sample times"):
+        step_response(CASE_A, [0, "x"])
+    with pytest.raises(SimulationError, match="nondecreasing, from t ≥ 0 to a final time > 0; got 3 times from 0 to 1"):
+        step_response(CASE_A, [0, 2, 1])
+    with pytest.raises(SimulationError, match="got 2 times from 0 to nan"):
+        step_response(CASE_A, [0, float("nan")])
     with pytest.raises(SimulationError, match="params must be a Parameters instance; got dict"):
         step_response({"k_p": 3})
 
