@@ -36,6 +36,7 @@ from ._sections import (
     _ObligationLayout,
     _wrap,
     closing_line,
+    gate,
     dataclasses_asdict,
     resolve_target,
 )
@@ -357,7 +358,7 @@ def run(args: argparse.Namespace) -> int:
             section = make(args)
         except Exception as exc:  # a crashing section fails loudly, it never passes
             section = _crashed(make, exc)
-        sections.append(section)
+        sections.append(gate(section))
         if not as_json:
             if not section.streamed:
                 emit(_format_table(section))
