@@ -33,6 +33,7 @@ gains, so no hunting cycle exists.
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 from dataclasses import dataclass
@@ -189,11 +190,28 @@ class HuntingReport:
 
 def verify_hunting(certificate: HuntingCertificate, *, source: str = "<certificate>") -> HuntingReport:
     """Re-run the proof (:func:`._proof.prove_cycle`) on the certificate's exact gains and box, and decide its ``cycle``."""
-    proof = prove_cycle(certificate.params, certificate.box, precision=certificate.precision_bits)
+    key = (certificate.params, certificate.box, certificate.precision_bits)
+    proof = _SHARED[key] if _SHARED is not None and key in _SHARED else prove_cycle(*key[:2], precision=key[2])
+    if _SHARED is not None:
+        _SHARED[key] = proof
     _LAST_PROOF[:] = [((certificate.params, certificate.box, certificate.precision_bits), proof)]
     claims = () if certificate.cycle is None else decide_claims(
         certificate.params, proof, certificate.cycle, precision=certificate.precision_bits)
     return HuntingReport(source=source, certificate=certificate, proof=proof, claims=claims)
+
+
+_SHARED: dict | None = None
+
+
+@contextlib.contextmanager
+def shared_proofs():
+    """Within the block, files with the same gains, box and precision share one proof (they differ only in ``cycle`` or ``verdict``)."""
+    global _SHARED
+    saved, _SHARED = _SHARED, {}
+    try:
+        yield
+    finally:
+        _SHARED = saved
 
 
 _LAST_PROOF: list = []

@@ -267,7 +267,7 @@ def _prove(params: Parameters, box: Box) -> CycleProof:
 
     # -- the mass sticks at the end of the slip, and the stick ends at -f_s ----------------
     phi1 = M.f_c + yX[1]
-    sticks = bool(phi1 > -M.f_s) and bool(phi1 < M.f_s)
+    sticks = _sticks(phi1, M.f_s)
     checks.append(
         Check(
             "stick",
@@ -299,6 +299,11 @@ def _shape_ok(params: Parameters, box: Box) -> bool:
 def _inside(k, lo, hi) -> bool:
     """Whether the ball ``k`` lies in the *open* interval ``(lo, hi)``: both ends, each strictly (certain arb comparisons)."""
     return bool((k - lo) > 0) and bool((hi - k) > 0)
+
+
+def _sticks(phi, f_s) -> bool:
+    """Whether the ball ``φ`` lies in ``(-f_s, f_s)``, both ends strictly: the mass sticks (``|φ| = f_s`` breaks away)."""
+    return bool(phi > -f_s) and bool(phi < f_s)
 
 
 def _positive_on(value, lo: Fraction, hi: Fraction, *, floor: Fraction) -> tuple[bool, int]:

@@ -28,6 +28,7 @@ import argparse
 import json
 from collections.abc import Callable
 from typing import Any
+from ._self_check import self_check_section
 from ._sections import (
     Section,
     _crashed,
@@ -312,7 +313,8 @@ def crosscheck_section(args: argparse.Namespace) -> Section:
     )
 
 
-SECTIONS: list[Callable[[argparse.Namespace], Section]] = [obligations_section, certificates_section, crosscheck_section]
+SECTIONS: list[Callable[[argparse.Namespace], Section]] = [obligations_section, certificates_section, crosscheck_section,
+                                                          self_check_section]
 """The parts of ``check``, in order; append to extend the command."""
 
 
