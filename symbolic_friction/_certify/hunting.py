@@ -48,7 +48,7 @@ from .hunting_cycle import CycleClaims, decide_claims, polish, state_claims
 from .hunting_proof import PRECISION, Box, CycleProof, box_around, prove_cycle, Check
 
 __all__ = ["SCHEMA", "HuntingCertificate", "HuntingReport", "verify_hunting", "verify_hunting_file", "write_hunting",
-           "certificate_for", "hunting_staleness", "HUNTING"]
+           "certificate_for", "regenerate_hunting", "hunting_staleness", "HUNTING"]
 
 SCHEMA = "symbolic-friction/hunting-certificate/v1"
 TEMPLATE_ID = "hunting-cycle/v1"
@@ -233,15 +233,34 @@ def certificate_for(params: Parameters, sigma: float | Fraction, tau: float | Fr
     return HuntingCertificate(params=params, box=box, cycle=state_claims(params, proof)), proof
 
 
-def hunting_staleness(certificate: HuntingCertificate, path: Path) -> str:
-    """Why the committed ``path`` differs from what :func:`certificate_for` writes now for its gains and box centre ("" if not)."""
-    from .._infra.io import read_limited
-    from ._json import MAX_FILE_BYTES
+def regenerate_hunting(certificate: HuntingCertificate) -> HuntingCertificate:
+    """What ``symbolic-friction hunting`` writes for the gains of ``certificate`` and the zero in its box.
+
+    Raises
+    ------
+    CertificateError
+        If the box drawn around the polished zero is not proved (nothing unproved is written).
+    """
+    from .._infra.errors import CertificateError
 
     (s_lo, s_hi), (t_lo, t_hi) = certificate.box.sigma, certificate.box.tau
     fresh, proof = certificate_for(certificate.params, (s_lo + s_hi) / 2, (t_lo + t_hi) / 2)
     if not proof.proved:
-        return "cannot be regenerated: the box around the polished zero is not proved"
+        failing = ", ".join(c.name for c in proof.checks if not c.holds)
+        raise CertificateError(f"the box around the polished zero for {certificate.params} is not proved ({failing})")
+    return fresh
+
+
+def hunting_staleness(certificate: HuntingCertificate, path: Path) -> str:
+    """Why the committed ``path`` differs from what :func:`regenerate_hunting` writes now ("" if not)."""
+    from .._infra.errors import CertificateError
+    from .._infra.io import read_limited
+    from ._json import MAX_FILE_BYTES
+
+    try:
+        fresh = regenerate_hunting(certificate)
+    except CertificateError as exc:
+        return f"cannot be regenerated: {exc}"
     if read_limited(path, limit=MAX_FILE_BYTES, what="certificate") != dumps(fresh).encode("utf-8"):
         return f"{path.name} differs from what `symbolic-friction hunting` writes now for its gains"
     return ""

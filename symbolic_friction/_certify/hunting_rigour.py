@@ -103,7 +103,7 @@ def _cases() -> tuple[RigourCase, ...]:
         shown, _ = hp._positive_on(value, a, b, floor=floor)
         out.append(RigourCase(name, expected, _say(shown, "shown", "not shown")))
 
-    f_s = M.f_s
+    f_s = arb(M.f_s.mid())  # exact, so that φ = f_s is equality, not two overlapping balls
     for name, phi, expected in [("stick: φ = f_s exactly", f_s, "slips"), ("stick: φ = -f_s exactly", -f_s, "slips"),
                                 ("stick: φ across f_s", f_s + arb(0, q(Fraction(1, 10**20))), "slips"),
                                 ("stick: |φ| < f_s", q(Fraction(1, 2)), "sticks")]:
@@ -118,7 +118,10 @@ def _cases() -> tuple[RigourCase, ...]:
              (Fraction(1, 7 * 10**30), Fraction(1, 7 * 10**30) + Fraction(1, 3 * 10**60)), (Fraction(-5, 3), Fraction(-4, 3))]
     held = all(_holds(M.ball(x, y), x) and _holds(M.ball(x, y), y) for x, y in pairs)
     out.append(RigourCase("outward: a box's ball holds both ends", "holds", _say(held, "holds", "lost")))
-    balls = [q(Fraction(1, 3)) + arb(0, q(Fraction(1, 10**30))), q(Fraction(-10**20, 7)), q(Fraction(2, 3))]
+    # exact points just past the midpoint between two doubles: rounding to nearest would step inwards
+    tie = Fraction(1) + Fraction(1, 2**53)
+    balls = [q(Fraction(1, 3)) + arb(0, q(Fraction(1, 10**30))), q(Fraction(-10**20, 7)),
+             q(tie + Fraction(1, 2**60)), q(tie - Fraction(1, 2**60)), q(-tie - Fraction(1, 2**60))]
     floats = all(Fraction(hp._lower(x)) <= hp._exact_mid(x.lower()) and hp._exact_mid(x.upper()) <= Fraction(hp._upper(x))
                  for x in balls)
     out.append(RigourCase("outward: the multiplier's floats bound its ball", "holds", _say(floats, "holds", "lost")))

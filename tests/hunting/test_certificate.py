@@ -180,3 +180,14 @@ def test_a_cycle_member_that_is_not_intervals_is_malformed(cert_file, tmp_path):
     ]:
         with pytest.raises(CertificateFormatError, match=match):
             verify_hunting_file(edited(tmp_path, cert_file, edit))
+
+
+def test_check_write_regenerates_a_stale_hunting_file(cert_file, tmp_path):
+    from symbolic_friction._certify import check_listed_certificates, write_listed_certificates
+
+    path = edited(tmp_path, cert_file, lambda d: d["cycle"].update(period=["46", "47"]))
+    assert check_listed_certificates(tmp_path, [path.name])[0].stale
+    assert write_listed_certificates(tmp_path, [path.name]) == [path]
+    assert path.read_bytes() == Path(cert_file).read_bytes()
+    (entry,) = check_listed_certificates(tmp_path, [path.name])
+    assert entry.ok
