@@ -232,8 +232,9 @@ def default_certificate_files() -> list[str]:
     """The certificates ``crosscheck`` checks when none is given.
 
     The project's configured certificates (``[tool.symbolic-friction]``, as for
-    ``check``), else ``proofs/*.json``; hunting certificates are left out (they
-    prove a cycle of the stiction model, not the paper's inequalities).
+    ``check``), else ``proofs/*.json``; only the paper's template is checked on
+    trajectories: hunting certificates (a cycle of the stiction model) and the
+    quadratic template's files are left out.
 
     Raises
     ------
@@ -242,8 +243,16 @@ def default_certificate_files() -> list[str]:
     """
     from pathlib import Path
 
-    from .._certify.hunting import is_hunting_file
+    from .._certify.certificate import TEMPLATE_ID
+    from .._certify.templates import read_certificate_file
     from .._infra.config import find_config
+    from .._infra.errors import CertificateFormatError, InputFileError
+
+    def paper_template(name: str) -> bool:
+        try:
+            return read_certificate_file(name)[0].id == TEMPLATE_ID
+        except (CertificateFormatError, InputFileError):
+            return True  # the certificate loader says what is wrong with it
 
     config = find_config()
     if config is not None and config.certificates:
@@ -258,7 +267,7 @@ def default_certificate_files() -> list[str]:
             files.append(str(path))
     else:
         files = sorted(str(p) for p in Path("proofs").glob("*.json"))
-    files = [f for f in files if not is_hunting_file(f)]
+    files = [f for f in files if paper_template(f)]
     if not files:
         raise FileNotFoundError("no certificate given and no proofs/*.json in the current directory")
     return files
