@@ -23,7 +23,8 @@ enclosed by ``arb_mat.exp`` for every ``τ`` of a ball):
   inside the interior of ``X`` proves that ``F`` has exactly one zero in
   ``X`` (``J`` is the Jacobian of ``F``, enclosed over the whole box);
 * **first zero**: ``v' > 0`` on ``[0, δ]`` (so ``v > 0`` on ``(0, δ]``, as
-  ``v(0) = 0``), ``v > 0`` on ``[δ, τ_a]`` (adaptive bisection) and
+  ``v(0) = 0``), ``v > 0`` on ``[δ, τ_a]`` (adaptive bisection; decided only
+  when the Krawczyk test and the start hold, since the box is refused otherwise) and
   ``∂v/∂τ < 0`` on ``[σ] × [τ_a, τ_hi]``, all for every ``σ`` of ``[σ]``;
 * **stick**: ``-f_s < f_c + p₁ < f_s`` over ``X``;
 * **stability** (reported, proved when it holds): the multiplier
@@ -244,17 +245,18 @@ def _prove(params: Parameters, box: Box) -> CycleProof:
             if first_ok else "v' > 0 near τ = 0 could not be shown",
         )
     )
-    pieces, positive = 0, first_ok
-    if first_ok:
+    # The search is the proof's costly part: it runs only where the rest can still prove a cycle
+    # (a box without a proved zero, or a start not shown, is refused whatever v does in between).
+    if inside and first_ok:
         positive, pieces = _positive_on(lambda lo, hi: M.state(S, M.ball(lo, hi))[1][2], delta, t_a,
                                         floor=t_a * Fraction(1, 10**15))
-    checks.append(
-        Check(
-            "first_zero.positive",
-            positive,
-            f"v > 0 on [δ, τ_a] for every σ in the box ({pieces} balls)" if positive else f"v > 0 on [δ, τ_a] not shown ({pieces} balls)",
+        checks.append(
+            Check(
+                "first_zero.positive",
+                positive,
+                f"v > 0 on [δ, τ_a] for every σ in the box ({pieces} balls)" if positive else f"v > 0 on [δ, τ_a] not shown ({pieces} balls)",
+            )
         )
-    )
     _, _, dyM = M.state(S, M.ball(t_a, t_hi))
     decreasing = bool(dyM[2] < 0)
     checks.append(
@@ -310,15 +312,19 @@ def _positive_on(value, lo: Fraction, hi: Fraction, *, floor: Fraction) -> tuple
     """``(shown, pieces)``: whether ``value(a, b) > 0`` is shown for every piece ``[a, b]`` of ``[lo, hi]``.
 
     ``[lo, hi]`` is cut into 64 pieces, each decided in turn; a piece whose
-    ball is not certainly positive (it may contain 0) is halved until it is.
-    The search gives up, which is *not shown*, when a ball is certainly
-    ``≤ 0``, when a piece is narrower than ``floor`` or after
-    ``_MAX_PIECES`` pieces.
+    ball is not certainly positive (it may contain 0) is halved, and its
+    halves are decided after the pieces already waiting (breadth first, so a
+    piece where ``v`` is certainly negative is met before a sign change is
+    refined to the floor).  The search gives up, which is *not shown*, when a
+    ball is certainly ``≤ 0``, when a piece is narrower than ``floor`` or
+    after ``_MAX_PIECES`` pieces.
     """
-    stack = [(lo + (hi - lo) * Fraction(j, 64), lo + (hi - lo) * Fraction(j + 1, 64)) for j in range(63, -1, -1)]
+    from collections import deque
+
+    waiting = deque((lo + (hi - lo) * Fraction(j, 64), lo + (hi - lo) * Fraction(j + 1, 64)) for j in range(64))
     pieces = 0
-    while stack:
-        a, b = stack.pop()
+    while waiting:
+        a, b = waiting.popleft()
         pieces += 1
         ball = value(a, b)
         if bool(ball > 0):
@@ -326,8 +332,8 @@ def _positive_on(value, lo: Fraction, hi: Fraction, *, floor: Fraction) -> tuple
         if pieces > _MAX_PIECES or b - a < floor or bool(ball <= 0):
             return False, pieces
         mid = (a + b) / 2
-        stack.append((mid, b))
-        stack.append((a, mid))
+        waiting.append((a, mid))
+        waiting.append((mid, b))
     return True, pieces
 
 

@@ -1,11 +1,12 @@
 """The verifiers refuse known-false certificates: ``check`` checks its own trusted base where it runs.
 
 The package ships, in ``false_certificates/``, certificates that must *not*
-be proved, and two true ones that must be (a verifier that refuses
+be proved, and a true one per template that must be (a verifier that refuses
 everything fails too).  ``manifest.json`` lists each file with the premise it
 breaks and the exact set of checks that fail:
 
-* a stability certificate per premise of :func:`.verify.premises`, its
+* a stability certificate per premise of :func:`.verify.premises`, and a
+  quadratic one per premise of :func:`.quadratic.quadratic_premises`, its
   numbers edited so that this premise fails (with the premises it implies,
   when the premises are not independent: ``c₁ ≤ c₂`` cannot fail while
   ``P - c₁I ⪰ 0`` and ``c₂I - P ⪰ 0`` hold).  Where the file format already
@@ -23,7 +24,7 @@ breaks and the exact set of checks that fail:
 :func:`refuse_false_certificates` verifies every file through the same
 route as ``symbolic-friction verify`` and holds only if each false one is
 refused naming exactly its manifest's checks, each true one is proved, and
-every premise of the stability verifier has a false certificate.  A
+every premise of the stability and quadratic verifiers has a false certificate.  A
 dropped premise, a broken python-flint or sympy, or a patched install then
 fails ``check``.
 """
@@ -86,17 +87,28 @@ class SelfCheck:
 
 
 class _Raw:
-    """A stability certificate's numbers read as plain rationals, past the format's positivity checks."""
+    """A certificate's numbers read as plain rationals, past the format's positivity checks."""
 
     def __init__(self, data: dict) -> None:
         for group in ("parameters", "constants"):
             for name, value in data[group].items():
                 setattr(self, name, Fraction(value))
+        self.constants = {name: Fraction(value) for name, value in data["constants"].items()}
         self.kappa = Fraction(data["overshoot_bound"])
 
 
+def _is_quadratic(data: dict) -> bool:
+    from .quadratic import TEMPLATE_ID
+
+    return data.get("template") == TEMPLATE_ID
+
+
 def expected_failures(data: dict) -> list[str]:
-    """The premises of :func:`.verify.premises` that fail on a stability file's numbers, decided exactly."""
+    """The premises that fail on a stability or quadratic file's numbers, decided exactly by its verifier's own functions."""
+    if _is_quadratic(data):
+        from .quadratic import decide_premise, quadratic_premises
+
+        return [check.name for check in map(decide_premise, quadratic_premises(_Raw(data))) if not check.holds]
     from .verify import decide, premises
 
     return [check.name for check in map(decide, premises(_Raw(data))) if not check.holds]
@@ -110,15 +122,18 @@ def named_failures(report: Any) -> list[str]:
     return failing
 
 
-def _premise_names() -> list[str]:
-    """Every premise name of the stability verifier (on a stand-in whose numbers are all 1)."""
+def _premise_names() -> dict[str, list[str]]:
+    """Every premise name of the stability and the quadratic verifier (on a stand-in whose numbers are all 1)."""
+    from .quadratic import CONSTANTS, quadratic_premises
     from .verify import premises
 
     class One:
+        constants = {name: Fraction(1) for name in CONSTANTS}
+
         def __getattr__(self, name: str) -> Fraction:
             return Fraction(1)
 
-    return [p.name for p in premises(One())]
+    return {"stability": [p.name for p in premises(One())], "quadratic": [p.name for p in quadratic_premises(One())]}
 
 
 def _verify(path: Path) -> Any:
@@ -164,6 +179,10 @@ def refuse_false_certificates(directory: str | Path = DIRECTORY) -> SelfCheck:
 
     with shared_proofs():
         refusals = tuple(_one(directory / entry["file"], entry) for entry in manifest)
-    targeted = {entry["premise"] for entry in manifest if entry["template"] == "stability"}
-    uncovered = tuple(name for name in _premise_names() if name not in targeted)
+    uncovered = tuple(
+        f"{template}: {name}"
+        for template, names in _premise_names().items()
+        for name in names
+        if name not in {entry["premise"] for entry in manifest if entry["template"] == template}
+    )
     return SelfCheck(refusals, uncovered, time.perf_counter() - start)

@@ -51,6 +51,47 @@ STABILITY = [
 ]
 
 
+# -- quadratic certificates: (file stem, premise, edits: constant or gain -> factor, or the bound) -----------
+QUADRATIC = [
+    ("k_i_positive", "k_i > 0", {"k_i": -1}, "parameters.k_i"),
+    ("k_p_positive", "k_p > 0", {"k_p": -1}, "parameters.k_p"),
+    ("assumption1", "k_v·k_p > k_i", {"k_p": F(1, 10)}, None),
+    ("f_c_positive", "f_c > 0", {"f_c": -1}, "parameters.f_c"),
+    ("p_lower", "P − I ⪰ 0", {"p11": F(99, 100)}, None),
+    ("p_upper", "c2·I − P ⪰ 0", {"c2": 0}, None),
+    ("c_positive", "c > 0", {"c": 0}, None),
+    ("v_decrease", "−(AᵀP + PA) − c·e3e3ᵀ ⪰ 0", {"k_p": F(1, 2)}, None),
+    ("u_rate_plus", "−(K·B+ + B+ᵀ·K) copositive", {"k22": 2}, None),
+    ("band_plus", "band form (s = +1) copositive", {"k11": -100}, None),
+    ("u_rate_minus", "−(K·B− + B−ᵀ·K) copositive", {"k22": F(101, 100)}, None),
+    ("band_minus", "band form (s = −1) copositive", {"k11": F(1001, 1000)}, None),
+    ("k31", "K31 ≥ 0", {"k13": F(-999, 1000)}, None),
+    ("k32", "K32 ≥ 0", {"k23": -1}, None),
+    ("k33", "K33 ≥ 0", {"k33": F(-1, 10)}, None),
+    ("u_lower", "K − I copositive", {"k22": 0}, None),
+    ("u_upper", "gamma·I − K copositive", {"gamma": 0}, None),
+    ("exit_rest", "U − V copositive at v = 0", {"k22": F(999, 1000)}, None),
+    ("exit_edge", "U − V copositive at φ = ±f_c", {"k11": F(9, 10)}, None),
+    ("kappa_positive", "overshoot_bound > 0", {"overshoot_bound": "-1.80834"}, "overshoot_bound"),
+    ("kappa_c2", "overshoot_bound² ≥ c2", {"c2": 2}, None),
+    ("kappa_gamma", "overshoot_bound² ≥ gamma", {"gamma": 2}, None),
+]
+
+
+def _quadratic(edits: dict | None = None) -> dict:
+    from symbolic_friction._infra.rational import format_rational
+
+    data = json.loads((REPO / "proofs" / "quadratic" / "case_a.json").read_text(encoding="utf-8"))
+    del data["provenance"]
+    for key, factor in (edits or {}).items():
+        if key == "overshoot_bound":
+            data[key] = factor
+            continue
+        group = "parameters" if key in data["parameters"] else "constants"
+        data[group][key] = format_rational(F(data[group][key]) * factor)
+    return data
+
+
 def _stability_base(case: str) -> dict:
     data = json.loads((REPO / "proofs" / f"case_{case}_feasible.json").read_text(encoding="utf-8"))
     del data["provenance"]  # a forged file claims nothing about its origin
@@ -87,6 +128,16 @@ def forged() -> tuple[dict[str, str], list[dict]]:
         name = f"stability_{stem}.json"
         files[name] = _text(data)
         entry = {"file": name, "template": "stability", "premise": premise, "fails": expected_failures(data)}
+        if reader is not None:
+            entry["reader"] = reader
+        manifest.append(entry)
+    files["true_quadratic.json"] = _text(_quadratic())
+    manifest.append({"file": "true_quadratic.json", "template": "quadratic", "premise": None, "fails": []})
+    for stem, premise, edits, reader in QUADRATIC:
+        data = _quadratic(edits)
+        name = f"quadratic_{stem}.json"
+        files[name] = _text(data)
+        entry = {"file": name, "template": "quadratic", "premise": premise, "fails": expected_failures(data)}
         if reader is not None:
             entry["reader"] = reader
         manifest.append(entry)

@@ -28,17 +28,24 @@ def test_the_shipped_files_are_what_the_forger_writes():
 
 
 def test_every_premise_has_a_false_certificate_that_names_it():
-    names = [p.name for p in verify_module.premises(_Ones())]
-    targeted = [e["premise"] for e in FALSE if e["template"] == "stability"]
-    assert sorted(targeted) == sorted(names) and len(names) == 27
+    from symbolic_friction._certify.quadratic import quadratic_premises
+
+    for template, premises, count in (("stability", verify_module.premises, 27), ("quadratic", quadratic_premises, 22)):
+        names = [p.name for p in premises(_Ones())]
+        targeted = [e["premise"] for e in FALSE if e["template"] == template]
+        assert sorted(targeted) == sorted(names) and len(names) == count, template
     for e in FALSE:
         assert e["premise"] in e["fails"], e["file"]
     # where the premises are independent, exactly that premise fails
     alone = [e for e in FALSE if e["fails"] == [e["premise"]]]
-    assert len(alone) >= 30
+    assert len(alone) >= 40
 
 
 class _Ones:
+    from symbolic_friction._certify.quadratic import CONSTANTS
+
+    constants = {name: F(1) for name in CONSTANTS}
+
     def __getattr__(self, name):
         return F(1)
 
@@ -46,7 +53,7 @@ class _Ones:
 def test_the_self_check_passes_on_this_install():
     result = refuse_false_certificates()
     assert result.ok and result.uncovered == ()
-    assert len(result.refusals) == len(MANIFEST) == 45
+    assert len(result.refusals) == len(MANIFEST) == 68
 
 
 @pytest.mark.parametrize("entry", [e for e in FALSE if "reader" not in e], ids=lambda e: e["file"])
@@ -69,9 +76,9 @@ def test_a_premise_the_format_guards_is_refused_by_the_reader_and_by_the_premise
 
 
 def test_the_true_controls_are_proved(capsys):
-    for name in ("true_stability.json", "true_hunting.json"):
+    for name in ("true_stability.json", "true_hunting.json", "true_quadratic.json"):
         assert main(["verify", str(DIRECTORY / name)]) == 0
-    assert capsys.readouterr().out.count("PROVED ") == 2
+    assert capsys.readouterr().out.count("PROVED ") == 3
 
 
 # -- breaking the verifier breaks the self-check ----------------------------------------------------------
@@ -139,6 +146,20 @@ def test_an_unchecked_cycle_fails_the_self_check(monkeypatch):
     assert "hunting_cycle_period.json" in failed and "hunting_cycle_stable.json" in failed
 
 
+def test_a_copositivity_decision_that_trusts_undecided_fails_the_self_check(monkeypatch):
+    from symbolic_friction._certify import copositive, quadratic
+
+    real = copositive.decide_copositive
+
+    def lenient(matrix):
+        decision = real(matrix)
+        return type(decision)(True, decision.reason) if decision.holds is False else decision
+
+    monkeypatch.setattr(quadratic, "decide_copositive", lenient)
+    failed = _failed(refuse_false_certificates())
+    assert "quadratic_u_upper.json" in failed and "true_quadratic.json" not in failed
+
+
 def test_a_wrong_manifest_is_a_failure_not_a_pass(tmp_path):
     import shutil
 
@@ -148,7 +169,7 @@ def test_a_wrong_manifest_is_a_failure_not_a_pass(tmp_path):
     manifest["false_certificates"] = [e for e in manifest["false_certificates"] if e["premise"] != "k3 > k2"]
     (tmp_path / "manifest.json").write_text(json.dumps(manifest), encoding="utf-8")
     result = refuse_false_certificates(tmp_path)
-    assert not result.ok and result.uncovered == ("k3 > k2",)
+    assert not result.ok and result.uncovered == ("stability: k3 > k2",)
     empty = tmp_path / "empty"
     empty.mkdir()
     (empty / "manifest.json").write_text('{"false_certificates": []}', encoding="utf-8")
