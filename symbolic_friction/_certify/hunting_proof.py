@@ -311,29 +311,35 @@ def _sticks(phi, f_s) -> bool:
 def _positive_on(value, lo: Fraction, hi: Fraction, *, floor: Fraction) -> tuple[bool, int]:
     """``(shown, pieces)``: whether ``value(a, b) > 0`` is shown for every piece ``[a, b]`` of ``[lo, hi]``.
 
-    ``[lo, hi]`` is cut into 64 pieces, each decided in turn; a piece whose
-    ball is not certainly positive (it may contain 0) is halved, and its
-    halves are decided after the pieces already waiting (breadth first, so a
-    piece where ``v`` is certainly negative is met before a sign change is
-    refined to the floor).  The search gives up, which is *not shown*, when a
-    ball is certainly ``≤ 0``, when a piece is narrower than ``floor`` or
-    after ``_MAX_PIECES`` pieces.
+    ``[lo, hi]`` is cut into 64 pieces, each decided in turn (so a piece where
+    the value is certainly ``≤ 0`` ends the search at once); each piece whose
+    ball is not certainly positive (it may contain 0) is then halved, depth
+    first, until its halves are.  The search gives up, which is *not shown*,
+    when a ball is certainly ``≤ 0``, when a piece is narrower than ``floor``
+    or after ``_MAX_PIECES`` pieces.
     """
-    from collections import deque
-
-    waiting = deque((lo + (hi - lo) * Fraction(j, 64), lo + (hi - lo) * Fraction(j + 1, 64)) for j in range(64))
-    pieces = 0
-    while waiting:
-        a, b = waiting.popleft()
+    first = [(lo + (hi - lo) * Fraction(j, 64), lo + (hi - lo) * Fraction(j + 1, 64)) for j in range(64)]
+    pieces, stack = 0, []
+    for a, b in first:
         pieces += 1
         ball = value(a, b)
         if bool(ball > 0):
             continue
-        if pieces > _MAX_PIECES or b - a < floor or bool(ball <= 0):
+        if bool(ball <= 0):
             return False, pieces
+        stack.append((a, b))
+    stack.reverse()  # refined left to right
+    while stack:
+        a, b = stack.pop()
         mid = (a + b) / 2
-        waiting.append((a, mid))
-        waiting.append((mid, b))
+        for piece in ((a, mid), (mid, b)):
+            pieces += 1
+            ball = value(*piece)
+            if bool(ball > 0):
+                continue
+            if pieces > _MAX_PIECES or piece[1] - piece[0] < floor or bool(ball <= 0):
+                return False, pieces
+            stack.append(piece)
     return True, pieces
 
 
