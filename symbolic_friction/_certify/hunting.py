@@ -194,7 +194,7 @@ def verify_hunting(certificate: HuntingCertificate, *, source: str = "<certifica
     proof = _SHARED[key] if _SHARED is not None and key in _SHARED else prove_cycle(*key[:2], precision=key[2])
     if _SHARED is not None:
         _SHARED[key] = proof
-    _LAST_PROOF[:] = [((certificate.params, certificate.box, certificate.precision_bits), proof)]
+    _LAST_PROOF[:] = [(certificate, proof)]
     claims = () if certificate.cycle is None else decide_claims(
         certificate.params, proof, certificate.cycle, precision=certificate.precision_bits)
     return HuntingReport(source=source, certificate=certificate, proof=proof, claims=claims)
@@ -215,10 +215,11 @@ def shared_proofs():
 
 
 _LAST_PROOF: list = []
-"""The last proof :func:`verify_hunting` decided, with its inputs (one entry: a proof is reused only for the very same inputs)."""
+"""The last certificate :func:`verify_hunting` decided (the object itself) and its proof: its staleness reuses it."""
 
 
-def certificate_for(params: Parameters, sigma: float | Fraction, tau: float | Fraction) -> tuple[HuntingCertificate, CycleProof]:
+def certificate_for(params: Parameters, sigma: float | Fraction, tau: float | Fraction, *,
+                    known: tuple[Box, int, CycleProof] | None = None) -> tuple[HuntingCertificate, CycleProof]:
     """The certificate ``symbolic-friction hunting`` writes for the cycle near ``(σ, τ)``, and its proof.
 
     The zero is polished (:func:`.hunting_cycle.polish`) before the box is
@@ -227,9 +228,8 @@ def certificate_for(params: Parameters, sigma: float | Fraction, tau: float | Fr
     if the proof fails).
     """
     box = box_around(*polish(params, sigma, tau))
-    last = _LAST_PROOF[0] if _LAST_PROOF else None
-    # `check` verifies a file, then asks whether it is stale: the same box is not proved twice
-    proof = last[1] if last is not None and last[0] == (params, box, PRECISION) else prove_cycle(params, box)
+    # `known`: a proof of (box, precision) for these gains just decided, which `check` need not repeat
+    proof = known[2] if known is not None and known[:2] == (box, PRECISION) else prove_cycle(params, box)
     return HuntingCertificate(params=params, box=box, cycle=state_claims(params, proof)), proof
 
 
@@ -244,7 +244,10 @@ def regenerate_hunting(certificate: HuntingCertificate) -> HuntingCertificate:
     from .._infra.errors import CertificateError
 
     (s_lo, s_hi), (t_lo, t_hi) = certificate.box.sigma, certificate.box.tau
-    fresh, proof = certificate_for(certificate.params, (s_lo + s_hi) / 2, (t_lo + t_hi) / 2)
+    last = _LAST_PROOF[0] if _LAST_PROOF else None
+    # `check` verifies a file, then asks whether it is stale: the proof of that very certificate is reused
+    known = (certificate.box, certificate.precision_bits, last[1]) if last is not None and last[0] is certificate else None
+    fresh, proof = certificate_for(certificate.params, (s_lo + s_hi) / 2, (t_lo + t_hi) / 2, known=known)
     if not proof.proved:
         failing = ", ".join(c.name for c in proof.checks if not c.holds)
         raise CertificateError(f"the box around the polished zero for {certificate.params} is not proved ({failing})")

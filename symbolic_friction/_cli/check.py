@@ -7,6 +7,12 @@ order and exits 0 only if every section is satisfied.  Further checks (for
 example the exact verification of every certificate under ``proofs/``) are
 added by appending a function to :data:`SECTIONS`.
 
+The sections: the obligations, the configured certificates, the
+cross-check's self-test and the self-check (the verifiers refuse the
+known-false certificates shipped with the package,
+:mod:`._self_check`).  One gate (:func:`._sections.gate`) fails a section
+that prints a ``FAILED`` or ``NOT PROVED`` line, whatever it reported.
+
 The obligations section runs every obligation from
 :func:`symbolic_friction._obligations.all_obligations`, lists the errata and
 compares ``<DIR>/obligations.md`` with what it would write now (``--write``

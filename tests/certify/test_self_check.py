@@ -126,16 +126,31 @@ def test_a_krawczyk_test_on_one_end_fails_the_self_check(monkeypatch):
     assert _failed(result) == ["hunting_zero_above_sigma.json", "hunting_zero_above_tau.json"]
 
 
-def test_a_decreasing_check_on_the_final_box_only_fails_the_self_check(monkeypatch):
-    real = hunting_proof._prove
+def _mutant(module, name, old, new):
+    import inspect
+    import textwrap
 
-    def late(params, box):
-        import dataclasses
+    source = textwrap.dedent(inspect.getsource(getattr(module, name)))
+    assert old in source, old
+    namespace = dict(vars(module))
+    exec(compile(source.replace(old, new, 1), f"<mutant of {name}>", "exec"), namespace)
+    return namespace[name]
 
-        return real(params, dataclasses.replace(box, monotone_from=box.tau[0] - (box.tau[1] - box.tau[0])))
 
-    monkeypatch.setattr(hunting_proof, "_prove", late)
-    assert "hunting_monotone_too_early.json" in _failed(refuse_false_certificates())
+@pytest.mark.parametrize("old, new, caught_by", [
+    # the derivative sign from τ_a onward, not only on the final box
+    ("M.ball(t_a, t_hi)", "M.ball(t_lo, t_hi)", "hunting_monotone_too_early.json"),
+    # σ > 0
+    ("shape = _shape_ok(params, box)", "shape = params.f_s > params.f_c", "hunting_sigma_not_positive.json"),
+    # the first-zero search runs on the whole of [δ, τ_a]
+    ("delta, t_a,\n", "t_a - (t_a - delta) / 64, t_a,\n", "hunting_later_zero.json"),
+    # the start: v' > 0 on [0, δ] for every σ of the box
+    ("M.state(S, M.ball(Fraction(0), delta))", "M.state(M.q(s_lo), M.ball(Fraction(0), delta))",
+     "hunting_start_unshown.json"),
+])
+def test_a_weakened_hunting_proof_fails_the_self_check(monkeypatch, old, new, caught_by):
+    monkeypatch.setattr(hunting_proof, "_prove", _mutant(hunting_proof, "_prove", old, new))
+    assert caught_by in _failed(refuse_false_certificates())
 
 
 def test_an_unchecked_cycle_fails_the_self_check(monkeypatch):
