@@ -1,9 +1,11 @@
 """``check``'s section that checks the trusted base where it runs: known-false certificates must be refused.
 
 It calls :func:`symbolic_friction._certify.self_check.refuse_false_certificates`
-(the verifiers on the certificates shipped in the package) and
+(the verifiers on the certificates shipped in the package),
 :func:`symbolic_friction._certify.hunting_rigour.rigour_cases` (the hunting
-proof's decisions on inputs built to be refused), and renders them.  Only the
+proof's decisions on inputs built to be refused) and
+:func:`symbolic_friction._obligations._decide_cases.decision_cases` (the
+obligations' decision procedures, likewise), and renders them.  Only the
 standard library is imported at module level (fast ``--help``).
 """
 
@@ -19,16 +21,17 @@ def self_check_section(args: argparse.Namespace) -> Section:
     from .._certify.hunting_rigour import rigour_cases
     from .._certify.self_check import refuse_false_certificates
     from .._infra.junit import Case
+    from .._obligations._decide_cases import decision_cases
 
     result = refuse_false_certificates()
-    cases = rigour_cases()
+    cases = rigour_cases() + decision_cases()
     false = [r for r in result.refusals if r.premise is not None]
     true = [r for r in result.refusals if r.premise is None]
     rows = [(r.file, r.premise or "(true)", ", ".join(r.named) or "-", "ok" if r.ok else "FAILED") for r in result.refusals]
     rows += [(c.name, c.expected, c.got, "ok" if c.ok else "FAILED") for c in cases]
     summary = (f"self-check: {sum(r.ok for r in false)} of {len(false)} false certificates refused naming their premise, "
                f"{sum(r.ok for r in true)} of {len(true)} true ones proved, "
-               f"{sum(c.ok for c in cases)} of {len(cases)} hunting-proof rigour cases decided right")
+               f"{sum(c.ok for c in cases)} of {len(cases)} rigour cases (hunting proof, decision procedures) decided right")
     notes = [summary + f" ({result.seconds:.2f} s)"]
     notes += [f"FAILED self-check {r.describe()}" for r in result.refusals if not r.ok]
     notes += [f"FAILED self-check: no false certificate breaks the premise {name!r}" for name in result.uncovered]

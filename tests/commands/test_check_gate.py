@@ -57,7 +57,7 @@ def test_check_runs_the_self_check_and_passes_on_this_install(monkeypatch, tmp_p
     assert check.self_check_section in check.SECTIONS
     assert main(["check", "--proofs", str(tmp_path)]) == 0
     out = capsys.readouterr().out
-    assert "false certificates refused naming their premise" in out and "rigour cases decided right" in out
+    assert "false certificates refused naming their premise" in out and "rigour cases (hunting proof, decision procedures) decided right" in out
 
 
 def test_check_fails_when_the_verifier_accepts_a_false_certificate(monkeypatch, tmp_path, capsys):

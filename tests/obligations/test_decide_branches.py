@@ -173,3 +173,16 @@ def test_each_weakened_branch_is_caught(monkeypatch, module, name, replacements,
             monkeypatch.setattr(other, name, mutant)
     with pytest.raises((AssertionError, TypeError)):
         case()
+
+
+def test_check_runs_the_same_cases_and_a_broken_sympy_fails_them(monkeypatch):
+    """``check``'s self-check decides these inputs too: a sympy whose polynomials report only positive
+    coefficients (a broken or patched install) makes the procedures prove false statements, and ``check`` fails."""
+    from symbolic_friction._obligations._decide_cases import decision_cases
+
+    cases = decision_cases()
+    assert len(cases) == 17 and all(c.ok for c in cases), [(c.name, c.got) for c in cases if not c.ok]
+    real = sp.Poly.coeffs
+    monkeypatch.setattr(sp.Poly, "coeffs", lambda self, order=None: [abs(c) for c in real(self, order)])
+    wrong = [c.name for c in decision_cases() if not c.ok]
+    assert "sign_of(1/(a − b))" in wrong
