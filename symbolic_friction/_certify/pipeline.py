@@ -244,16 +244,23 @@ def write_listed_certificates(directory: str | os.PathLike[str], names: Iterable
     mode, margin, label, physical parameters); a missing file named like one
     of Table I's (``case_a_tightest.json`` …) is certified for Table I's
     gains.  A missing file of any other name cannot be created (its gains are
-    unknown) and is left for :func:`check_listed_certificates` to report.
+    unknown) and is left for :func:`check_listed_certificates` to report.  A
+    hunting certificate is rewritten from its gains and the zero in its box
+    (:func:`.hunting.regenerate_hunting`).
 
     Returns the written paths (JSON and Markdown, in order).
     """
+    from .hunting import is_hunting_file, load_hunting, regenerate_hunting, write_hunting
+
     directory = Path(directory)
     written: list[Path] = []
     table_i = {table_i_stem(case, mode) + ".json": (case, mode) for case in TABLE_I_LABELS for mode in MODES}
     for name in names:
         path = directory / name
         fresh = None
+        if path.exists() and is_hunting_file(path):
+            written.append(write_hunting(regenerate_hunting(load_hunting(path)), path))
+            continue
         if path.exists():
             try:
                 fresh = regenerate(load(path))

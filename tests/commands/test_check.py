@@ -58,8 +58,8 @@ def test_every_obligation_holds(full_run):
 
 def test_json_schema(full_run):
     _, payload, _, _ = full_run
-    assert set(payload) == {"obligations", "errata", "certificates", "crosscheck_self_test", "passed", "counts",
-                            "configuration"}
+    assert set(payload) == {"obligations", "errata", "certificates", "crosscheck_self_test", "self_check", "passed",
+                            "counts", "configuration"}
     assert payload["configuration"]["source"].endswith("pyproject.toml") and payload["configuration"]["report"] is True
     assert len(payload["configuration"]["certificates"]) == 11 and payload["configuration"]["only"] is None
     assert payload["passed"] is True
