@@ -58,13 +58,16 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from .._infra.io import check_stem
+    from .._infra.io import check_output_directory, check_output_file, check_stem
     from .._infra.output import emit
     from .._model.parameters import Parameters
 
     params = Parameters(**{name: getattr(args, name) for name in _NAMES})
     if args.name is not None:  # refused before any work, as certify's
         check_stem(args.name)
+    check_output_directory(args.out, what="--out")  # an unusable --out or --figure fails now, not after the proofs
+    if args.figure is not None:
+        check_output_file(args.figure, what="--figure")
     if not params.stiction:
         emit(
             f"{params}: f_s = f_c, the paper's model. Proposition 1: 𝒜 is globally asymptotically stable, so no "
@@ -75,7 +78,7 @@ def run(args: argparse.Namespace) -> int:
         return 0
     from .._hunting._study import parse_sweep, study_cycle
 
-    ratios = parse_sweep(args.sweep) if args.sweep else None
+    ratios = parse_sweep(args.sweep) if args.sweep is not None else None
 
     from .._certify.hunting import write_hunting
     from .._hunting._map import find_cycles, real_root_escape
@@ -130,7 +133,7 @@ def run(args: argparse.Namespace) -> int:
         name = stem if len(cycles) == 1 else f"{stem}_{n}"
         path = write_hunting(cert, Path(args.out) / f"{name}.json")
         emit(f"  certificate: {path} (re-check: symbolic-friction verify {path})", level=0)
-    if args.figure:
+    if args.figure is not None:
         from .._hunting._report import amplitude_sweep, hunting_figure
 
         sweep = amplitude_sweep(params, ratios) if ratios else None
