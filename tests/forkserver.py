@@ -20,6 +20,7 @@ The server is single-threaded (it never starts a thread), so forking it is safe.
 
 from __future__ import annotations
 
+import gc
 import io
 import os
 import pickle
@@ -41,6 +42,7 @@ PRELOAD = (
     "symbolic_friction._cli.main", "symbolic_friction._certify", "symbolic_friction._certify.templates",
     "symbolic_friction._studies.scenes", "symbolic_friction._crosscheck", "symbolic_friction._hunting._study",
     "symbolic_friction._obligations", "symbolic_friction._studies.tradeoff", "symbolic_friction._extremes",
+    "symbolic_friction._infra.junit",
 )
 """Imported once by the server; everything else a command needs is imported by the child, as in a real run."""
 
@@ -138,6 +140,15 @@ def serve() -> None:  # pragma: no cover - runs in the server process
     os.dup2(2, 1)  # a stray print of the server must not corrupt the wire
     for name in PRELOAD:
         importlib.import_module(name)
+    from symbolic_friction._certify._schema import _validator
+    from symbolic_friction._cli.main import build_parser
+    from symbolic_friction._obligations import all_obligations
+
+    all_obligations()  # the registry imports every obligation module: check's --only and --config cases need it
+    build_parser()  # every command module
+    _validator()  # jsonschema and the certificate schema
+    gc.collect()
+    gc.freeze()  # the children's collector leaves the server's objects alone: fewer pages copied after each fork
     _send(wire_out, "ready")
     while True:
         try:
