@@ -52,7 +52,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--out", default="proofs/hunting", metavar="DIR", help="directory for the certificates (default: proofs/hunting)")
     parser.add_argument("--name", default=None, metavar="STEM", help="file stem (default: hunting_<hash of the gains>)")
     parser.add_argument("--figure", default=None, metavar="PNG", help="write the phase plane, the map and (with --sweep) the sweep")
-    parser.add_argument("--sweep", default=None, metavar="R,R,…", help="ratios f_s/f_c for an amplitude sweep (e.g. 1.05,1.1,1.2,1.5)")
+    parser.add_argument("--sweep", default=None, metavar="R,R,…",
+                        help="ratios f_s/f_c for an amplitude sweep (e.g. 1.05,1.1,1.2,1.5; at most 50 ratios, each in (1, 100])")
     parser.add_argument("--no-iss", action="store_true", help="skip the comparison with Corollary 1's empirical ISS gain")
     parser.add_argument("--no-simulation", action="store_true", help="skip the long exact simulation check")
 
