@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import json
 
+import pytest
+
 from symbolic_friction._cli.main import main
 
 A = ["--k-p", "3", "--k-i", "4", "--k-v", "6.4", "--f-c", "1"]
@@ -47,7 +49,6 @@ def test_bad_sweep_is_a_usage_error(tmp_path, capsys):
 
 def test_sweep_help_states_its_ceilings(capsys):
     """The help of --sweep says the bounds parse_sweep enforces (the command module imports no study at start-up)."""
-    from symbolic_friction._cli.main import main
     from symbolic_friction._hunting._study import MAX_RATIO, MAX_SWEEP
 
     with pytest.raises(SystemExit):
