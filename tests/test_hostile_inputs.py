@@ -189,7 +189,7 @@ CASES: list[tuple[str, list[str], dict[str, object], dict[str, str]]] = [
 SAYS = {
     "path-verify-fifo": "not a regular file (a FIFO, socket or device)",
     "number-hunting-sweep-huge-exponent": "exponents beyond",
-    "number-hunting-sweep-ratio-huge": "must lie in (1, 100]",
+    "number-hunting-sweep-ratio-huge": "must lie in [1 + 1e-06, 100]",
     "structure-tradeoff-samples-huge": "--samples must be an integer from 2 to 100000",
     "structure-tradeoff-t-end-huge": "--t-end must lie in (0, 10000]",
     "number-certify-tab-fraction": "Assumption 1",

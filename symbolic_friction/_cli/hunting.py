@@ -46,14 +46,15 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
     parser.epilog = _EPILOG
     parser.formatter_class = argparse.RawDescriptionHelpFormatter
-    gains = parser.add_argument_group("normalised gains (exact: '1.2' is 6/5)")
+    gains = parser.add_argument_group("normalised gains (exact: '1.2' is 6/5; f_s = f_c or f_s/f_c in [1 + 1e-06, 100])")
     for name in _NAMES:
         gains.add_argument("--" + name.replace("_", "-"), dest=name, required=True, metavar="Q", help=_HELP[name])
     parser.add_argument("--out", default="proofs/hunting", metavar="DIR", help="directory for the certificates (default: proofs/hunting)")
     parser.add_argument("--name", default=None, metavar="STEM", help="file stem (default: hunting_<hash of the gains>)")
     parser.add_argument("--figure", default=None, metavar="PNG", help="write the phase plane, the map and (with --sweep) the sweep")
     parser.add_argument("--sweep", default=None, metavar="R,R,…",
-                        help="ratios f_s/f_c for an amplitude sweep (e.g. 1.05,1.1,1.2,1.5; at most 50 ratios, each in (1, 100])")
+                        help="ratios f_s/f_c for an amplitude sweep (e.g. 1.05,1.1,1.2,1.5; at most 50 ratios, "
+                        "each in [1 + 1e-06, 100])")
     parser.add_argument("--no-iss", action="store_true", help="skip the comparison with Corollary 1's empirical ISS gain")
     parser.add_argument("--no-simulation", action="store_true", help="skip the long exact simulation check")
 
@@ -69,6 +70,17 @@ def run(args: argparse.Namespace) -> int:
     check_output_directory(args.out, what="--out")  # an unusable --out or --figure fails now, not after the proofs
     if args.figure is not None:
         check_output_file(args.figure, what="--figure")
+    if params.stiction:  # the search works in float64: refused before it, not after a traceback or an endless search
+        from .._hunting._study import MAX_RATIO, MIN_EXCESS
+        from .._infra.errors import ParameterError
+        from .._simulation import _check_float_model
+
+        if not 1 + MIN_EXCESS <= params.f_s / params.f_c <= MAX_RATIO:
+            raise ParameterError(
+                f"f_s/f_c must be 1 (the paper's model) or lie in [1 + {float(MIN_EXCESS):g}, {MAX_RATIO}]; "
+                f"got f_s/f_c - 1 = {float(params.f_s / params.f_c - 1):.3g}"
+            )
+        _check_float_model(params)
     if not params.stiction:
         emit(
             f"{params}: f_s = f_c, the paper's model. Proposition 1: 𝒜 is globally asymptotically stable, so no "
