@@ -191,7 +191,7 @@ SAYS = {
     "number-hunting-sweep-huge-exponent": "exponents beyond",
     "number-hunting-sweep-ratio-huge": "must lie in [1 + 1e-06, 100]",
     "structure-tradeoff-samples-huge": "--samples must be an integer from 2 to 100000",
-    "structure-tradeoff-t-end-huge": "--t-end must lie in (0, 10000]",
+    "structure-tradeoff-t-end-huge": "--t-end must lie in (0, 1000]",
     "number-certify-tab-fraction": "Assumption 1",
     "number-certify-newline-fraction": "Assumption 1",
     "number-scene-gains-underflow": "beyond what a float64 simulation can represent",

@@ -302,7 +302,34 @@ def _option_cases():
             yield (f"{CLASS[kind]}-{command}-{option.lstrip('-')}-{label}", command_line(command, option, value), files)
 
 
-OPTION_CASES = list(_option_cases())
+def _range_cases():
+    """Numbers that parse but leave what a command can do in bounded time: refused before any work."""
+    hunting, tradeoff, crosscheck = BASE["hunting"], BASE["tradeoff"], BASE["crosscheck"]
+    gains = {"tiny": ["--k-p", "1e-300", "--k-i", "1e-300", "--k-v", "3"], "huge": ["--k-p", "1e300", "--k-i", "1e300",
+                                                                                  "--k-v", "1e300"]}
+    for label, values in gains.items():
+        yield (f"number-hunting-gains-{label}", _with(hunting, values), {})
+    for label, f_s in (("barely-above-f-c", "1.0000000000000000000000001"), ("huge", "1e300"), ("hundredfold", "101")):
+        yield (f"number-hunting-f-s-{label}", _with(hunting, ["--f-s", f_s]), {})
+    yield ("number-hunting-sweep-barely-above-one", [*hunting, "--sweep", "1.0000000000000000001"], {})
+    yield ("number-tradeoff-t-end-ceiling", _with(tradeoff, ["--t-end", "1001"]), {})
+    yield ("number-tradeoff-z0-above-ceiling", [*tradeoff, "--z0", "1e13,0,0"], {})
+    yield ("number-crosscheck-trajectories-times-samples", _with(crosscheck, ["--trajectories", "1000"]) + ["--samples", "100000"], {})
+    yield ("number-crosscheck-horizon-ceiling", [*crosscheck, "--horizon", "1000001"], {})
+
+
+def _with(argv: list[str], changes: list[str]) -> list[str]:
+    """``argv`` with each ``option value`` pair of ``changes`` replacing the option's value (or appended)."""
+    out = list(argv)
+    for option, value in zip(changes[::2], changes[1::2]):
+        if option in out:
+            out[out.index(option) + 1] = value
+        else:
+            out += [option, value]
+    return out
+
+
+OPTION_CASES = list(_option_cases()) + list(_range_cases())
 
 
 def _materialise_links(directory, files: dict) -> dict:
@@ -340,6 +367,11 @@ SAYS = {
     "structure-certificate-huge-array": "more than 10000 JSON values",
     "structure-certificate-duplicate-key": "duplicate key",
     "name-hunting-name-parent": "without directories",
+    "number-hunting-gains-tiny": "beyond what a float64 simulation can represent",
+    "number-hunting-f-s-barely-above-f-c": "f_s/f_c must be 1 (the paper's model) or lie in [1 + 1e-06, 100]",
+    "number-hunting-sweep-barely-above-one": "--sweep ratios f_s/f_c must lie in [1 + 1e-06, 100]",
+    "number-tradeoff-t-end-ceiling": "--t-end must lie in (0, 1000]",
+    "number-crosscheck-trajectories-times-samples": "at most 20000000 are supported",
 }
 """What the one line must say, where the wording matters most (the rest: exit 2, one line)."""
 

@@ -28,7 +28,7 @@ DEFAULT_T = {"a": 30.0, "b": 60.0}
 
 
 # Bounds checked before any work: the horizon, the sample count and the timed repeats of one run, the size of a state.
-MAX_T_END, MAX_SAMPLES, MAX_REPEATS, MAX_STATE = 1e4, 100_000, 1000, 1e12
+MAX_T_END, MAX_SAMPLES, MAX_REPEATS, MAX_STATE = 1e3, 100_000, 1000, 1e12  # T = 1e4 took minutes even with --quick
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
