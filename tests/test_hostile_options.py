@@ -313,6 +313,8 @@ def _range_cases():
         yield (f"number-hunting-f-s-{label}", _with(hunting, ["--f-s", f_s]), {})
     yield ("number-hunting-sweep-barely-above-one", [*hunting, "--sweep", "1.0000000000000000001"], {})
     yield ("number-tradeoff-t-end-ceiling", _with(tradeoff, ["--t-end", "1001"]), {})
+    yield ("number-tradeoff-gains-stiff", _with(tradeoff, ["--k-p", "1e6", "--k-i", "1e6", "--k-v", "1e6"]), {})
+    yield ("number-tradeoff-gains-huge", _with(tradeoff, ["--k-p", "1e300", "--k-i", "1e300", "--k-v", "1e300"]), {})
     yield ("number-tradeoff-z0-above-ceiling", [*tradeoff, "--z0", "1e13,0,0"], {})
     yield ("number-crosscheck-trajectories-times-samples", _with(crosscheck, ["--trajectories", "1000"]) + ["--samples", "100000"], {})
     yield ("number-crosscheck-horizon-ceiling", [*crosscheck, "--horizon", "1000001"], {})
@@ -371,6 +373,7 @@ SAYS = {
     "number-hunting-f-s-barely-above-f-c": "f_s/f_c must be 1 (the paper's model) or lie in [1 + 1e-06, 100]",
     "number-hunting-sweep-barely-above-one": "--sweep ratios f_s/f_c must lie in [1 + 1e-06, 100]",
     "number-tradeoff-t-end-ceiling": "--t-end must lie in (0, 1000]",
+    "number-tradeoff-gains-stiff": "spectral radius × t_end = 1e+06, at most 100000",
     "number-crosscheck-trajectories-times-samples": "at most 20000000 are supported",
 }
 """What the one line must say, where the wording matters most (the rest: exit 2, one line)."""

@@ -29,6 +29,9 @@ DEFAULT_T = {"a": 30.0, "b": 60.0}
 
 # Bounds checked before any work: the horizon, the sample count and the timed repeats of one run, the size of a state.
 MAX_T_END, MAX_SAMPLES, MAX_REPEATS, MAX_STATE = 1e3, 100_000, 1000, 1e12  # T = 1e4 took minutes even with --quick
+# ... and the stiffness of the comparison, spectral radius × t_end: explicit methods (ivp-events DOP853) take about
+# that many steps, and 10⁶ of them ran for minutes.
+MAX_STIFFNESS = 1e5
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -63,6 +66,17 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--no-figures", action="store_true", help="write no figure")
     parser.add_argument("--format", nargs="+", default=["png"], metavar="FMT", help="figure formats: png (always), pdf, svg")
     add_gain_arguments(parser)
+
+
+def _spectral_radius(params) -> float:
+    """Largest |root| of s³ + k_v s² + k_p s + k_i (eq. xPhDot's A): the rate an explicit method must resolve."""
+    import numpy as np
+
+    try:
+        coefficients = [1.0, *(float(q) for q in (params.k_v, params.k_p, params.k_i))]
+    except OverflowError:
+        return math.inf
+    return float(np.max(np.abs(np.roots(coefficients))))
 
 
 def _state(text: str) -> tuple[float, float, float]:
@@ -100,6 +114,13 @@ def run(args: argparse.Namespace) -> int:
         raise UsageError(f"--t-end must be > 0 and at most {MAX_T_END:g} (the reference's cost grows with it); got {t_end:g}")
     if not 2 <= args.samples <= MAX_SAMPLES:
         raise UsageError(f"--samples must be between 2 and {MAX_SAMPLES}; got {args.samples}")
+    stiffness = _spectral_radius(params) * t_end
+    if not stiffness <= MAX_STIFFNESS:
+        raise UsageError(
+            f"these gains are too stiff to compare every method over t_end = {t_end:g}: spectral radius × t_end = "
+            f"{stiffness:.3g}, at most {MAX_STIFFNESS:g} (explicit methods take about that many steps); "
+            "shorten --t-end or simulate the event method alone"
+        )
     if not args.no_figures:
         ensure_directory(args.out)  # an unusable --out fails now, not after the measurements
     result = measure_tradeoff(params, z0s, t_end, label=label, samples=args.samples, repeats=args.repeats, quick=args.quick)
