@@ -180,14 +180,25 @@ def _run_one(*, argv: list[str], cwd: str, env: dict[str, str], timeout: float, 
 
 
 def _wait(pid: int, timeout: float) -> bool:  # pragma: no cover
-    """Wait for the child at most ``timeout`` seconds; kill its process group after that.  True if killed."""
-    fd = os.pidfd_open(pid)
-    try:
-        ready, _, _ = select.select([fd], [], [], timeout)
-    finally:
-        os.close(fd)
-    if ready:
-        return False
+    """Wait for the child at most ``timeout`` seconds; kill its process group after that.  True if killed.
+
+    The child is not reaped here (the caller's ``waitpid`` does): a pidfd says when it exits, or, where there
+    is none (macOS), ``waitid`` with ``WNOWAIT`` is polled.
+    """
+    if hasattr(os, "pidfd_open"):
+        fd = os.pidfd_open(pid)
+        try:
+            ready, _, _ = select.select([fd], [], [], timeout)
+        finally:
+            os.close(fd)
+        if ready:
+            return False
+    else:  # pragma: no cover - platforms without pidfd
+        deadline = time.monotonic() + timeout
+        while time.monotonic() < deadline:
+            if os.waitid(os.P_PID, pid, os.WEXITED | os.WNOHANG | os.WNOWAIT) is not None:
+                return False
+            time.sleep(0.005)
     try:
         os.killpg(pid, signal.SIGKILL)
     except ProcessLookupError:
