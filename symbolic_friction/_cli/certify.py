@@ -161,7 +161,7 @@ def run(args: argparse.Namespace) -> int:
         jobs.append((params, mode, label, out / f"{stem}.json"))
     for _, mode, _, _ in jobs:  # validate before writing anything
         check_margin(args.margin, mode)
-    ensure_directory(out)  # an unusable --out fails now, not after the search
+    ensure_directory(args.out)  # an unusable --out (or an empty one) fails now, not after the search
     for params, mode, label, path in jobs:
         cert = certify(params, mode=mode, margin=args.margin, label=label, physical=physical)
         json_path, md_path = write_certificate(cert, path)

@@ -53,7 +53,7 @@ def _as_claims(items: Iterable[Any], *, require_proved: bool) -> list[tuple[Clai
             continue
         if isinstance(item, (str, os.PathLike)):
             path = Path(item)
-            cert, source, label = load(path), str(path), path.stem
+            cert, source, label = load(item), str(path), path.stem  # the text as given: 'x.json/' is refused
         else:
             cert, source, label = item, "", None
         proved = None

@@ -94,11 +94,16 @@ def parse_sweep(text: str) -> list[Fraction]:
     if not parts or len(parts) > MAX_SWEEP:
         raise ParameterError(f"--sweep takes 1 to {MAX_SWEEP} comma-separated ratios f_s/f_c like 1.1,1.2; got {len(parts)}")
     ratios = [to_rational(r, name="a --sweep ratio") for r in parts]
-    bad = [r for r in ratios if not 1 < r <= MAX_RATIO]
+    bad = [r for r in ratios if not 1 + MIN_EXCESS <= r <= MAX_RATIO]
     if bad:
-        raise ParameterError(f"--sweep ratios f_s/f_c must lie in (1, {MAX_RATIO}] (f_s > f_c); got {float(bad[0]):g}")
+        raise ParameterError(
+            f"--sweep ratios f_s/f_c must lie in [1 + {float(MIN_EXCESS):g}, {MAX_RATIO}] (f_s > f_c); "
+            f"got a ratio r with r - 1 = {float(bad[0] - 1):.3g}"
+        )
     return ratios
 
 
-# Bounds on --sweep: at most this many ratios, each at most this large (static friction this far above Coulomb).
-MAX_SWEEP, MAX_RATIO = 50, 100
+# Bounds on --sweep: at most this many ratios, each at most this large (static friction this far above Coulomb),
+# and at least 1 + MIN_EXCESS: closer to Coulomb the cycle's excess f_s - f_c is lost in double precision and the
+# search for it does not end.
+MAX_SWEEP, MAX_RATIO, MIN_EXCESS = 50, 100, Fraction(1, 10**6)

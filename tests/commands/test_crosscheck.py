@@ -122,20 +122,24 @@ def test_malformed_certificate(tmp_path, capsys):
 
 @pytest.mark.parametrize(
     "option, value, message",
-    [("--rtol", "2", "--rtol must be < 1; got 2"), ("--theta", "1.5", "--theta must be ≤ 1; got 1.5")],
+    [("--rtol", "2", "--rtol must lie in (0, 1); got '2'"), ("--theta", "1.5", "--theta must lie in (0, 1]; got '1.5'")],
 )
 def test_option_ranges(option, value, message, capsys):
-    assert main(["crosscheck", str(PROOFS / "case_a_tightest.json"), option, value]) == 2
+    with pytest.raises(SystemExit) as exc:
+        main(["crosscheck", str(PROOFS / "case_a_tightest.json"), option, value])
+    assert exc.value.code == 2
     assert message in capsys.readouterr().err
 
 
 @pytest.mark.parametrize(
     "option, value, message",
     [
-        ("--trajectories", "0", "expected an integer ≥ 1; got 0"),
-        ("--trajectories", "many", "expected an integer ≥ 1; got 'many'"),
-        ("--horizon", "-3", "expected a finite number > 0; got '-3'"),
-        ("--horizon", "soon", "expected a number > 0; got 'soon'"),
+        ("--trajectories", "0", "--trajectories must be an integer from 1 to 1000000 (a bound on time and memory); got '0'"),
+        ("--trajectories", "many", "--trajectories must be an integer from 1 to 1000000 (ASCII digits); got 'many'"),
+        ("--trajectories", "٣", "(ASCII digits); got '٣'"),
+        ("--horizon", "-3", "--horizon must lie in (0, 1e+06]; got '-3'"),
+        ("--horizon", "soon", "--horizon must be a decimal such as '6.4' or a fraction such as '32/5'; got 'soon'"),
+        ("--horizon", "1e999", "--horizon must lie in (0, 1e+06]; got '1e999'"),
     ],
 )
 def test_argument_types(option, value, message, capsys):
