@@ -58,6 +58,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "(default: both for Table I, tightest for given gains)",
     )
     parser.add_argument(
+        "--search",
+        choices=("closed-form", "sdp"),
+        default="closed-form",
+        help="how the constants are found: 'closed-form' (default) writes them down for any gains without a solver; "
+        "'sdp' solves the semidefinite program (cvxpy + Clarabel); the exact verifier decides either way",
+    )
+    parser.add_argument(
         "--margin",
         default=None,
         metavar="Q",
@@ -163,11 +170,11 @@ def run(args: argparse.Namespace) -> int:
         check_margin(args.margin, mode)
     ensure_directory(out)  # an unusable --out fails now, not after the search
     for params, mode, label, path in jobs:
-        cert = certify(params, mode=mode, margin=args.margin, label=label, physical=physical)
+        cert = certify(params, mode=mode, margin=args.margin, label=label, physical=physical, search=args.search)
         json_path, md_path = write_certificate(cert, path)
         if args.json:
             emit(json.dumps({
-                "file": str(json_path), "report": str(md_path), "mode": mode, "label": label,
+                "file": str(json_path), "report": str(md_path), "mode": mode, "search": args.search, "label": label,
                 "parameters": {k: format_rational(v) for k, v in cert.parameters.items()},
                 "physical": None if cert.physical is None else {k: format_rational(v) for k, v in cert.physical.items()},
                 "overshoot_bound": cert.overshoot_bound, "proved": True,

@@ -124,6 +124,15 @@ def test_certify_never_returns_an_unverified_certificate(monkeypatch):
     real = pipeline_module.to_certificate
     monkeypatch.setattr(pipeline_module, "to_certificate", lambda cand, label="": replace(real(cand), c=F(1)))
     with pytest.raises(CertificateError, match=r"rounded tightest candidate for .* does not verify exactly: c = 2"):
+        certify(CASE_A, search="sdp")
+
+
+def test_certify_never_returns_an_unverified_closed_form_certificate(monkeypatch):
+    import symbolic_friction._certify.closed_form as closed_form_module
+
+    real = closed_form_module.closed_form_certificate
+    monkeypatch.setattr(closed_form_module, "closed_form_certificate", lambda *a, **k: replace(real(*a, **k), k3=F(2)))
+    with pytest.raises(CertificateError, match=r"rounded tightest candidate for .* does not verify exactly: k3 > k2: 2 > 2 is false"):
         certify(CASE_A)
 
 
