@@ -2,8 +2,8 @@
 
 :func:`builtin_templates` imports the modules that register the package's
 templates (a missing one is an :class:`ImportError`): the stability
-certificate of Proposition 1 (:data:`.pipeline.STABILITY`) and the hunting
-certificate (:data:`.hunting.HUNTING`).  The functions below take any file,
+certificate of Proposition 1 (:data:`.pipeline.STABILITY`), the hunting
+certificate (:data:`.hunting.HUNTING`) and the box certificate (:data:`.box.BOX`).  The functions below take any file,
 pick its template from its ``template`` member or its ``schema``
 (:func:`._template.template_for`) and run that template's reader, exact
 verifier and staleness check; ``symbolic-friction verify`` and ``check`` go
@@ -33,10 +33,11 @@ __all__ = [
 
 def builtin_templates() -> tuple[Template, ...]:
     """The package's templates, registered (the stability certificate first); then every registered one."""
+    from .box import BOX
     from .hunting import HUNTING
     from .pipeline import STABILITY
 
-    return (STABILITY, HUNTING) + tuple(t for t in registered() if t not in (STABILITY, HUNTING))
+    return (STABILITY, HUNTING, BOX) + tuple(t for t in registered() if t not in (STABILITY, HUNTING, BOX))
 
 
 def read_certificate_file(path: str | os.PathLike[str]) -> tuple[Template, Any]:

@@ -242,6 +242,7 @@ def default_certificate_files() -> list[str]:
     """
     from pathlib import Path
 
+    from .._certify.box import is_box_file
     from .._certify.hunting import is_hunting_file
     from .._infra.config import find_config
 
@@ -258,7 +259,7 @@ def default_certificate_files() -> list[str]:
             files.append(str(path))
     else:
         files = sorted(str(p) for p in Path("proofs").glob("*.json"))
-    files = [f for f in files if not is_hunting_file(f)]
+    files = [f for f in files if not is_hunting_file(f) and not is_box_file(f)]  # one gain set per file here
     if not files:
         raise FileNotFoundError("no certificate given and no proofs/*.json in the current directory")
     return files
