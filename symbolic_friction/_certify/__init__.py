@@ -45,12 +45,11 @@ from .pipeline import (
     render_files,
     table_i_stem,
     write_certificate,
-    write_listed_certificates,
 )
 from .report import render_markdown
 from .search import DEFAULT_MARGIN, MODES, Candidate, Search, find_candidate
 from .sweep import SweepItem, certify_many
-from .templates import CommittedCertificate, check_committed_certificates, check_listed_certificates
+from .templates import CommittedCertificate, check_committed_certificates, check_listed_certificates, write_listed_certificates
 from .verify import Check, VerificationReport, verify_certificate, verify_file
 
 __all__ = [

@@ -84,8 +84,7 @@ PHYSICAL_NAMES: tuple[str, ...] = ("m", "k_p_bar", "k_i_bar", "k_d_bar", "alpha_
 _TOP_KEYS = ("schema", "parameters", "constants", "overshoot_bound")
 _OPTIONAL_TOP_KEYS = ("provenance", "physical", "template")
 _PROVENANCE_KEYS = ("package", "package_version", "mode", "margin", "solver", "solver_status", "obligations", "label")
-SEARCHES: tuple[str, ...] = ("closed-form", "sdp")
-"""How the constants were found: the closed form of :mod:`.closed_form`, or the SDP of :mod:`.search`."""
+SEARCHES: tuple[str, ...] = ("closed-form", "sdp")  # the closed form of .closed_form, or the SDP of .search
 _RATIONAL_RE = re.compile(r"^[+-]?[0-9]+(/[0-9]+)?$")
 _DECIMAL_RE = re.compile(r"^[0-9]+(\.[0-9]+)?$")
 MAX_NUMBER_CHARS = 20_000
@@ -181,9 +180,7 @@ class Provenance:
     package : str
         Always ``"symbolic-friction"``.
     search : str
-        Which search produced the constants: ``"closed-form"`` or ``"sdp"``
-        (written only for the closed form, so files found by the SDP before
-        there was a choice read and regenerate unchanged).
+        ``"closed-form"`` or ``"sdp"`` (written only for the closed form: older SDP files stay current).
     """
 
     mode: str
@@ -215,18 +212,11 @@ class Provenance:
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready mapping (exact margin as a rational string)."""
         out = {
-            "package": self.package,
-            "package_version": self.package_version,
-            "mode": self.mode,
-            "margin": format_rational(self.margin),
-            "solver": self.solver,
-            "solver_status": self.solver_status,
-            "obligations": list(self.obligations),
-            "label": self.label,
+            "package": self.package, "package_version": self.package_version, "mode": self.mode,
+            "margin": format_rational(self.margin), "solver": self.solver, "solver_status": self.solver_status,
+            "obligations": list(self.obligations), "label": self.label,
         }
-        if self.search != "sdp":
-            out["search"] = self.search
-        return out
+        return out if self.search == "sdp" else {**out, "search": self.search}
 
     @classmethod
     def from_dict(cls, data: object) -> "Provenance":

@@ -260,21 +260,6 @@ STABILITY = register(Template(
 """The stability certificate of Proposition 1 (Lemma 2, Lemma 3): constants of ``V`` and ``V̂`` and κ."""
 
 
-def _other_template(path: Path):  # -> (Template, certificate) | None
-    """The template and content of ``path`` if it is a regenerable file of a template other than this one."""
-    from .templates import read_certificate_file
-
-    if not path.exists():
-        return None
-    try:
-        template, certificate = read_certificate_file(path)
-    except (CertificateFormatError, InputFileError):
-        return None
-    if template is STABILITY or template.regenerate is None:
-        return None
-    return template, certificate
-
-
 def write_listed_certificates(directory: str | os.PathLike[str], names: Iterable[str]) -> list[Path]:
     """Regenerate the certificates ``names`` under ``directory`` (``check --write``).
 
@@ -292,11 +277,6 @@ def write_listed_certificates(directory: str | os.PathLike[str], names: Iterable
     for name in names:
         path = directory / name
         fresh = None
-        other = _other_template(path)
-        if other is not None:  # a file of another template that regenerates itself (a box certificate)
-            template, certificate = other
-            written.append(template.write(template.regenerate(certificate), path))
-            continue
         if path.exists():
             try:
                 fresh = regenerate(load(path))

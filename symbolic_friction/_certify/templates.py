@@ -28,6 +28,7 @@ __all__ = [
     "CommittedCertificate",
     "check_committed_certificates",
     "check_listed_certificates",
+    "write_listed_certificates",
 ]
 
 
@@ -173,3 +174,29 @@ def check_listed_certificates(directory: str | os.PathLike[str], names: Iterable
         else:
             results.append(_check_one(path))
     return results
+
+
+def write_listed_certificates(directory: str | os.PathLike[str], names: Iterable[str]) -> list[Path]:
+    """Regenerate the certificates ``names`` under ``directory`` (``check --write``), atomically.
+
+    A file of a template that regenerates itself (a box certificate) is rewritten from its own
+    content; every other name goes to the stability certificate's
+    :func:`.pipeline.write_listed_certificates` (its provenance, or Table I's gains for Table I's names).
+    """
+    from .pipeline import write_listed_certificates as write_stability
+
+    builtin_templates()
+    directory = Path(directory)
+    written: list[Path] = []
+    for name in names:
+        path = directory / name
+        if path.exists():
+            try:
+                template, certificate = read_certificate_file(path)
+            except (CertificateFormatError, InputFileError):
+                template = None
+            if template is not None and template is not builtin_templates()[0] and template.regenerate is not None:
+                written.append(template.write(template.regenerate(certificate), path))
+                continue
+        written += write_stability(directory, [name])
+    return written
