@@ -5,7 +5,8 @@ A case's values cover its piece of the parameter space exactly as its positive s
 ``(0, ∞)`` (the convention of :mod:`._decide`), so a sign decided on the parametrisation holds on the
 whole piece.  A fraction is kept as numerator and denominator, never cancelled (as ``together`` in
 :func:`._decide.sign_of`): it has a sign when both have coefficients of one sign.  The polynomials
-are python-flint's ``fmpq_mpoly`` (exact; the same rule on sympy expressions took minutes here).
+are python-flint's ``fmpz_mpoly`` (exact integers; a rational constant ``p/q`` is the fraction of two
+constant polynomials; the same rule on sympy expressions took minutes here).
 """
 
 from __future__ import annotations
@@ -35,16 +36,16 @@ _GENS = ("p", "tau", "x", "h", "b", "s", "t", "u", "w", "k_i", "f_c", "mu", "R",
 def _field() -> tuple[Any, dict[str, Any]]:
     """``(F, generators)``: ``F(q)`` is the fraction of a rational ``q``; the generators are fractions.
 
-    The polynomials are python-flint's ``fmpq_mpoly`` (exact, sparse, over ℚ).
+    The polynomials are python-flint's ``fmpz_mpoly`` (exact, sparse, over ℤ).
     """
     import flint
 
-    ctx = flint.fmpq_mpoly_ctx.get(_GENS, "lex")
+    ctx = flint.fmpz_mpoly_ctx.get(_GENS, "lex")
 
     @functools.lru_cache(maxsize=4096)
     def make(q: Any) -> _Frac:
-        q = sp.Rational(q)
-        return _Frac(ctx.constant(flint.fmpq(int(q.p), int(q.q))), ctx.constant(1))
+        q = sp.Rational(q)  # p/q: integer polynomials over a positive integer denominator
+        return _Frac(ctx.constant(int(q.p)), ctx.constant(int(q.q)))
 
     return make, {n: _Frac(g, ctx.constant(1)) for n, g in zip(_GENS, ctx.gens())}
 

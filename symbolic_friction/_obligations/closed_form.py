@@ -160,7 +160,9 @@ def _certificate(constants: dict[str, Any]) -> SymbolicCertificate:
     a, k_p, k_i, f_c = BASE["a"], BASE["k_p"], BASE["k_i"], BASE["f_c"]
     k_v = a * k_i
     c = constants
-    kappa = sp.sqrt(kappa_squared(c["c1"], c["c2"], c["c1_hat"], c["c2_hat"]) + BASE["eps_kappa"])
+    # κ rounded up: any κ > 0 with κ² ≥ c₂ĉ₂/(c₁ĉ₁) is √(c₂ĉ₂/(c₁ĉ₁) + ε_κ), ε_κ ≥ 0 (unevaluated: sympy's
+    # assumptions on the large radicand cost more than the whole decision)
+    kappa = sp.Pow(kappa_squared(c["c1"], c["c2"], c["c1_hat"], c["c2_hat"]) + BASE["eps_kappa"], sp.Rational(1, 2), evaluate=False)
     return SymbolicCertificate(k_p, k_i, k_v, f_c, c["k1"], c["k2"], c["k3"], c["k4"], 2 * (k_v * k_p - k_i),
                                c["c1"], c["c2"], c["c1_hat"], c["c2_hat"], kappa)
 
