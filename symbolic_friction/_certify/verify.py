@@ -282,8 +282,7 @@ def decide(premise: Inequality | Semidefinite) -> Check:
         instance = f"{_matrix_text(matrix)} ⪰ 0 (all {len(minors)} principal minors ≥ 0, smallest {_text(smallest)})"
         return Check(premise.obligation, premise.name, instance, True)
     lhs, rhs = _exact(premise.lhs, premise.name), _exact(premise.rhs, premise.name)
-    # Inequality.margin on the exact sides: rhs − lhs for ≤, else lhs − rhs
-    margin, kind = (rhs - lhs, ">=") if premise.op == "<=" else (lhs - rhs, premise.op)
+    margin, kind = Inequality(premise.obligation, premise.name, lhs, premise.op, rhs).margin()
     holds = bool(_DECIDE[kind](margin))
     right = _text(rhs)
     if premise.rhs_text is not None:
