@@ -1,8 +1,9 @@
 """``symbolic-friction verify FILE…``: exact re-check of certificate files.
 
 Each file is dispatched on its ``schema`` field: a stability certificate of
-the paper's model (:mod:`.._certify.verify`, exact rationals) or a hunting
-certificate (:mod:`.._hunting._certificate`, a Krawczyk proof in arb balls).
+the paper's model (:mod:`.._certify.verify`, exact rationals), a box
+certificate (:mod:`.._certify.box`: the same verifier at every piece's four
+corners) or a hunting certificate (a Krawczyk proof in arb balls).
 
 Exit status: 0 if every file proves its claim; 1 if some inequality fails
 (each failing one is named with its exact numbers); 2 if a file is missing
@@ -68,6 +69,12 @@ def run(args: argparse.Namespace) -> int:
                 emit(f"MALFORMED {exc}", level=0)
             continue
         cert = report.certificate
+        from .._certify.box import BoxReport
+
+        if isinstance(report, BoxReport):
+            _box_result(report, name, args, cases, payload)
+            failed = failed or not report.proved
+            continue
         if hunting:
             _hunting_result(report, name, args, cases, payload)
             failed = failed or not report.proved
@@ -142,3 +149,26 @@ def _hunting_result(report, name, args, cases: list, payload: list) -> None:
         emit(report.summary(), level=0)
         for check in report.checks:
             emit(f"  {check}", level=2)
+
+
+def _box_result(report, name, args, cases: list, payload: list) -> None:
+    """One box certificate's line, JUnit case and JSON record (its checks: the cover and every piece's 4 corners)."""
+    from .._infra.junit import Case
+    from .._infra.output import emit
+
+    cert = report.certificate
+    gains = cert.gains_text()
+    cases.append(Case(name=str(name), classname="verify", seconds=0.0,
+                      failure=None if report.proved else "; ".join(c.message for c in report.failures[:5]), output=gains))
+    payload.append({
+        "file": str(name), "kind": "box", "status": "proved" if report.proved else "failed",
+        "box": cert.to_dict()["box"], "gains_text": gains, "pieces": len(cert.pieces),
+        "label": cert.provenance.get("label", ""), "overshoot_bound": cert.overshoot_bound,
+        "failures": [{"obligation": c.obligation, "inequality": c.name, "instance": c.instance} for c in report.failures],
+        **({"checks": [{"obligation": c.obligation, "inequality": c.name, "instance": c.instance, "holds": c.holds}
+                       for c in report.checks]} if args.verbose else {}),
+    })
+    if not args.json:
+        emit(f"{report.summary()} [{gains}]", level=0)
+        for check in report.checks:
+            emit(f"  {check}  [{check.obligation}]", level=2)

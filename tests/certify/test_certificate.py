@@ -63,7 +63,9 @@ def test_no_timestamps_timings_or_library_versions(data):
         "solver_status",
         "obligations",
         "label",
+        "search",
     }
+    assert data["provenance"]["search"] == "closed-form"
 
 
 def test_kappa_squared_and_kappa(cert):

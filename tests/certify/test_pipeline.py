@@ -53,7 +53,7 @@ def test_committed_proofs_are_verified_and_up_to_date():
     """The files under proofs/ are exactly what `symbolic-friction certify` writes now."""
     results = check_committed_certificates(REPO / "proofs", expected=TABLE_I_FILES)
     results = [r for r in results if r.path.parent.name not in ("hunting", "quadratic")]  # tests/hunting, test_quadratic
-    assert [r.path.name for r in results] == sorted(TABLE_I_FILES)
+    assert [r.path.name for r in results] == sorted(TABLE_I_FILES + ("box_case_a_10pct.json", "box_physical.json"))
     for result in results:
         assert result.ok, result.describe()
         assert result.describe().startswith("ok ")
@@ -126,6 +126,15 @@ def test_certify_never_returns_an_unverified_certificate(monkeypatch):
     real = pipeline_module.to_certificate
     monkeypatch.setattr(pipeline_module, "to_certificate", lambda cand, label="": replace(real(cand), c=F(1)))
     with pytest.raises(CertificateError, match=r"rounded tightest candidate for .* does not verify exactly: c = 2"):
+        certify(CASE_A, search="sdp")
+
+
+def test_certify_never_returns_an_unverified_closed_form_certificate(monkeypatch):
+    import symbolic_friction._certify.closed_form as closed_form_module
+
+    real = closed_form_module.closed_form_certificate
+    monkeypatch.setattr(closed_form_module, "closed_form_certificate", lambda *a, **k: replace(real(*a, **k), k3=F(2)))
+    with pytest.raises(CertificateError, match=r"rounded tightest candidate for .* does not verify exactly: k3 > k2: 2 > 2 is false"):
         certify(CASE_A)
 
 
