@@ -16,7 +16,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from symbolic_friction import AssumptionError, CertificateFormatError, ParameterError
+from symbolic_friction.errors import AssumptionError, CertificateFormatError, ParameterError
 from symbolic_friction._certify import Certificate, check_listed_certificates, verify_certificate
 from symbolic_friction._certify.box import (
     BOX,

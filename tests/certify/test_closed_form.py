@@ -12,7 +12,8 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from symbolic_friction import Parameters, ParameterError
+from symbolic_friction import Parameters
+from symbolic_friction.errors import ParameterError
 from symbolic_friction._certify import certify, verify_certificate
 from symbolic_friction._certify.closed_form import closed_form_constants, sqrt_up
 
