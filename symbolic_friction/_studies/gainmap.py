@@ -104,11 +104,13 @@ class Axis:
             raise ParameterError(f"{self.name}: the scale must be 'lin' or 'log'; got {self.scale!r}")
         if isinstance(self.n, bool) or not isinstance(self.n, int) or not 1 <= self.n <= MAX_POINTS:
             raise ParameterError(f"{self.name}: the number of grid points must be an integer in 1..{MAX_POINTS}; got {self.n!r}")
-        if self.scale == "log" and not (self.lo > 0 and 0.0 < float(self.lo) and math.isfinite(float(self.hi))):
-            raise ParameterError(f"{self.name}: a log range needs 0 < lo (a positive float); got lo = {short_rational(self.lo)}")
         for end in (self.lo, self.hi):
-            if not math.isfinite(float(end)):
-                raise ParameterError(f"{self.name} = {short_rational(end)} is beyond the range of floating point")
+            try:
+                float(end)
+            except OverflowError:
+                raise ParameterError(f"{self.name} = {short_rational(end)} is beyond the range of floating point") from None
+        if self.scale == "log" and not (self.lo > 0 and float(self.lo) > 0.0):
+            raise ParameterError(f"{self.name}: a log range needs 0 < lo (a positive float); got lo = {short_rational(self.lo)}")
 
     @property
     def ranged(self) -> bool:
