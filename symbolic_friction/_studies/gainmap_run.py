@@ -183,7 +183,7 @@ def run_map(
     >>> spec = map_spec({"k_p": "1:3:3", "k_i": "1:8:2", "k_v": "2"})
     >>> run = run_map(spec, tempfile.mkdtemp() + "/m", formats=["csv"], progress=False)
     >>> run.counts
-    {'proved': 4, 'not_proved': 0, 'outside_assumption_1': 2}
+    {'proved': 3, 'not_proved': 0, 'outside_assumption_1': 3}
     """
     from .._infra.errors import ParameterError
     from .._infra.progress import Progress
