@@ -142,6 +142,13 @@ _LAZY: dict[str, str] = {
     "Tradeoff": "._studies.tradeoff",
     "run_extremes": "._extremes",
     "Extremes": "._extremes",
+    # gain maps: κ of exactly verified closed-form certificates over a grid or a sample of gains
+    "map_spec": "._studies.gainmap",
+    "MapSpec": "._studies.gainmap",
+    "run_map": "._studies.gainmap_run",
+    "MapRun": "._studies.gainmap_run",
+    "read_map": "._studies.gainmap_run",
+    "plot_map": "._studies.gainmap_plot",
 }
 
 # public submodules (imported lazily): name -> private module

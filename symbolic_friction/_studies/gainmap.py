@@ -334,6 +334,22 @@ class MapSpec:
                 "adversary": self.adversary, "chunk": self.chunk, "mu": format_rational(self.mu),
                 "sample_digits": SAMPLE_DIGITS}
 
+    @classmethod
+    def from_dict(cls, data: Mapping[str, Any]) -> "MapSpec":
+        """The spec :meth:`to_dict` wrote (e.g. in a map's manifest).
+
+        Raises
+        ------
+        ParameterError
+            If ``data`` is not such a mapping.
+        """
+        try:
+            axes = tuple(Axis(a["name"], a["lo"], a["hi"], a["n"], a["scale"]) for a in data["axes"])
+            return cls(axes, sample=data["sample"], seed=data["seed"], sdp=data["sdp"], adversary=data["adversary"],
+                       chunk=data["chunk"], mu=data["mu"])
+        except (KeyError, TypeError) as exc:
+            raise ParameterError(f"not a gain-map spec: {type(exc).__name__} {exc}") from None
+
     def digest(self) -> str:
         """SHA-256 of the canonical JSON of :meth:`to_dict`: two runs may share chunks only if this agrees."""
         return hashlib.sha256(json.dumps(self.to_dict(), sort_keys=True).encode()).hexdigest()

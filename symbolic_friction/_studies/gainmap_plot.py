@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -57,18 +58,23 @@ def _boundary(spec: MapSpec, x: str, y: str, ax: object) -> bool:
     return True
 
 
-def plot_map(spec: MapSpec, columns: dict[str, np.ndarray], path: str | os.PathLike[str], *, x: str | None = None,
-             y: str | None = None) -> Path:
-    """Write the heat map of κ over ``(x, y)`` to ``path`` (format from the suffix, e.g. ``.png``, ``.pdf``).
+def plot_map(spec: MapSpec, columns: dict[str, np.ndarray], path: str | os.PathLike[str] | None = None, *,
+             x: str | None = None, y: str | None = None) -> Any:
+    """The heat map of κ over ``(x, y)``: written to ``path`` (format from the suffix, e.g. ``.png``, ``.pdf``), or returned.
 
     Parameters
     ----------
     spec : MapSpec
     columns : dict of ndarray
         The map's columns (:func:`~.gainmap_run.read_columns`).
-    path : path-like
+    path : path-like, optional
+        Where to write the figure; without it the matplotlib figure is returned (for a notebook).
     x, y : str, keyword-only
         Axis names (default :func:`default_axes`); both must be ranged.
+
+    Returns
+    -------
+    Path or matplotlib.figure.Figure
 
     Raises
     ------
@@ -76,9 +82,7 @@ def plot_map(spec: MapSpec, columns: dict[str, np.ndarray], path: str | os.PathL
         If ``x`` or ``y`` is not a ranged axis of the map, or they are the same.
     """
     import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure
     from matplotlib.colors import LogNorm
 
     if x is None or y is None:
@@ -91,7 +95,8 @@ def plot_map(spec: MapSpec, columns: dict[str, np.ndarray], path: str | os.PathL
     if x == y:
         raise ParameterError(f"a heat map needs two different axes; got {x!r} twice")
     kappa = np.where(columns["status"] == 0, columns["kappa"], np.nan)
-    fig, ax = plt.subplots(figsize=(6.4, 5.0), layout="constrained")
+    fig = Figure(figsize=(6.4, 5.0), layout="constrained")
+    ax = fig.add_subplot()
     finite = kappa[np.isfinite(kappa)]
     norm = LogNorm(vmin=finite.min(), vmax=max(finite.max(), finite.min() * 1.0001)) if finite.size else None
     cmap = matplotlib.colormaps["viridis"].with_extremes(bad="0.85")
@@ -123,12 +128,13 @@ def plot_map(spec: MapSpec, columns: dict[str, np.ndarray], path: str | os.PathL
     fig.colorbar(image, ax=ax, label="κ  (grey: not proved or outside Assumption 1)")
     if drawn:
         ax.legend(loc="lower right", fontsize=8)
+    if path is None:
+        return fig
     from .._infra.io import atomic_write
 
     path = Path(path)
     fmt = path.suffix.lstrip(".") or "png"
     atomic_write(path, lambda handle: fig.savefig(handle, format=fmt, dpi=150))
-    plt.close(fig)
     return path
 
 

@@ -35,7 +35,7 @@ from .._infra.errors import UsageError
 from .._infra.io import atomic_write, atomic_write_text, ensure_directory, read_limited
 from .gainmap import STATUS, MapSpec
 
-__all__ = ["MapRun", "run_map", "read_columns", "FORMATS", "MANIFEST", "DATASET_FORMAT"]
+__all__ = ["MapRun", "run_map", "read_columns", "read_map", "FORMATS", "MANIFEST", "DATASET_FORMAT"]
 
 DATASET_FORMAT = "symbolic-friction/gain-map/v1"
 MANIFEST = "manifest.json"
@@ -247,6 +247,27 @@ def read_columns(directory: str | os.PathLike[str], spec: MapSpec) -> dict[str, 
         for name, v in cols.items():
             parts[name].append(v)
     return {name: np.concatenate(v) for name, v in parts.items()}
+
+
+def read_map(directory: str | os.PathLike[str]) -> tuple[MapSpec, dict[str, np.ndarray]]:
+    """``(spec, columns)`` of the finished map in ``directory`` (its manifest and chunks).
+
+    Raises
+    ------
+    UsageError
+        If ``directory`` holds no gain map, or the run did not finish.
+    """
+    directory = Path(directory)
+    path = directory / MANIFEST
+    try:
+        found = json.loads(read_limited(path, limit=1 << 20, what="gain-map manifest"))
+        spec = MapSpec.from_dict(found["spec"])
+        ok = found.get("format") == DATASET_FORMAT and found.get("digest") == spec.digest()
+    except (ValueError, KeyError, TypeError, AttributeError):
+        ok = False
+    if not ok:
+        raise UsageError(f"{path} is not a gain-map manifest ({DATASET_FORMAT})")
+    return spec, read_columns(directory, spec)
 
 
 def _write_dataset(directory: Path, spec: MapSpec, columns: dict[str, np.ndarray], fmt: str) -> Path:

@@ -319,3 +319,16 @@ def test_the_heat_map_draws_kappa_and_the_assumption_1_boundary(reference, tmp_p
         gainmap_plot.plot_map(spec, cols, tmp_path / "k.png", x="k_p", y="k_p")
     with pytest.raises(ParameterError, match="needs two ranged axes"):
         gainmap_plot.default_axes(map_spec({"k_p": "1:2:3", "k_i": "1", "k_v": "2"}))
+
+
+def test_a_finished_map_reads_back_with_its_spec(reference, tmp_path):
+    from symbolic_friction._studies.gainmap_run import read_map
+
+    spec, directory, _, cols = reference
+    again, columns = read_map(directory)
+    assert again == spec and again.digest() == spec.digest()
+    _same(columns, cols)
+    with pytest.raises(UsageError, match="is not a gain-map manifest"):
+        read_map(tmp_path)
+    with pytest.raises(ParameterError, match="not a gain-map spec"):
+        MapSpec.from_dict({"axes": []})
