@@ -259,6 +259,8 @@ def read_map(directory: str | os.PathLike[str]) -> tuple[MapSpec, dict[str, np.n
     """
     directory = Path(directory)
     path = directory / MANIFEST
+    if not path.is_file():
+        raise UsageError(f"{directory} holds no gain map ({MANIFEST} missing)")
     try:
         found = json.loads(read_limited(path, limit=1 << 20, what="gain-map manifest"))
         spec = MapSpec.from_dict(found["spec"])

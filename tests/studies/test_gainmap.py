@@ -328,6 +328,9 @@ def test_a_finished_map_reads_back_with_its_spec(reference, tmp_path):
     again, columns = read_map(directory)
     assert again == spec and again.digest() == spec.digest()
     _same(columns, cols)
+    with pytest.raises(UsageError, match="holds no gain map"):
+        read_map(tmp_path)
+    (tmp_path / "manifest.json").write_text('{"format": "symbolic-friction/gain-map/v1", "spec": {}}')
     with pytest.raises(UsageError, match="is not a gain-map manifest"):
         read_map(tmp_path)
     with pytest.raises(ParameterError, match="not a gain-map spec"):
