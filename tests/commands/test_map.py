@@ -69,3 +69,18 @@ def test_another_spec_on_the_same_directory_exits_2(tmp_path, capsys):
     assert main(["map", *GRID[:-1], "8", "--out", out, "--no-plot"]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "holds chunks of a different map" in err
+
+
+def test_scheduler_without_dask_exits_2_naming_the_extra(tmp_path, capsys, monkeypatch):
+    import sys
+
+    monkeypatch.setitem(sys.modules, "dask.distributed", None)  # as if the [dask] extra were not installed
+    assert main(["map", *GRID, "--out", str(tmp_path / "m"), "--scheduler", "tcp://127.0.0.1:1"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and 'pip install "symbolic-friction[dask]"' in err
+
+
+def test_workers_and_scheduler_exclude_each_other(tmp_path, capsys):
+    with pytest.raises(SystemExit) as exc:
+        main(["map", *GRID, "--workers", "2", "--scheduler", "tcp://127.0.0.1:1"])
+    assert exc.value.code == 2 and "not allowed with argument" in capsys.readouterr().err
