@@ -404,31 +404,11 @@ def chunk_gains(spec: MapSpec, c: int) -> list[dict[str, Fraction]]:
     return [dict(zip(names, row)) for row in zip(*columns.values())]
 
 
-def _float_up(decimal: str) -> float:
-    """The smallest float ``≥`` the decimal ``decimal`` (decided exactly)."""
-    f = float(decimal)
-    return math.nextafter(f, math.inf) if Fraction(f) < Fraction(decimal) else f
-
-
-def closed_form_certificate(k_p: Fraction, k_i: Fraction, k_v: Fraction, f_c: Fraction, *, mu: Fraction = DEFAULT_MU):
-    """The closed-form :class:`~.._certify.certificate.Certificate` of one gain set satisfying Assumption 1 (unverified)."""
-    from .._certify.certificate import Certificate
-    from .._certify.closed_form import closed_form_constants
-    from .._certify.rounding import KAPPA_DIGITS, sqrt_decimal_up
-
-    a = k_v / k_i
-    cf = closed_form_constants(a, a, k_p, k_p, mu=mu)
-    return Certificate(
-        k_p=k_p, k_i=k_i, k_v=k_v, f_c=f_c, k1=cf.k1, k2=cf.k2, k3=cf.k3, k4=cf.k4, c1=cf.c1, c2=cf.c2,
-        c1_hat=cf.c1_hat, c2_hat=cf.c2_hat, c=2 * (k_v * k_p - k_i),
-        overshoot_bound=sqrt_decimal_up(cf.kappa_squared, KAPPA_DIGITS),
-    )
-
-
 def evaluate_point(spec: MapSpec, values: Mapping[str, Fraction]) -> dict[str, float | int]:
     """Every column of one point (see the module docstring); ``NaN`` or ``-1`` where a column does not apply."""
     from .._certify.verify import verify_certificate
     from .._infra.errors import SymbolicFrictionError
+    from .gainmap_point import closed_form_certificate, float_up, hunting_cycles, worst_overshoot
 
     g = normalised(values)
     row: dict[str, float | int] = {n: float(v) for n, v in values.items()}
@@ -451,12 +431,12 @@ def evaluate_point(spec: MapSpec, values: Mapping[str, Fraction]) -> dict[str, f
         proved = False
     row["status"] = STATUS.index("proved" if proved else "not_proved")
     if proved:
-        row["kappa"] = _float_up(cert.overshoot_bound)
+        row["kappa"] = float_up(cert.overshoot_bound)
     if spec.sdp:
         from .._certify.pipeline import certify
 
         try:
-            row["kappa_sdp"] = _float_up(certify(params, mode="tightest").overshoot_bound)
+            row["kappa_sdp"] = float_up(certify(params, mode="tightest").overshoot_bound)
         except SymbolicFrictionError:
             pass
     if spec.adversary:
@@ -468,33 +448,6 @@ def evaluate_point(spec: MapSpec, values: Mapping[str, Fraction]) -> dict[str, f
     elif spec.hunting:
         row["hunting_found"] = row["hunting_proved"] = 0  # f_s = f_c: Proposition 1, no cycle
     return row
-
-
-def worst_overshoot(params: Any, *, budget: int, seed: int) -> float:
-    """The largest ``sup_t |x(t)|_𝒜/|x(0)|_𝒜`` the cross-check's adversary finds with ``budget`` exact trajectories (found, not proved)."""
-    from .._crosscheck._along import along
-    from .._crosscheck._outcome import default_horizon, sample_times
-    from .._crosscheck._overshoot import search_overshoot
-    from .._model.coordinates import x_to_z
-    from .._simulation.batch import simulate_batch
-
-    t = sample_times(default_horizon(params), 101)
-
-    def evaluate(X0: np.ndarray, label: str) -> np.ndarray:
-        return along(simulate_batch(params, x_to_z(params, X0), float(t[-1]), t_eval=t)).overshoot
-
-    found = search_overshoot(params, evaluate, budget=budget, seed=seed, t_eval=t)
-    ratio = found.ratio[np.isfinite(found.ratio)]
-    return float(ratio.max()) if ratio.size else math.nan
-
-
-def hunting_cycles(params: Any) -> tuple[int, int]:
-    """``(found, proved)``: symmetric hunting cycles found by the map and proved by the Krawczyk test."""
-    from .._certify.hunting_proof import box_around, prove_cycle
-    from .._hunting._map import find_cycles
-
-    cycles = find_cycles(params, general=False)
-    return len(cycles), sum(1 for c in cycles if prove_cycle(params, box_around(c.sigma, c.slip_time)).proved)
 
 
 def evaluate_chunk(spec: MapSpec, c: int) -> dict[str, np.ndarray]:

@@ -40,7 +40,8 @@ sys.path.insert(0, str(ROOT))
 import numpy as np  # noqa: E402
 
 from symbolic_friction._certify.verify import verify_certificate  # noqa: E402
-from symbolic_friction._studies.gainmap import closed_form_certificate, map_spec  # noqa: E402
+from symbolic_friction._studies.gainmap import map_spec  # noqa: E402
+from symbolic_friction._studies.gainmap_point import closed_form_certificate  # noqa: E402
 from symbolic_friction._studies.gainmap_run import run_map  # noqa: E402
 
 

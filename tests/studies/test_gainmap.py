@@ -11,8 +11,8 @@ import pytest
 
 from symbolic_friction import Parameters
 from symbolic_friction._infra.errors import ParameterError, UsageError
-from symbolic_friction._studies import gainmap, gainmap_run
-from symbolic_friction._studies.gainmap import Axis, MapSpec, STATUS, evaluate_point, map_spec, normalised, parse_axis
+from symbolic_friction._studies import gainmap, gainmap_point
+from symbolic_friction._studies.gainmap import MapSpec, STATUS, evaluate_point, map_spec, normalised, parse_axis
 from symbolic_friction._studies.gainmap_run import read_columns, run_map
 
 SMALL = {"k_p": "0.2:5:6:log", "k_i": "0.5:8:5", "k_v": "2"}
@@ -135,7 +135,7 @@ def test_a_wrong_closed_form_is_refused_by_the_verifier(monkeypatch):
 
 def test_float_up_never_rounds_below_the_decimal():
     for text in ("3.46703", "0.1", "114.553", "1e-7", "123456789.123457"):
-        f = gainmap._float_up(text)
+        f = gainmap_point.float_up(text)
         assert Fraction(f) >= Fraction(text) and math.nextafter(f, -math.inf) < Fraction(text)
 
 
