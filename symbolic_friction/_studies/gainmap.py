@@ -419,11 +419,13 @@ def evaluate_point(spec: MapSpec, values: Mapping[str, Fraction]) -> dict[str, f
     if spec.hunting:
         row.update(hunting_found=-1, hunting_proved=-1)
     k_p, k_i, k_v, f_c = g["k_p"], g["k_i"], g["k_v"], g["f_c"]
-    if not (k_i > 0 and k_p > 0 and k_v * k_p > k_i):  # Assumption 1 fails: marked, nothing to certify
-        return row
+    from .._infra.errors import AssumptionError
     from .._model.parameters import Parameters
 
-    params = Parameters(k_p=k_p, k_i=k_i, k_v=k_v, f_c=f_c)
+    try:
+        params = Parameters(k_p=k_p, k_i=k_i, k_v=k_v, f_c=f_c)
+    except AssumptionError:  # the spec keeps f_c > 0, so this is Assumption 1: marked, nothing to certify
+        return row
     try:
         cert = closed_form_certificate(k_p, k_i, k_v, f_c, mu=spec.mu)
         proved = verify_certificate(cert).proved
