@@ -108,7 +108,7 @@ def run(args: argparse.Namespace) -> int:
         files.append(str(plot_map(spec, read_columns(out, spec), out / "kappa.png", x=axes[0], y=axes[1])))
     summary = {
         "directory": str(out), "points": spec.points, "chunks": spec.chunks, "computed": result.computed,
-        "skipped": result.skipped, "seconds": round(result.seconds, 3), "points_per_second": round(result.rate, 1),
+        "skipped": result.skipped, "seconds": round(result.seconds, 3), "points_per_second": round(result.rate, 1) if result.computed else None,
         "counts": result.counts, "kappa_min": result.kappa_min, "kappa_max": result.kappa_max, "files": files,
     }
     if args.json:
