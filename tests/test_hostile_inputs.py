@@ -1,9 +1,13 @@
 """The command line under hostile input: every bad input ends in one line on stderr and exit status 2.
 
-Each case runs the real CLI in a subprocess, with a bound on time (a FIFO or
-``/dev/zero`` must not hang it) and on memory (``RLIMIT_AS``; a 10⁵-digit
-number or a huge ``samples`` must not exhaust the machine), and asserts:
-exit status 2, exactly one line on stderr, no ``Traceback``.
+Each case runs the real CLI in a process of its own, forked from one warm
+interpreter (``tests/forkserver.py``; a case that sets a start-up variable
+such as ``PYTHONIOENCODING`` gets a fresh interpreter), with a bound on time
+(a FIFO or ``/dev/zero`` must not hang it: killed at ``TIMEOUT``, and
+expected to answer within ``BOUND``) and on memory (``RLIMIT_AS``; a
+10⁵-digit number or a huge ``samples`` must not exhaust the machine), and
+asserts: exit status 2, exactly one line on stderr, no ``Traceback``, and
+every device, FIFO or symlink the case names still in place afterwards.
 
 Categories (the ids' prefixes): ``path`` (OS errors on input and output
 paths: a file where a directory is needed, ``/dev/null``, a path through a
@@ -20,10 +24,7 @@ from __future__ import annotations
 
 import json
 import os
-import resource
-import subprocess
-import sys
-import time
+import stat
 from pathlib import Path
 
 import pytest
@@ -32,6 +33,8 @@ REPO = Path(__file__).resolve().parents[1]
 CERT = REPO / "proofs" / "case_a_tightest.json"
 GAINS = ["--k-p", "3", "--k-i", "4", "--k-v", "6.4", "--f-c", "1"]
 TIMEOUT = 60.0
+BOUND = 10.0
+"""Seconds a bad input may take before its one line (the hard kill is at TIMEOUT)."""
 MEMORY = 3 * 1024**3  # address space: numba/llvmlite reserve a lot of it, a runaway allocation far more
 
 
@@ -97,8 +100,9 @@ CASES: list[tuple[str, list[str], dict[str, object], dict[str, str]]] = [
     ("number-certify-arabic-digit", ["certify", "--k-p", "٣", "--k-i", "4", "--k-v", "6.4", "--f-c", "1"], {}, {}),
     ("number-certify-fullwidth-digit", ["certify", "--k-p", "３", "--k-i", "4", "--k-v", "6.4", "--f-c", "1"], {}, {}),
     ("number-certify-nan", ["certify", "--k-p", "nan", "--k-i", "4", "--k-v", "6.4", "--f-c", "1"], {}, {}),
+    # the SDP works in double precision (the default closed form certifies these gains exactly)
     ("number-certify-physical-overflow", ["certify", "--m", "1e-999", "--k-p-bar", "3", "--k-i-bar", "4", "--k-d-bar", "6",
-                                          "--f-c-bar", "1"], {}, {}),
+                                          "--f-c-bar", "1", "--search", "sdp"], {}, {}),
     ("number-certify-margin-exponent", ["certify", *GAINS, "--margin", "1e-999999999"], {}, {}),
     ("number-certify-margin-arabic", ["certify", *GAINS, "--margin", "١/١٠٠"], {}, {}),
     ("number-verify-huge-integer", ["verify", "{d}/c.json"], {"c.json": _cert_with(constants__k1=BIG)}, {}),
@@ -186,9 +190,9 @@ CASES: list[tuple[str, list[str], dict[str, object], dict[str, str]]] = [
 SAYS = {
     "path-verify-fifo": "not a regular file (a FIFO, socket or device)",
     "number-hunting-sweep-huge-exponent": "exponents beyond",
-    "number-hunting-sweep-ratio-huge": "must lie in (1, 100]",
-    "structure-tradeoff-samples-huge": "--samples must be between 2 and",
-    "structure-tradeoff-t-end-huge": "--t-end must be > 0 and at most",
+    "number-hunting-sweep-ratio-huge": "must lie in [1 + 1e-06, 100]",
+    "structure-tradeoff-samples-huge": "--samples must be an integer from 2 to 100000",
+    "structure-tradeoff-t-end-huge": "--t-end must lie in (0, 1000]",
     "number-certify-tab-fraction": "Assumption 1",
     "number-certify-newline-fraction": "Assumption 1",
     "number-scene-gains-underflow": "beyond what a float64 simulation can represent",
@@ -219,7 +223,7 @@ SAYS = {
     "structure-scene-deep-toml-table": "nested too deeply",
     "structure-scene-huge-samples": "at most 1000000 sample times",
     "structure-scene-huge-grid-points": "at most 10000000 is supported",
-    "structure-crosscheck-huge-trajectories": "at most 1000000 is supported",
+    "structure-crosscheck-huge-trajectories": "an integer from 1 to 1000000 (a bound on time and memory)",
     "name-certify-parent": "without directories (it is written inside --out)",
     "name-certify-control-char": "printable characters only",
     "usage-check-no-config-outside": "no configuration found",
@@ -243,28 +247,53 @@ def _materialise(directory: Path, files: dict[str, object]) -> None:
             path.write_text(str(content), encoding="utf-8")
 
 
-def _limit() -> None:  # pragma: no cover - runs in the child
-    resource.setrlimit(resource.RLIMIT_AS, (MEMORY, MEMORY))
+FRESH_ENV = ("PYTHONIOENCODING", "PYTHONUTF8", "LANG", "LC_ALL")
+"""Variables read at interpreter start-up: a case that sets one runs in a fresh interpreter, not a fork."""
 
 
-def run_case(argv: list[str], files: dict[str, object], env_extra: dict[str, str], directory: Path):
+@pytest.fixture(scope="module")
+def server():
+    from tests.forkserver import ForkServer
+
+    forks = ForkServer()
+    yield forks
+    forks.close()
+
+
+def _special_files(args: list[str], directory: Path) -> dict[str, tuple[int, int, int]]:
+    """Every non-regular file a case names or creates (devices, FIFOs, symlinks): its type, device and inode."""
+    found = {}
+    for candidate in [*args, *(str(p) for p in directory.iterdir())]:
+        try:
+            st = os.lstat(candidate)
+        except (OSError, ValueError):
+            continue
+        if not (stat.S_ISREG(st.st_mode) or stat.S_ISDIR(st.st_mode)):
+            found[candidate] = (stat.S_IFMT(st.st_mode), st.st_rdev, st.st_ino)
+    return found
+
+
+def run_case(argv: list[str], files: dict[str, object], env_extra: dict[str, str], directory: Path, server=None):
+    """Run one case (in a fork of ``server`` unless it needs a fresh interpreter); check no special file was replaced."""
+    from tests.forkserver import run_fresh
+
     _materialise(directory, files)
-    env = dict(os.environ)
-    env["PYTHONPATH"] = str(REPO) + os.pathsep + env.get("PYTHONPATH", "")
-    env.pop("COLUMNS", None)
     cwd = str(directory)  # never the checkout: nothing a case writes can land in proofs/
+    env = {}
     for key, value in env_extra.items():
         if key == "_cwd":
             cwd = value.format(d=directory)
         else:
             env[key] = value
     args = [a.format(d=directory) if "{d}" in a else a for a in argv]
-    start = time.perf_counter()
-    proc = subprocess.run(
-        [sys.executable, "-m", "symbolic_friction", *args],
-        capture_output=True, timeout=TIMEOUT, cwd=cwd, env=env, preexec_fn=_limit, stdin=subprocess.DEVNULL,
-    )
-    return proc, time.perf_counter() - start
+    before = _special_files(args, directory)
+    if server is None or any(key in FRESH_ENV for key in env):
+        result = run_fresh(args, cwd=cwd, env=env, timeout=TIMEOUT, memory=MEMORY)
+    else:
+        result = server.run(args, cwd=cwd, env=env, timeout=TIMEOUT, memory=MEMORY)
+    after = _special_files(args, directory)
+    assert {k: before[k] for k in before} == {k: after.get(k) for k in before}, f"a special file was replaced: {before} → {after}"
+    return result, result.seconds
 
 
 def test_at_least_sixty_cases_in_every_category():
@@ -276,9 +305,9 @@ def test_at_least_sixty_cases_in_every_category():
 
 
 @pytest.mark.parametrize("case", CASES, ids=[c[0] for c in CASES])
-def test_bad_input_is_one_line_and_exit_2(case, tmp_path):
+def test_bad_input_is_one_line_and_exit_2(case, tmp_path, server):
     name, argv, files, env_extra = case
-    proc, seconds = run_case(argv, files, env_extra, tmp_path)
+    proc, seconds = run_case(argv, files, env_extra, tmp_path, server)
     err = proc.stderr.decode("utf-8", errors="replace")
     assert "Traceback" not in err, err[-3000:]
     assert proc.returncode == 2, (proc.returncode, err[-2000:], proc.stdout.decode(errors="replace")[-1000:])
@@ -286,28 +315,28 @@ def test_bad_input_is_one_line_and_exit_2(case, tmp_path):
     assert len(lines) == 1, err[-2000:]
     assert "error" in lines[0]
     assert SAYS.get(name, "") in lines[0]
-    assert seconds < TIMEOUT
+    assert seconds < BOUND
 
 
-def test_certify_name_never_writes_outside_out(tmp_path):
+def test_certify_name_never_writes_outside_out(tmp_path, server):
     out = tmp_path / "a" / "b" / "out"
-    proc, _ = run_case(["certify", *GAINS, "--out", str(out), "--name", "../../x"], {}, {}, tmp_path)
+    proc, _ = run_case(["certify", *GAINS, "--out", str(out), "--name", "../../x"], {}, {}, tmp_path, server)
     assert proc.returncode == 2
     assert not any(p.name.startswith("x") for p in tmp_path.rglob("*"))
 
 
-def test_huge_f_c_is_certified_and_its_report_has_no_inf(tmp_path):
+def test_huge_f_c_is_certified_and_its_report_has_no_inf(tmp_path, server):
     """f_c = 10⁹⁹⁹ is a valid gain (κ does not depend on f_c): certified, verified, and no 'inf' in the report."""
     proc, _ = run_case(["certify", "--k-p", "3", "--k-i", "4", "--k-v", "6.4", "--f-c", "1e999", "--out", str(tmp_path),
-                        "--name", "big"], {}, {}, tmp_path)
+                        "--name", "big"], {}, {}, tmp_path, server)
     assert proc.returncode == 0, proc.stderr.decode()
     report = (tmp_path / "big.md").read_text(encoding="utf-8")
     assert "inf" not in report.replace("info", "") and "beyond 1e308" in report
-    proc, _ = run_case(["verify", str(tmp_path / "big.json")], {}, {}, tmp_path)
+    proc, _ = run_case(["verify", str(tmp_path / "big.json")], {}, {}, tmp_path, server)
     assert proc.returncode == 0 and b"PROVED" in proc.stdout
 
 
-def test_valid_certificate_with_5000_digit_denominators_verifies(tmp_path):
+def test_valid_certificate_with_5000_digit_denominators_verifies(tmp_path, server):
     """Exact arithmetic beyond Python's 4300-digit int/str limit: a valid certificate still verifies (exit 0)."""
     from fractions import Fraction
 
@@ -329,6 +358,6 @@ def test_valid_certificate_with_5000_digit_denominators_verifies(tmp_path):
     assert len(json.loads(path.read_text())["constants"]["c1"]) > 10000
     back = load(path)  # the exact numbers survive the round trip through the file
     assert (back.c1, back.c1_hat, back.k4) == (loose.c1, loose.c1_hat, loose.k4)
-    proc, _ = run_case(["verify", "-v", str(path)], {}, {}, tmp_path)
+    proc, _ = run_case(["verify", "-v", str(path)], {}, {}, tmp_path, server)
     assert proc.returncode == 0, proc.stderr.decode()[-2000:]
     assert b"PROVED" in proc.stdout and b"Traceback" not in proc.stderr

@@ -39,7 +39,7 @@ def test_a_failing_write_leaves_the_old_file_intact(tmp_path):
 def test_read_limited_refuses_what_is_not_a_small_regular_file(tmp_path):
     import os
 
-    from symbolic_friction import InputFileError
+    from symbolic_friction.errors import InputFileError
     from symbolic_friction._infra.io import read_limited
 
     (tmp_path / "ok").write_bytes(b"abc")
@@ -65,7 +65,7 @@ def test_read_limited_refuses_what_is_not_a_small_regular_file(tmp_path):
 
 
 def test_ensure_directory_and_check_output_directory(tmp_path):
-    from symbolic_friction import OutputPathError
+    from symbolic_friction.errors import OutputPathError
     from symbolic_friction._infra.io import check_output_directory, ensure_directory
 
     (tmp_path / "file").write_text("x", encoding="utf-8")
@@ -203,3 +203,44 @@ def test_certify_and_hunting_refuse_a_name_outside_out(command, stem, tmp_path, 
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "--name" in err[0]
     assert not any(tmp_path.rglob("*.json"))
+
+
+def test_an_empty_path_or_a_trailing_slash_is_refused(tmp_path):
+    """``Path("")`` is the working directory and ``Path("x/")`` is ``x``: both are refused on the text as typed."""
+    from symbolic_friction._infra.errors import InputFileError
+    from symbolic_friction._infra.io import check_output_directory, ensure_directory, read_limited
+
+    for check in (ensure_directory, check_output_directory):
+        with pytest.raises(OutputPathError, match="must name a directory; got ''"):
+            check("")
+    (tmp_path / "a.json").write_text("{}")
+    with pytest.raises(InputFileError, match="a trailing / names a directory"):
+        read_limited(f"{tmp_path}/a.json/", limit=100)
+    with pytest.raises(OutputPathError, match="a trailing / names a directory"):
+        atomic_write_text(f"{tmp_path}/new/", "x")
+    with pytest.raises(OutputPathError, match="must name a file"):
+        atomic_write_text("", "x")
+    assert not (tmp_path / "new").exists()
+
+
+def test_check_output_file_refuses_early_what_atomic_write_refuses_late(tmp_path):
+    from symbolic_friction._infra.io import check_output_file
+
+    os.symlink("/dev/null", tmp_path / "link")
+    os.symlink(tmp_path / "link-loop", tmp_path / "link-loop")
+    (tmp_path / "plain").write_text("x")
+    with socket.socket(socket.AF_UNIX) as sock:
+        sock.bind(str(tmp_path / "sock"))
+    for bad, says in [
+        ("", "must name a file"), (f"{tmp_path}/x/", "trailing /"), (str(tmp_path), "is a directory"),
+        (f"{tmp_path}/link", "is a symbolic link"), (f"{tmp_path}/link-loop", "is a symbolic link"),
+        (f"{tmp_path}/sock", "not a regular file, a character device or a FIFO"),
+        (f"{tmp_path}/plain/r.xml", "is a file, not a directory"), (f"{tmp_path}/{'n' * 300}", "file name too long"),
+    ]:
+        with pytest.raises(OutputPathError, match=says):
+            check_output_file(bad, what="--junit-xml")
+    # what may be written: a new file (its directory is not created), a regular file, a device, a FIFO
+    os.mkfifo(tmp_path / "fifo")
+    for good in (f"{tmp_path}/new/r.xml", f"{tmp_path}/plain", "/dev/null", f"{tmp_path}/fifo"):
+        assert str(check_output_file(good)) == good
+    assert not (tmp_path / "new").exists()

@@ -98,3 +98,9 @@ def test_cli_errors(capsys):
     assert "three numbers" in capsys.readouterr().err
     assert main(["tradeoff", "--format", "gif"]) == 2
     assert "unknown figure format" in capsys.readouterr().err
+
+
+def test_repr_is_a_summary(small):
+    text = repr(small)
+    assert "\n" not in text and len(text) < 200 and text.startswith("Tradeoff('")
+    assert f"{len(small.curves)} methods" in text

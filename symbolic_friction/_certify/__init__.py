@@ -1,13 +1,17 @@
 """Proof certificates for given gains (paper: Lemma 2, Lemma 3, Proposition 1).
 
+* :mod:`.closed_form` — the default search: constants written down for any
+  gains (and for a box of gains), no solver.
 * :mod:`.search` — numerical search with cvxpy + Clarabel (the only module
-  importing cvxpy); returns a floating-point :class:`Candidate`.
+  importing cvxpy; ``search="sdp"``); returns a floating-point :class:`Candidate`.
 * :mod:`.rounding` — exact rational rounding and repair of a candidate.
 * :mod:`.certificate` — the :class:`Certificate` dataclass and its JSON format.
 * :mod:`.verify` — the exact verifier (Fractions only; no code shared with
   the search); the only place a certificate is called proved.
 * :mod:`.report` — the Markdown proof report.
 * :mod:`.pipeline` — certify, write, regenerate, staleness of a stability certificate.
+* :mod:`.box` — the box certificate: pieces of a box of gains, each decided
+  at its four corners by the exact verifier.
 * :mod:`.hunting`, :mod:`.hunting_proof` — the hunting certificate and its Krawczyk proof.
 * :mod:`._template`, :mod:`.templates` — certificate templates: each kind of proof
   file (its ``template`` id) with its reader, exact verifier, writer and
@@ -41,12 +45,11 @@ from .pipeline import (
     render_files,
     table_i_stem,
     write_certificate,
-    write_listed_certificates,
 )
 from .report import render_markdown
 from .search import DEFAULT_MARGIN, MODES, Candidate, Search, find_candidate
 from .sweep import SweepItem, certify_many
-from .templates import CommittedCertificate, check_committed_certificates, check_listed_certificates
+from .templates import CommittedCertificate, check_committed_certificates, check_listed_certificates, write_listed_certificates
 from .verify import Check, VerificationReport, verify_certificate, verify_file
 
 __all__ = [

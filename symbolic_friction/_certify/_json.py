@@ -11,6 +11,22 @@ from .._infra.errors import CertificateFormatError
 
 MAX_FILE_BYTES = 10_000_000
 """Largest certificate file read."""
+MAX_VALUES = 10_000
+"""Most JSON values (objects, arrays, strings, numbers) in a certificate: one holds about 40, and
+validating 10⁵ array items against the schema would take seconds."""
+
+
+def _count_values(data: object) -> int:
+    """The number of JSON values in ``data``, counted without recursion and stopping past :data:`MAX_VALUES`."""
+    count, stack = 0, [data]
+    while stack and count <= MAX_VALUES:
+        value = stack.pop()
+        count += 1
+        if isinstance(value, dict):
+            stack.extend(value.values())
+        elif isinstance(value, list):
+            stack.extend(value)
+    return count
 
 
 def _reject_constant(name: str) -> None:
@@ -32,7 +48,8 @@ def parse_json(text: str | bytes, *, source: str = "<string>") -> object:
     Shared by every kind of certificate file (stability certificates here,
     hunting certificates in :mod:`.._hunting._certificate`): UTF-8 only, at
     most :data:`MAX_FILE_BYTES`, no duplicate keys, no ``NaN``/``Infinity``,
-    integers within Python's digit limit, nesting within the recursion limit.
+    integers within Python's digit limit, nesting within the recursion limit, at most
+    :data:`MAX_VALUES` values in all.
 
     Raises
     ------
@@ -47,7 +64,7 @@ def parse_json(text: str | bytes, *, source: str = "<string>") -> object:
     if len(text) > MAX_FILE_BYTES:
         raise CertificateFormatError(f"{source}: {len(text)} characters; a certificate has at most {MAX_FILE_BYTES}")
     try:
-        return json.loads(
+        data = json.loads(
             text, parse_constant=_reject_constant, object_pairs_hook=_no_duplicates,
             parse_int=_json_int,
         )
@@ -59,6 +76,11 @@ def parse_json(text: str | bytes, *, source: str = "<string>") -> object:
         raise CertificateFormatError(f"{source}: not a certificate: JSON nested too deeply") from None
     except CertificateFormatError as exc:
         raise CertificateFormatError(f"{source}: {exc}") from None
+    if _count_values(data) > MAX_VALUES:
+        raise CertificateFormatError(
+            f"{source}: more than {MAX_VALUES} JSON values (a certificate holds about 40); not a certificate"
+        )
+    return data
 
 
 def read_json(path: str | os.PathLike[str]) -> object:

@@ -58,6 +58,10 @@ class Template:
     default : bool
         Whether a file of ``schema`` without a ``template`` member is read
         with this template.
+    regenerate : callable or None
+        ``regenerate(certificate) -> certificate``: what would be written now
+        (``check --write`` rewrites the file with it); None if the file is
+        not regenerated.
     """
 
     id: str
@@ -69,6 +73,7 @@ class Template:
     failure: Callable[[Any], str]
     claim: Callable[[Any], str]
     default: bool = False
+    regenerate: Callable[[Any], Any] | None = None
 
     def write(self, certificate: Any, path: str | os.PathLike[str]) -> Path:
         """Write ``certificate`` to ``path`` atomically."""

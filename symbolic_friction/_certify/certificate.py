@@ -84,6 +84,7 @@ PHYSICAL_NAMES: tuple[str, ...] = ("m", "k_p_bar", "k_i_bar", "k_d_bar", "alpha_
 _TOP_KEYS = ("schema", "parameters", "constants", "overshoot_bound")
 _OPTIONAL_TOP_KEYS = ("provenance", "physical", "template")
 _PROVENANCE_KEYS = ("package", "package_version", "mode", "margin", "solver", "solver_status", "obligations", "label")
+SEARCHES: tuple[str, ...] = ("closed-form", "sdp")  # the closed form of .closed_form, or the SDP of .search
 _RATIONAL_RE = re.compile(r"^[+-]?[0-9]+(/[0-9]+)?$")
 _DECIMAL_RE = re.compile(r"^[0-9]+(\.[0-9]+)?$")
 MAX_NUMBER_CHARS = 20_000
@@ -178,6 +179,8 @@ class Provenance:
         Free text, e.g. ``"Table I, case (a)"``.
     package : str
         Always ``"symbolic-friction"``.
+    search : str
+        ``"closed-form"`` or ``"sdp"`` (written only for the closed form: older SDP files stay current).
     """
 
     mode: str
@@ -188,8 +191,11 @@ class Provenance:
     obligations: tuple[str, ...] = OBLIGATIONS
     label: str = ""
     package: str = "symbolic-friction"
+    search: str = "sdp"
 
     def __post_init__(self) -> None:
+        if self.search not in SEARCHES:
+            raise CertificateFormatError(f"provenance.search must be one of {', '.join(SEARCHES)}; got {self.search!r}")
         for name in ("mode", "solver", "solver_status", "package_version", "label", "package"):
             if not isinstance(getattr(self, name), str):
                 raise CertificateFormatError(
@@ -205,23 +211,19 @@ class Provenance:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready mapping (exact margin as a rational string)."""
-        return {
-            "package": self.package,
-            "package_version": self.package_version,
-            "mode": self.mode,
-            "margin": format_rational(self.margin),
-            "solver": self.solver,
-            "solver_status": self.solver_status,
-            "obligations": list(self.obligations),
-            "label": self.label,
+        out = {
+            "package": self.package, "package_version": self.package_version, "mode": self.mode,
+            "margin": format_rational(self.margin), "solver": self.solver, "solver_status": self.solver_status,
+            "obligations": list(self.obligations), "label": self.label,
         }
+        return out if self.search == "sdp" else {**out, "search": self.search}
 
     @classmethod
     def from_dict(cls, data: object) -> "Provenance":
         """Parse the ``provenance`` object of a file, strictly."""
         if not isinstance(data, dict):
             raise CertificateFormatError(f"provenance must be a JSON object; got {type(data).__name__}")
-        _check_keys(data, required=_PROVENANCE_KEYS, optional=(), where="provenance")
+        _check_keys(data, required=_PROVENANCE_KEYS, optional=("search",), where="provenance")
         if not isinstance(data["obligations"], list):
             raise CertificateFormatError(
                 f"provenance.obligations must be a list of strings; got {type(data['obligations']).__name__}"
@@ -235,6 +237,7 @@ class Provenance:
             obligations=tuple(data["obligations"]),
             label=data["label"],
             package=data["package"],
+            search=data.get("search", "sdp"),
         )
 
 
@@ -260,7 +263,8 @@ class Certificate:
     c : Fraction
         Decrease rate of Lemma 2, item 2; must equal ``2(k_v k_p - k_i)``.
     overshoot_bound : str
-        Decimal string claimed to be ``≥ √(c₂ĉ₂/(c₁ĉ₁))`` (eq. stabState).
+        Decimal string claimed to be ``≥ √(c₂ĉ₂/(c₁ĉ₁))`` (eq. stabState), as
+        written in the file; :attr:`kappa` is the same number as a ``Fraction``.
     provenance : Provenance or None
         How the certificate was found.
     physical : dict or None
@@ -335,9 +339,12 @@ class Certificate:
         return kappa_squared(self.c1, self.c2, self.c1_hat, self.c2_hat)
 
     @property
-    def kappa(self) -> float:
-        """The claimed overshoot bound as a float (for display and plots)."""
-        return float(self.overshoot_bound)
+    def kappa(self) -> Fraction:
+        """The claimed overshoot bound κ as an exact number (``overshoot_bound`` is its decimal text).
+
+        ``float(cert.kappa)`` for plots; ``cert.kappa ** 2 >= cert.kappa_squared`` is the claim, exactly.
+        """
+        return Fraction(self.overshoot_bound)
 
     # -- (de)serialisation --------------------------------------------------
     def to_dict(self) -> dict[str, Any]:

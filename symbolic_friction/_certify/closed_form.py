@@ -6,22 +6,28 @@ and ``K ≻ 0``; the paper argues they exist.  Here they are written down.  With
 ``μ > 0``:
 
 * ``k₁ = k₂ = 2``, ``k₃ = 2(1+μ)ρ``, ``k₄ = (1+μ)·max(2k_p, k₃²/2)``, so
-  ``ĉ₁ = min(k₁, k₂, k₄)/2 = 1``;
+  ``ĉ₁ = min(k₁, k₂, k₄)/2 = k₁/2 = 1`` (``k₄ > k₃²/2 ≥ 2``);
 * ``P`` of eq. (lyapLikeP) is ``[[a, 0, −1], [0, 1, 0], [−1, 0, k_p]]``: its
-  eigenvalues are ``1`` and those of the 2×2 block, so
+  eigenvalues are ``1`` and those of the 2×2 block ``B``, so
   ``c₂ = (a + k_p + S)/2`` with a rational ``S ≥ 0``, ``S² ≥ (a − k_p)² + 4``,
-  bounds ``λ_max(P)``, and ``c₁ = min(1, (a·k_p − 1)/c₂)`` (the block's
-  determinant over a bound of its larger eigenvalue), rounded down, bounds
+  bounds ``λ_max(P)``, and ``c₁ = min(1, (a·k_p − 1)/c₂)`` (``det B`` over a
+  bound of its larger eigenvalue, hence ``≤ λ_min(B)``), rounded down, bounds
   ``λ_min(P)``;
 * ``K/2`` has eigenvalues ``1`` and ``(1 + k₄/2 ± √((k₄/2 − 1)² + k₃²))/2``,
-  so ``ĉ₂ = (1 + k₄/2 + S′)/2`` with ``S′² ≥ (k₄/2 − 1)² + k₃²``;
+  so ``ĉ₂ = (1 + k₄/2 + S′)/2`` with ``S′ ≥ 0``, ``S′² ≥ (k₄/2 − 1)² + k₃²``;
 * ``κ = √(c₂ĉ₂/(c₁ĉ₁))``, rounded up to a decimal.
 
-Every premise of :func:`~._certify.verify.premises` depends on the gains only
-through ``a`` and ``k_p``, each monotonically, so constants built from the
-worst corner of a box ``[a_lo, a_hi] × [kp_lo, kp_hi]`` satisfy them on the
-whole box: ``c₁`` from ``(a_lo, kp_lo)``, ``c₂`` from ``(a_hi, kp_hi)``, ``ρ``
-from ``a_lo`` and ``k₄`` from ``kp_hi``.  A point is the box with equal ends.
+The obligation ``closed_form.all_gains`` proves, for symbolic gains, ``μ``,
+``S`` and ``S′``, that these constants satisfy every premise of the exact
+verifier; it runs :func:`closed_form_formulas` itself with symbolic
+operations, so it checks this code and not a copy of it.
+
+Every premise depends on the gains only through ``a`` and ``k_p``, each
+monotonically (obligation ``closed_form.monotone``), so constants built from
+the worst corner of a box ``[a_lo, a_hi] × [kp_lo, kp_hi]`` satisfy them on
+the whole box: ``c₁`` from ``(a_lo, kp_lo)``, ``c₂`` from ``(a_hi, kp_hi)``,
+``ρ`` from ``a_lo`` and ``k₄`` from ``kp_hi``.  A point is the box with equal
+ends.
 
 This is *search*: nothing here is called proved.  The verifier
 (:mod:`._certify.verify`) decides the result, as for any other certificate.
@@ -32,9 +38,22 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from fractions import Fraction
+from typing import Any
 
-__all__ = ["ClosedFormConstants", "closed_form_constants", "sqrt_up", "DEFAULT_MU", "SQRT_DIGITS"]
+__all__ = [
+    "ClosedFormConstants",
+    "ExactOps",
+    "closed_form_formulas",
+    "closed_form_constants",
+    "closed_form_certificate",
+    "sqrt_up",
+    "DEFAULT_MU",
+    "SQRT_DIGITS",
+    "SEARCH",
+]
 
+SEARCH = "closed-form"
+"""The provenance's name of this search."""
 DEFAULT_MU = Fraction(1, 10**6)
 """The relative margin ``μ`` of the strict k-conditions (the SDP's tightest margin)."""
 SQRT_DIGITS = 12
@@ -49,7 +68,7 @@ def sqrt_up(q: Fraction, digits: int = SQRT_DIGITS) -> Fraction:
     >>> sqrt_up(Fraction(4))
     Fraction(2, 1)
     >>> s = sqrt_up(Fraction(2), 6); s * s >= 2, float(s)
-    (True, 1.41422)
+    (True, 1.414214)
     """
     q = Fraction(q)
     if q < 0:
@@ -67,11 +86,53 @@ def sqrt_up(q: Fraction, digits: int = SQRT_DIGITS) -> Fraction:
     return Fraction(n) / Fraction(10) ** e
 
 
-def _round_down(q: Fraction, digits: int) -> Fraction:
-    """``q > 0`` rounded down to ``digits`` significant digits (exact)."""
-    from .rounding import round_significant
+class ExactOps:
+    """The choices of :func:`closed_form_formulas` made in exact rationals.
 
-    return round_significant(q, digits, direction="down")
+    The symbolic proof (obligation ``closed_form.all_gains``) passes its own
+    operations instead: a case of its split decides which argument of each
+    ``max``/``min`` wins, and ``sqrt_up``/``round_down`` become symbols
+    constrained by their defining inequalities.
+    """
+
+    def __init__(self, digits: int = SQRT_DIGITS) -> None:
+        self.digits = digits
+
+    def max(self, name: str, x: Fraction, y: Fraction) -> Fraction:
+        return max(x, y)
+
+    def min(self, name: str, x: Fraction, y: Fraction) -> Fraction:
+        return min(x, y)
+
+    def sqrt_up(self, name: str, q: Fraction) -> Fraction:
+        return sqrt_up(q, self.digits)
+
+    def round_down(self, name: str, q: Fraction) -> Fraction:
+        from .rounding import round_significant
+
+        return round_significant(q, self.digits, direction="down")
+
+
+def closed_form_formulas(a_lo: Any, a_hi: Any, kp_lo: Any, kp_hi: Any, mu: Any, ops: Any) -> dict[str, Any]:
+    """The closed form, written once, in the arithmetic of its arguments and the choices of ``ops``.
+
+    Returns ``{"k1", "k2", "k3", "k4", "c1", "c2", "c1_hat", "c2_hat"}``.
+    ``ops`` provides ``max(name, x, y)``, ``min(name, x, y)``,
+    ``sqrt_up(name, q)`` (a number ``S ≥ 0`` with ``S² ≥ q``) and
+    ``round_down(name, q)`` (a number in ``(0, q]``); the names are
+    ``"rho"``, ``"k4"``, ``"c1"``, ``"S"``, ``"S_lo"``, ``"S_hat"``.
+    """
+    one = mu - mu + 1
+    k1 = k2 = 2 * one
+    rho = ops.max("rho", 1 / a_lo, one)
+    k3 = 2 * (1 + mu) * rho
+    k4 = (1 + mu) * ops.max("k4", 2 * kp_hi, k3 * k3 / 2)
+    c2 = (a_hi + kp_hi + ops.sqrt_up("S", (a_hi - kp_hi) ** 2 + 4)) / 2
+    c2_lo = (a_lo + kp_lo + ops.sqrt_up("S_lo", (a_lo - kp_lo) ** 2 + 4)) / 2
+    c1 = ops.round_down("c1", ops.min("c1", one, (a_lo * kp_lo - 1) / c2_lo))
+    c1_hat = k1 / 2  # = min(k1, k2, k4)/2: k1 = k2 and k4 > k3²/2 ≥ 2 (premises c1_hat ≤ k_j/2)
+    c2_hat = (1 + k4 / 2 + ops.sqrt_up("S_hat", (k4 / 2 - 1) ** 2 + k3 * k3)) / 2
+    return {"k1": k1, "k2": k2, "k3": k3, "k4": k4, "c1": c1, "c2": c2, "c1_hat": c1_hat, "c2_hat": c2_hat}
 
 
 @dataclass(frozen=True)
@@ -84,8 +145,6 @@ class ClosedFormConstants:
         As in eqs. (VandR), (hatVandHatR), (hatVdot).
     mu : Fraction
         The margin ``μ`` they were built with.
-    kappa_squared : Fraction
-        ``c₂ĉ₂/(c₁ĉ₁)``.
     """
 
     k1: Fraction
@@ -100,12 +159,13 @@ class ClosedFormConstants:
 
     @property
     def kappa_squared(self) -> Fraction:
+        """``c₂ĉ₂/(c₁ĉ₁)``."""
         return (self.c2 * self.c2_hat) / (self.c1 * self.c1_hat)
 
 
 def closed_form_constants(
     a_lo: Fraction, a_hi: Fraction, kp_lo: Fraction, kp_hi: Fraction, *, mu: Fraction = DEFAULT_MU,
-    digits: int = SQRT_DIGITS,
+    digits: int = SQRT_DIGITS, loose: bool = False,
 ) -> ClosedFormConstants:
     """The closed-form constants for every ``(a, k_p)`` with ``a_lo ≤ a ≤ a_hi``, ``kp_lo ≤ k_p ≤ kp_hi``.
 
@@ -119,12 +179,21 @@ def closed_form_constants(
         Margin ``μ > 0`` of the strict conditions.
     digits : int, keyword-only
         Significant digits of the square-root bounds and of ``c₁``.
+    loose : bool, keyword-only
+        Also move ``c₁`` and ``c₂`` outward by the factor ``1 + μ`` (the
+        ``feasible`` mode: a margin on every inequality, not only the strict ones).
 
     Raises
     ------
     ValueError
         If a range is empty or not positive, ``μ ≤ 0``, or ``a_lo·kp_lo ≤ 1``
         (Assumption 1 fails at that corner).
+
+    Examples
+    --------
+    >>> c = closed_form_constants(Fraction(8, 5), Fraction(8, 5), Fraction(3), Fraction(3))
+    >>> c.k3, c.c1, round(float(c.kappa_squared), 4)
+    (Fraction(1000001, 500000), Fraction(1, 1), 12.0203)
     """
     a_lo, a_hi, kp_lo, kp_hi, mu = (Fraction(q) for q in (a_lo, a_hi, kp_lo, kp_hi, mu))
     if not (0 < a_lo <= a_hi and 0 < kp_lo <= kp_hi):
@@ -133,14 +202,34 @@ def closed_form_constants(
         raise ValueError(f"the margin μ must be positive (with μ = 0 the strict conditions hold with equality); got {mu}")
     if not a_lo * kp_lo > 1:
         raise ValueError(f"Assumption 1 needs k_v·k_p > k_i, i.e. a·k_p > 1; got {a_lo}·{kp_lo} ≤ 1")
-    one = Fraction(1)
-    rho = max(1 / a_lo, one)
-    k1 = k2 = Fraction(2)
-    k3 = 2 * (1 + mu) * rho
-    k4 = (1 + mu) * max(2 * kp_hi, k3 * k3 / 2)
-    c2 = (a_hi + kp_hi + sqrt_up((a_hi - kp_hi) ** 2 + 4, digits)) / 2
-    c2_lo = (a_lo + kp_lo + sqrt_up((a_lo - kp_lo) ** 2 + 4, digits)) / 2
-    c1 = min(one, _round_down((a_lo * kp_lo - 1) / c2_lo, digits))
-    c1_hat = min(k1, k2, k4) / 2
-    c2_hat = (1 + k4 / 2 + sqrt_up((k4 / 2 - 1) ** 2 + k3 * k3, digits)) / 2
-    return ClosedFormConstants(k1, k2, k3, k4, c1, c2, c1_hat, c2_hat, mu)
+    ops = ExactOps(digits)
+    c = closed_form_formulas(a_lo, a_hi, kp_lo, kp_hi, mu, ops)
+    if loose:
+        c["c1"] = ops.round_down("c1", c["c1"] / (1 + mu))
+        c["c2"] = c["c2"] * (1 + mu)
+    return ClosedFormConstants(mu=mu, **c)
+
+
+def closed_form_certificate(params: Any, *, mode: str, margin: Fraction, label: str = "") -> Any:
+    """The closed-form certificate of one gain set (not yet verified: pass it to the verifier).
+
+    ``mode`` ``"tightest"`` uses ``margin`` on the strict k-conditions only;
+    ``"feasible"`` also moves ``c₁``, ``c₂`` outward by ``1 + margin``.
+    """
+    from .. import __version__
+    from .certificate import OBLIGATIONS, Certificate, Provenance
+    from .rounding import KAPPA_DIGITS, sqrt_decimal_up
+
+    a = params.k_v / params.k_i
+    c = closed_form_constants(a, a, params.k_p, params.k_p, mu=margin, loose=mode == "feasible")
+    provenance = Provenance(
+        mode=mode, margin=margin, solver="none", solver_status="exact", package_version=__version__,
+        obligations=OBLIGATIONS, label=label, search=SEARCH,
+    )
+    return Certificate(
+        k_p=params.k_p, k_i=params.k_i, k_v=params.k_v, f_c=params.f_c,
+        k1=c.k1, k2=c.k2, k3=c.k3, k4=c.k4, c1=c.c1, c2=c.c2, c1_hat=c.c1_hat, c2_hat=c.c2_hat,
+        c=2 * (params.k_v * params.k_p - params.k_i),
+        overshoot_bound=sqrt_decimal_up(c.kappa_squared, KAPPA_DIGITS),
+        provenance=provenance,
+    )

@@ -41,10 +41,24 @@ __all__ = [
 TABLE_I_LABELS = {"a": "Table I, case (a)", "b": "Table I, case (b)"}
 TABLE_I_FILES: tuple[str, ...] = tuple(f"case_{case}_{mode}.json" for case in TABLE_I_LABELS for mode in MODES)
 """The committed certificates of ``proofs/`` (both cases of Table I, both modes)."""
+QUADRATIC_TABLE_I_FILES: tuple[str, ...] = ("case_a.json", "case_b.json")
+"""Table I's certificates in the quadratic template, under ``proofs/quadratic/``."""
+
+
+SEARCHES: tuple[str, ...] = ("closed-form", "sdp")
+"""The searches ``certify`` can use; the first is the default."""
+
+
+def check_search(search: object) -> str:
+    """Return ``search`` if it is one of :data:`SEARCHES`, else raise ParameterError."""
+    if search not in SEARCHES:
+        raise ParameterError(f"search must be one of {', '.join(repr(s) for s in SEARCHES)}; got {search!r}")
+    return str(search)
 
 
 def certify(
-    params: Parameters, *, mode: str = "tightest", margin: object = None, label: str = "", physical: dict | None = None
+    params: Parameters, *, mode: str = "tightest", margin: object = None, label: str = "", physical: dict | None = None,
+    search: str = "closed-form",
 ) -> Certificate:
     """Search, round and exactly verify a certificate for ``params``.
 
@@ -53,17 +67,26 @@ def certify(
     params : Parameters
         Gains satisfying Assumption 1.
     mode : {"tightest", "feasible"}, keyword-only
-        ``tightest`` minimises the overshoot bound κ; ``feasible`` returns
-        constants with a wider margin from a cheaper (non-SDP) search.
+        ``tightest`` keeps the margin on the strict k-conditions only (with
+        the SDP: minimises κ); ``feasible`` keeps a wider margin (the closed
+        form moves c₁ and c₂ outward by it too; the SDP minimises a linear
+        surrogate instead of κ).
     margin : number, keyword-only
         Relative margin on the strict inequalities (default: 1/10⁶ for
         tightest, 1/100 for feasible).
+    search : {"closed-form", "sdp"}, keyword-only
+        ``closed-form`` (default) writes the constants of
+        :mod:`.closed_form` down for any gains, without a solver; ``sdp``
+        solves the semidefinite program of :mod:`.search` (cvxpy + Clarabel).
+        Either way the exact verifier decides, and the certificate records
+        which search produced it.
     label : str, keyword-only
         Free text stored in the provenance.
     physical : dict, keyword-only
         The physical parameters ``params`` came from (``m``, ``k_p_bar``,
         ``k_i_bar``, ``k_d_bar``, ``alpha_v``, ``f_c_bar``), recorded in the
         certificate; the verifier checks that they normalise to ``params``.
+        Default: ``params.physical`` (set by :meth:`Parameters.from_physical`).
 
     Returns
     -------
@@ -73,9 +96,9 @@ def certify(
     Raises
     ------
     ParameterError
-        If ``params`` has static friction above Coulomb (``f_s > f_c``).
+        If ``params`` has static friction above Coulomb (``f_s > f_c``), or an unknown search.
     InfeasibleError, InaccurateSolveError
-        If the solver does not report an optimal solution.
+        If the SDP solver does not report an optimal solution.
     CertificateError
         If the rounded constants do not verify (never silently returned).
 
@@ -91,8 +114,16 @@ def certify(
             f"a stability certificate is for the paper's model f_s = f_c; got f_s = {params.f_s} > f_c = {params.f_c}: "
             "with static friction above Coulomb the loop hunts (symbolic-friction hunting)"
         )
-    candidate = find_candidate(params, mode=mode, margin=margin)
-    certificate = to_certificate(candidate, label=label)
+    search = check_search(search)
+    if search == "closed-form":
+        from .closed_form import closed_form_certificate
+
+        mode = check_mode(mode)
+        certificate = closed_form_certificate(params, mode=mode, margin=check_margin(margin, mode), label=label)
+    else:
+        certificate = to_certificate(find_candidate(params, mode=mode, margin=margin), label=label)
+    if physical is None and params.physical is not None:  # gains from Parameters.from_physical
+        physical = params.physical.as_dict()
     if physical is not None:
         certificate = dataclasses.replace(certificate, physical=physical)
     report = verify_certificate(certificate)
@@ -154,7 +185,9 @@ def default_stem(params: Parameters, mode: str) -> str:
     return f"certificate_{hashlib.sha256(key.encode()).hexdigest()[:12]}_{mode}"
 
 
-def certify_table_i(directory: str | os.PathLike[str] = "proofs", *, modes: Iterable[str] = MODES) -> list[Path]:
+def certify_table_i(
+    directory: str | os.PathLike[str] = "proofs", *, modes: Iterable[str] = MODES, search: str = "closed-form"
+) -> list[Path]:
     """Certify Table I's cases (a) and (b) in each mode and write them under ``directory``.
 
     Returns the written paths (JSON and Markdown, in order).
@@ -163,13 +196,13 @@ def certify_table_i(directory: str | os.PathLike[str] = "proofs", *, modes: Iter
     written: list[Path] = []
     for case, label in TABLE_I_LABELS.items():
         for mode in modes:
-            cert = certify(Parameters.table_i(case), mode=check_mode(mode), label=label)
+            cert = certify(Parameters.table_i(case), mode=check_mode(mode), label=label, search=search)
             written.extend(write_certificate(cert, directory / f"{table_i_stem(case, mode)}.json"))
     return written
 
 
 def regenerate(certificate: Certificate) -> Certificate:
-    """What ``certify`` would produce now for the gains, mode, margin and label of ``certificate``.
+    """What ``certify`` would produce now for the gains, mode, margin, label and search of ``certificate``.
 
     Raises
     ------
@@ -185,7 +218,7 @@ def regenerate(certificate: Certificate) -> Certificate:
         )
     return certify(
         certificate.as_parameters(), mode=prov.mode, margin=check_margin(prov.margin, prov.mode), label=prov.label,
-        physical=certificate.physical,
+        physical=certificate.physical, search=prov.search,
     )
 
 
@@ -239,16 +272,23 @@ def write_listed_certificates(directory: str | os.PathLike[str], names: Iterable
     mode, margin, label, physical parameters); a missing file named like one
     of Table I's (``case_a_tightest.json`` …) is certified for Table I's
     gains.  A missing file of any other name cannot be created (its gains are
-    unknown) and is left for :func:`check_listed_certificates` to report.
+    unknown) and is left for :func:`check_listed_certificates` to report.  A
+    hunting certificate is rewritten from its gains and the zero in its box
+    (:func:`.hunting.regenerate_hunting`).
 
     Returns the written paths (JSON and Markdown, in order).
     """
+    from .hunting import is_hunting_file, load_hunting, regenerate_hunting, write_hunting
+
     directory = Path(directory)
     written: list[Path] = []
     table_i = {table_i_stem(case, mode) + ".json": (case, mode) for case in TABLE_I_LABELS for mode in MODES}
     for name in names:
         path = directory / name
         fresh = None
+        if path.exists() and is_hunting_file(path):
+            written.append(write_hunting(regenerate_hunting(load_hunting(path)), path))
+            continue
         if path.exists():
             try:
                 fresh = regenerate(load(path))
@@ -259,4 +299,11 @@ def write_listed_certificates(directory: str | os.PathLike[str], names: Iterable
             fresh = certify(Parameters.table_i(case), mode=mode, label=TABLE_I_LABELS[case])
         if fresh is not None:
             written.extend(write_certificate(fresh, path))
+        elif path.parent == directory / "quadratic" and path.name in QUADRATIC_TABLE_I_FILES:
+            # Table I in the quadratic template: its gains are known from the name
+            from .quadratic import QUADRATIC
+            from .quadratic_search import certify_quadratic
+
+            case = path.stem[-1]
+            written.append(QUADRATIC.write(certify_quadratic(Parameters.table_i(case), label=TABLE_I_LABELS[case]), path))
     return written

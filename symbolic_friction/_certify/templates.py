@@ -2,8 +2,9 @@
 
 :func:`builtin_templates` imports the modules that register the package's
 templates (a missing one is an :class:`ImportError`): the stability
-certificate of Proposition 1 (:data:`.pipeline.STABILITY`) and the hunting
-certificate (:data:`.hunting.HUNTING`).  The functions below take any file,
+certificate of Proposition 1 (:data:`.pipeline.STABILITY`), the hunting
+certificate (:data:`.hunting.HUNTING`), the box certificate (:data:`.box.BOX`) and the quadratic
+template (:data:`.quadratic.QUADRATIC`, beyond the paper).  The functions below take any file,
 pick its template from its ``template`` member or its ``schema``
 (:func:`._template.template_for`) and run that template's reader, exact
 verifier and staleness check; ``symbolic-friction verify`` and ``check`` go
@@ -28,15 +29,19 @@ __all__ = [
     "CommittedCertificate",
     "check_committed_certificates",
     "check_listed_certificates",
+    "write_listed_certificates",
 ]
 
 
 def builtin_templates() -> tuple[Template, ...]:
     """The package's templates, registered (the stability certificate first); then every registered one."""
+    from .box import BOX
     from .hunting import HUNTING
     from .pipeline import STABILITY
+    from .quadratic import QUADRATIC
 
-    return (STABILITY, HUNTING) + tuple(t for t in registered() if t not in (STABILITY, HUNTING))
+    first = (STABILITY, HUNTING, BOX, QUADRATIC)
+    return first + tuple(t for t in registered() if t not in first)
 
 
 def read_certificate_file(path: str | os.PathLike[str]) -> tuple[Template, Any]:
@@ -172,3 +177,29 @@ def check_listed_certificates(directory: str | os.PathLike[str], names: Iterable
         else:
             results.append(_check_one(path))
     return results
+
+
+def write_listed_certificates(directory: str | os.PathLike[str], names: Iterable[str]) -> list[Path]:
+    """Regenerate the certificates ``names`` under ``directory`` (``check --write``), atomically.
+
+    A file of a template that regenerates itself (a box certificate) is rewritten from its own
+    content; every other name goes to the stability certificate's
+    :func:`.pipeline.write_listed_certificates` (its provenance, or Table I's gains for Table I's names).
+    """
+    from .pipeline import write_listed_certificates as write_stability
+
+    builtin_templates()
+    directory = Path(directory)
+    written: list[Path] = []
+    for name in names:
+        path = directory / name
+        if path.exists():
+            try:
+                template, certificate = read_certificate_file(path)
+            except (CertificateFormatError, InputFileError):
+                template = None
+            if template is not None and template is not builtin_templates()[0] and template.regenerate is not None:
+                written.append(template.write(template.regenerate(certificate), path))
+                continue
+        written += write_stability(directory, [name])
+    return written

@@ -32,6 +32,7 @@ _HELP = {
 _EPILOG = """examples:
   symbolic-friction certify                      # regenerate proofs/ (Table I, cases a and b, both modes)
   symbolic-friction certify --k-p 3 --k-i 4 --k-v 6.4 --f-c 1 --out my_proofs
+  symbolic-friction certify --k-p 2.7:3.3 --k-i 3.6:4.4 --k-v 5.76:7.04 --f-c 1 --pieces 16   # a box of gains
   symbolic-friction certify --m 2 --k-p-bar 6 --k-i-bar 8 --k-d-bar 12.3 --alpha-v 0.5 --f-c-bar 2 --mode feasible
 """
 _PHYSICAL = ("m", "k_p_bar", "k_i_bar", "k_d_bar", "f_c_bar")
@@ -58,11 +59,22 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "(default: both for Table I, tightest for given gains)",
     )
     parser.add_argument(
+        "--search",
+        choices=("closed-form", "sdp"),
+        default="closed-form",
+        help="how the constants are found: 'closed-form' (default) writes them down for any gains without a solver; "
+        "'sdp' solves the semidefinite program (cvxpy + Clarabel); the exact verifier decides either way",
+    )
+    parser.add_argument(
         "--margin",
         default=None,
         metavar="Q",
         help="relative margin on the strict inequalities, e.g. 1/1000 (default 1/1000000 tightest, 1/100 feasible)",
     )
+    parser.add_argument("--pieces", type=int, default=None, metavar="N",
+                        help="for a box (intervals LO:HI): cover it by N pieces, κ the largest over them (default 1)")
+    parser.add_argument("--kappa-tol", default=None, metavar="Q",
+                        help="for a box: halve pieces until κ is within Q (relative) of the largest pointwise κ at their corners")
     parser.add_argument("--out", default="proofs", metavar="DIR", help="output directory (default: proofs)")
     parser.add_argument(
         "--name",
@@ -87,7 +99,33 @@ def add_gain_arguments(parser: argparse.ArgumentParser) -> None:
         physical.add_argument(_flag(name), dest=name, default=None, metavar="Q", help=_HELP[name])
 
 
-def _gains(args: argparse.Namespace):  # -> Parameters | None
+def _is_box(args: argparse.Namespace) -> bool:
+    """Whether any gain is given as an interval ``LO:HI``."""
+    return any(isinstance(getattr(args, n, None), str) and ":" in getattr(args, n) for n in _NORMALISED + _PHYSICAL + _PHYSICAL_OPTIONAL)
+
+
+def _intervals(args: argparse.Namespace) -> tuple[dict | None, dict | None]:
+    """``(box, physical)`` of exact intervals (a plain number is the interval [q, q]); one of them is None."""
+    from .._infra.rational import to_rational
+
+    def interval(name: str, text: str):
+        lo, sep, hi = str(text).partition(":")
+        lo_q = to_rational(lo, name=_flag(name))
+        hi_q = to_rational(hi, name=_flag(name)) if sep else lo_q
+        if not lo_q <= hi_q:
+            raise ParameterError(f"{_flag(name)} {text}: an interval LO:HI needs LO ≤ HI")
+        return lo_q, hi_q
+
+    params = _gains(args, probe=True)
+    del params
+    if any(getattr(args, n) is not None for n in _NORMALISED):
+        return {n: interval(n, getattr(args, n)) for n in _NORMALISED}, None
+    physical = {n: interval(n, getattr(args, n)) for n in _PHYSICAL}
+    physical["alpha_v"] = interval("alpha_v", args.alpha_v if args.alpha_v is not None else "0")
+    return None, {n: physical[n] for n in ("m", "k_p_bar", "k_i_bar", "k_d_bar", "alpha_v", "f_c_bar")}
+
+
+def _gains(args: argparse.Namespace, *, probe: bool = False):  # -> Parameters | None
     from .._model.parameters import Parameters
 
     given_norm = [n for n in _NORMALISED if getattr(args, n) is not None]
@@ -101,6 +139,8 @@ def _gains(args: argparse.Namespace):  # -> Parameters | None
         missing = [n for n in _NORMALISED if getattr(args, n) is None]
         if missing:
             raise ParameterError(f"certify needs all of --k-p --k-i --k-v --f-c; missing {' '.join(map(_flag, missing))}")
+        if probe:
+            return None
         return Parameters(**{n: getattr(args, n) for n in _NORMALISED})
     if given_phys:
         missing = [n for n in _PHYSICAL if getattr(args, n) is None]
@@ -109,6 +149,8 @@ def _gains(args: argparse.Namespace):  # -> Parameters | None
                 "certify needs all of --m --k-p-bar --k-i-bar --k-d-bar --f-c-bar (and optionally --alpha-v); "
                 f"missing {' '.join(map(_flag, missing))}"
             )
+        if probe:
+            return None
         kwargs = {n: getattr(args, n) for n in _PHYSICAL}
         if args.alpha_v is not None:
             kwargs["alpha_v"] = args.alpha_v
@@ -139,6 +181,10 @@ def run(args: argparse.Namespace) -> int:
     from .._infra.rational import format_rational
     from .._infra.output import emit
 
+    if _is_box(args):
+        return _run_box(args)
+    if args.pieces is not None or args.kappa_tol is not None:
+        raise ParameterError("--pieces and --kappa-tol apply to a box: give at least one gain as an interval LO:HI")
     params = _gains(args)
     physical = _physical(args) if params is not None else None
     out = Path(args.out)
@@ -161,17 +207,54 @@ def run(args: argparse.Namespace) -> int:
         jobs.append((params, mode, label, out / f"{stem}.json"))
     for _, mode, _, _ in jobs:  # validate before writing anything
         check_margin(args.margin, mode)
-    ensure_directory(out)  # an unusable --out fails now, not after the search
+    ensure_directory(args.out)  # an unusable --out (or an empty one) fails now, not after the search
     for params, mode, label, path in jobs:
-        cert = certify(params, mode=mode, margin=args.margin, label=label, physical=physical)
+        cert = certify(params, mode=mode, margin=args.margin, label=label, physical=physical, search=args.search)
         json_path, md_path = write_certificate(cert, path)
         if args.json:
             emit(json.dumps({
-                "file": str(json_path), "report": str(md_path), "mode": mode, "label": label,
+                "file": str(json_path), "report": str(md_path), "mode": mode, "search": args.search, "label": label,
                 "parameters": {k: format_rational(v) for k, v in cert.parameters.items()},
                 "physical": None if cert.physical is None else {k: format_rational(v) for k, v in cert.physical.items()},
                 "overshoot_bound": cert.overshoot_bound, "proved": True,
             }, ensure_ascii=False), level=0)
         else:
-            emit(f"wrote {json_path} and {md_path.name} ({mode}): |x(t)|_A <= {cert.overshoot_bound}·|x(0)|_A", level=0)
+            # the normalised gains that were certified (physical values, when given, follow in parentheses)
+            emit(f"wrote {json_path} and {md_path.name} ({mode}) for {cert.gains_text()}: "
+                 f"|x(t)|_A <= {cert.overshoot_bound}·|x(0)|_A", level=0)
+    return 0
+
+
+def _run_box(args: argparse.Namespace) -> int:
+    """Certify a box of gains (intervals), verify it at every piece's corners, write it; print one line."""
+    from pathlib import Path
+
+    from .._certify.box import certify_box, default_box_stem, write_box
+    from .._infra.io import check_stem, ensure_directory
+    from .._infra.output import emit
+    from .._infra.rational import to_rational
+
+    if args.search != "closed-form":
+        raise ParameterError("a box is certified by the closed form only (--search closed-form)")
+    if args.mode not in (None, "tightest"):
+        raise ParameterError("a box certificate has one mode (tightest); --mode feasible applies to one gain set")
+    if args.pieces is not None and args.kappa_tol is not None:
+        raise ParameterError("give --pieces or --kappa-tol, not both")
+    box, physical = _intervals(args)
+    label = args.label or ""
+    if len(label) > 1000 or not label.isprintable():
+        raise ParameterError(f"--label must be at most 1000 printable characters; got {len(label)} characters")
+    out = Path(args.out)
+    stem = check_stem(args.name) if args.name is not None else None
+    ensure_directory(out)
+    tol = None if args.kappa_tol is None else to_rational(args.kappa_tol, name="--kappa-tol")
+    cert = certify_box(box, physical=physical, pieces=args.pieces or 1, kappa_tol=tol, margin=args.margin, label=label)
+    path = write_box(cert, out / f"{stem or default_box_stem(cert)}.json")
+    if args.json:
+        emit(json.dumps({"file": str(path), "kind": "box", "pieces": len(cert.pieces), "label": label,
+                         "box": cert.to_dict()["box"], "physical": cert.to_dict().get("physical"),
+                         "overshoot_bound": cert.overshoot_bound, "proved": True}, ensure_ascii=False), level=0)
+    else:
+        emit(f"wrote {path} ({len(cert.pieces)} piece(s)): |x(t)|_A <= {cert.overshoot_bound}·|x(0)|_A "
+             "for every gain set in the box", level=0)
     return 0

@@ -21,31 +21,12 @@ import math
 HELP = "check certificates on exact simulated trajectories and measure how tight they are"
 
 
-def _positive_int(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected an integer ≥ 1; got {text!r}") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"expected an integer ≥ 1; got {value}")
-    return value
-
-
 MAX_TRAJECTORIES = 1_000_000
 MAX_SAMPLES = 100_000
 MAX_EVENTS = 10_000_000
-MAX_TOTAL_SAMPLES = 100_000_000
-"""Bounds on the work one run may ask for (time and memory), said in the error when exceeded."""
-
-
-def _bounded_int(bound: int):
-    def parse(text: str) -> int:
-        value = _positive_int(text)
-        if value > bound:
-            raise argparse.ArgumentTypeError(f"at most {bound} is supported (a bound on time and memory); got {text[:40]}")
-        return value
-
-    return parse
+MAX_TOTAL_SAMPLES = 20_000_000  # twice the default run (10⁵ trajectories × 101 samples); 10⁸ did not finish
+MAX_HORIZON = 1e6
+"""Bounds on the work one run may ask for (time and memory), said in the help and in the error when exceeded."""
 
 
 def _seed(text: str) -> int:
@@ -54,18 +35,10 @@ def _seed(text: str) -> int:
     return int(text)
 
 
-def _positive_float(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number > 0; got {text!r}") from None
-    if not (math.isfinite(value) and value > 0):
-        raise argparse.ArgumentTypeError(f"expected a finite number > 0; got {text!r}")
-    return value
-
-
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """``CERT…`` and the options."""
+    from .._infra.options import count_option, real_option
+
     parser.description = (
         f"{HELP}. Exit status: 0 if every property holds within the tolerance, 1 if one is violated "
         "(counterexamples written to --out), 2 on bad input."
@@ -73,24 +46,26 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("certificates", nargs="*", metavar="CERT",
                         help="certificate JSON files (default: those configured in [tool.symbolic-friction], "
                         "else every proofs/*.json)")
-    parser.add_argument("--trajectories", type=_bounded_int(MAX_TRAJECTORIES), default=100_000, metavar="N",
-                        help="trajectories per gain set, shared by its certificates (default 100000)")
+    parser.add_argument("--trajectories", type=count_option("--trajectories", high=MAX_TRAJECTORIES), default=100_000,
+                        metavar="N", help=f"trajectories per gain set, shared by its certificates (default 100000; at "
+                        f"most {MAX_TRAJECTORIES}, and --trajectories × --samples at most {MAX_TOTAL_SAMPLES})")
     parser.add_argument("--seed", type=_seed, default=0, help="seed of the random states and optimisers (default 0)")
-    parser.add_argument("--horizon", type=_positive_float, default=None, metavar="T",
-                        help="simulation horizon (default 20/|Re λ| of the slowest root)")
-    parser.add_argument("--samples", type=_bounded_int(MAX_SAMPLES), default=101, metavar="N",
-                        help="samples per trajectory, plus every event (default 101)")
-    parser.add_argument("--rtol", type=_positive_float, default=1e-8,
-                        help="relative tolerance of every check (default 1e-8)")
-    parser.add_argument("--theta", type=_positive_float, default=0.5,
-                        help="attractivity: |x(T)|_A <= theta |x(0)|_A required (default 0.5)")
+    parser.add_argument("--horizon", type=real_option("--horizon", high=MAX_HORIZON), default=None, metavar="T",
+                        help=f"simulation horizon (default 20/|Re λ| of the slowest root; at most {MAX_HORIZON:g})")
+    parser.add_argument("--samples", type=count_option("--samples", high=MAX_SAMPLES), default=101, metavar="N",
+                        help=f"samples per trajectory, plus every event (default 101; at most {MAX_SAMPLES})")
+    parser.add_argument("--rtol", type=real_option("--rtol", high=1, high_open=True), default=1e-8,
+                        help="relative tolerance of every check, in (0, 1) (default 1e-8)")
+    parser.add_argument("--theta", type=real_option("--theta", high=1), default=0.5,
+                        help="attractivity: |x(T)|_A <= theta |x(0)|_A required, theta in (0, 1] (default 0.5)")
     parser.add_argument("--out", default="crosscheck-counterexamples", metavar="DIR",
                         help="directory for counterexample files (written only if a property fails)")
     parser.add_argument("--no-adversarial", action="store_true", help="skip the optimisers")
     parser.add_argument("--decay", action="store_true",
                         help="also fit the decay of |x(t)|_A (power law or exponential)")
-    parser.add_argument("--max-events", type=_bounded_int(MAX_EVENTS), default=10_000, metavar="N",
-                        help="event limit per trajectory; a trajectory reaching it is incomplete (default 10000)")
+    parser.add_argument("--max-events", type=count_option("--max-events", high=MAX_EVENTS), default=10_000, metavar="N",
+                        help=f"event limit per trajectory; a trajectory reaching it is incomplete (default 10000; at most "
+                        f"{MAX_EVENTS})")
     parser.add_argument("--json", action="store_true",
                         help="print the results as one JSON object (every certificate and property) instead of tables")
     parser.add_argument("--junit-xml", metavar="FILE", default=None,
@@ -104,12 +79,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Run the cross-check, print the tables, write counterexamples; 1 if any property fails."""
-    from .._crosscheck import crosscheck, default_certificate_files, format_report, write_counterexamples
+    from .._crosscheck import crosscheck, default_certificate_selection, format_report, write_counterexamples
     from .._infra.errors import ParameterError, UnprovedCertificateError
     from .._infra.io import check_output_directory
     from .._infra.output import emit, verbosity
 
-    files = list(args.certificates) or default_certificate_files()
+    files, skipped = (list(args.certificates), []) if args.certificates else default_certificate_selection()
     if args.rtol >= 1:
         raise ParameterError(f"--rtol must be < 1; got {args.rtol:g}")
     if args.theta > 1:
@@ -124,6 +99,9 @@ def run(args: argparse.Namespace) -> int:
         from .._infra.junit import check_writable
 
         check_writable(args.junit_xml)
+    if not args.json:
+        for name, why in skipped:  # said before the long run, so a missing file is never a surprise
+            emit(f"skipped {name}: {why}")
     try:
         report = _run_crosscheck(crosscheck, files, args)
     except UnprovedCertificateError as exc:
@@ -143,7 +121,8 @@ def run(args: argparse.Namespace) -> int:
 
         write_junit(args.junit_xml, "symbolic-friction crosscheck", _junit_cases(report))
     if args.json:
-        emit(json.dumps(_json_report(report, written), indent=2, ensure_ascii=False, default=_json_default), level=0)
+        payload = {**_json_report(report, written), "skipped": [{"file": n, "reason": why} for n, why in skipped]}
+        emit(json.dumps(payload, indent=2, ensure_ascii=False, default=_json_default), level=0)
         return 0 if report.passed else 1
     emit(format_report(report))
     for path in written:

@@ -46,25 +46,41 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
     parser.epilog = _EPILOG
     parser.formatter_class = argparse.RawDescriptionHelpFormatter
-    gains = parser.add_argument_group("normalised gains (exact: '1.2' is 6/5)")
+    gains = parser.add_argument_group("normalised gains (exact: '1.2' is 6/5; f_s = f_c or f_s/f_c in [1 + 1e-06, 100])")
     for name in _NAMES:
         gains.add_argument("--" + name.replace("_", "-"), dest=name, required=True, metavar="Q", help=_HELP[name])
     parser.add_argument("--out", default="proofs/hunting", metavar="DIR", help="directory for the certificates (default: proofs/hunting)")
     parser.add_argument("--name", default=None, metavar="STEM", help="file stem (default: hunting_<hash of the gains>)")
     parser.add_argument("--figure", default=None, metavar="PNG", help="write the phase plane, the map and (with --sweep) the sweep")
-    parser.add_argument("--sweep", default=None, metavar="R,R,…", help="ratios f_s/f_c for an amplitude sweep (e.g. 1.05,1.1,1.2,1.5)")
+    parser.add_argument("--sweep", default=None, metavar="R,R,…",
+                        help="ratios f_s/f_c for an amplitude sweep (e.g. 1.05,1.1,1.2,1.5; at most 50 ratios, "
+                        "each in [1 + 1e-06, 100])")
     parser.add_argument("--no-iss", action="store_true", help="skip the comparison with Corollary 1's empirical ISS gain")
     parser.add_argument("--no-simulation", action="store_true", help="skip the long exact simulation check")
 
 
 def run(args: argparse.Namespace) -> int:
-    from .._infra.io import check_stem
+    from .._infra.io import check_output_directory, check_output_file, check_stem
     from .._infra.output import emit
     from .._model.parameters import Parameters
 
     params = Parameters(**{name: getattr(args, name) for name in _NAMES})
     if args.name is not None:  # refused before any work, as certify's
         check_stem(args.name)
+    check_output_directory(args.out, what="--out")  # an unusable --out or --figure fails now, not after the proofs
+    if args.figure is not None:
+        check_output_file(args.figure, what="--figure")
+    if params.stiction:  # the search works in float64: refused before it, not after a traceback or an endless search
+        from .._hunting._study import MAX_RATIO, MIN_EXCESS
+        from .._infra.errors import ParameterError
+        from .._simulation import _check_float_model
+
+        if not 1 + MIN_EXCESS <= params.f_s / params.f_c <= MAX_RATIO:
+            raise ParameterError(
+                f"f_s/f_c must be 1 (the paper's model) or lie in [1 + {float(MIN_EXCESS):g}, {MAX_RATIO}]; "
+                f"got f_s/f_c - 1 = {float(params.f_s / params.f_c - 1):.3g}"
+            )
+        _check_float_model(params)
     if not params.stiction:
         emit(
             f"{params}: f_s = f_c, the paper's model. Proposition 1: 𝒜 is globally asymptotically stable, so no "
@@ -75,7 +91,7 @@ def run(args: argparse.Namespace) -> int:
         return 0
     from .._hunting._study import parse_sweep, study_cycle
 
-    ratios = parse_sweep(args.sweep) if args.sweep else None
+    ratios = parse_sweep(args.sweep) if args.sweep is not None else None
 
     from .._certify.hunting import write_hunting
     from .._hunting._map import find_cycles, real_root_escape
@@ -130,7 +146,7 @@ def run(args: argparse.Namespace) -> int:
         name = stem if len(cycles) == 1 else f"{stem}_{n}"
         path = write_hunting(cert, Path(args.out) / f"{name}.json")
         emit(f"  certificate: {path} (re-check: symbolic-friction verify {path})", level=0)
-    if args.figure:
+    if args.figure is not None:
         from .._hunting._report import amplitude_sweep, hunting_figure
 
         sweep = amplitude_sweep(params, ratios) if ratios else None

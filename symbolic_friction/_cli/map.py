@@ -53,17 +53,25 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     physical = parser.add_argument_group("physical axes (paper §II-A: k_p = k̄_p/m, k_v = (k̄_d + α_v)/m, …)")
     for name in _PHYSICAL:
         physical.add_argument(_flag(name), dest=name, default=None, metavar="AXIS", help=_HELP[name])
-    parser.add_argument("--sample", type=int, default=0, metavar="N", help="N random points instead of a grid")
-    parser.add_argument("--seed", type=int, default=0, help="seed of the sample and of the adversary (default 0)")
+    from .._infra.options import count_option
+
+    # bounds stated before any work (the spec checks them again for library callers)
+    parser.add_argument("--sample", type=count_option("--sample", low=0, high=10**7), default=0, metavar="N",
+                        help="N random points instead of a grid (at most 10⁷)")
+    parser.add_argument("--seed", type=count_option("--seed", low=0, high=2**32 - 1), default=0,
+                        help="seed of the sample and of the adversary (default 0)")
     parser.add_argument("--sdp", action="store_true", help="also the SDP's tightest κ (about 3 ms a point)")
-    parser.add_argument("--adversary", type=int, default=0, metavar="BUDGET",
+    parser.add_argument("--adversary", type=count_option("--adversary", low=0, high=100_000), default=0,
+                        metavar="BUDGET",
                         help="trajectories per point for the worst overshoot found, and tightness = worst/κ (default 0: off)")
-    parser.add_argument("--chunk", type=int, default=1000, metavar="N", help="points per chunk written (default 1000)")
+    parser.add_argument("--chunk", type=count_option("--chunk", low=1, high=10**6), default=1000, metavar="N",
+                        help="points per chunk written (default 1000)")
     parser.add_argument("--out", default="gain_map", metavar="DIR", help="output directory (default gain_map)")
     parser.add_argument("--format", nargs="+", choices=("csv", "netcdf"), default=["csv", "netcdf"],
                         help="dataset files (default both)")
     where = parser.add_mutually_exclusive_group()
-    where.add_argument("--workers", type=int, default=1, metavar="N", help="processes (default 1: this process)")
+    where.add_argument("--workers", type=count_option("--workers", low=1, high=256), default=1, metavar="N",
+                       help="processes (default 1: this process)")
     where.add_argument("--scheduler", default=None, metavar="ADDRESS",
                        help="run on a dask.distributed scheduler, e.g. tcp://host:8786 (needs the [dask] extra)")
     parser.add_argument("--plot", default=None, metavar="X,Y", help="heat-map axes (default: the first two ranged axes)")
@@ -83,10 +91,6 @@ def run(args: argparse.Namespace) -> int:
     values = {n: getattr(args, n) for n in _NORMALISED + _PHYSICAL if getattr(args, n) is not None}
     if not values:
         raise ParameterError("give the axes: normalised --k-p --k-i --k-v (and --f-c, --f-s) or physical --m --k-p-bar …")
-    if args.sample < 0:
-        raise ParameterError(f"--sample must be ≥ 0; got {args.sample}")
-    if not 1 <= args.workers <= 256:
-        raise ParameterError(f"--workers must be in 1..256; got {args.workers}")
     spec = map_spec(values, sample=args.sample, seed=args.seed, sdp=args.sdp, adversary=args.adversary, chunk=args.chunk)
     axes = None
     if not args.no_plot:

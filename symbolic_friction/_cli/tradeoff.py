@@ -27,12 +27,16 @@ DEFAULT_Z0 = {"a": "0,1,0", "b": "0,3,0"}
 DEFAULT_T = {"a": 30.0, "b": 60.0}
 
 
-# Bounds checked before any work: the horizon and the sample count of one run.
-MAX_T_END, MAX_SAMPLES = 1e4, 100_000
+# Bounds checked before any work: the horizon, the sample count and the timed repeats of one run, the size of a state.
+MAX_T_END, MAX_SAMPLES, MAX_REPEATS, MAX_STATE = 1e3, 100_000, 1000, 1e12  # T = 1e4 took minutes even with --quick
+# ... and the stiffness of the comparison, spectral radius × t_end: explicit methods (ivp-events DOP853) take about
+# that many steps, and 10⁶ of them ran for minutes.
+MAX_STIFFNESS = 1e5
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Gains (as ``certify``), ``--case``, ``--z0``, ``--t-end``, ``--samples``, ``--repeats``, output options."""
+    from .._infra.options import count_option, real_option
     from .certify import add_gain_arguments
 
     parser.description = textwrap.fill(
@@ -46,11 +50,15 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--case", choices=("a", "b"), default=None, help="Table I case (default a unless gains are given)")
     parser.add_argument(
         "--z0", action="append", default=None, metavar="E_I,S,V",
-        help="initial state (e_i, s, v), repeatable (default: 0,1,0 for case a, 0,3,0 for case b, 0,1,0 for gains)",
+        help="initial state (e_i, s, v), repeatable (default: 0,1,0 for case a, 0,3,0 for case b, 0,1,0 for gains; "
+        f"each |component| at most {MAX_STATE:g})",
     )
-    parser.add_argument("--t-end", type=float, default=None, metavar="T", help="horizon (default 30; 60 for case b)")
-    parser.add_argument("--samples", type=int, default=301, metavar="M", help="sample times where errors are measured (default 301)")
-    parser.add_argument("--repeats", type=int, default=7, metavar="R", help="timed runs per configuration (default 7)")
+    parser.add_argument("--t-end", type=real_option("--t-end", high=MAX_T_END), default=None, metavar="T",
+                        help=f"horizon (default 30; 60 for case b; at most {MAX_T_END:g})")
+    parser.add_argument("--samples", type=count_option("--samples", low=2, high=MAX_SAMPLES), default=301, metavar="M",
+                        help=f"sample times where errors are measured (default 301; at most {MAX_SAMPLES})")
+    parser.add_argument("--repeats", type=count_option("--repeats", high=MAX_REPEATS), default=7, metavar="R",
+                        help=f"timed runs per configuration (default 7; at most {MAX_REPEATS})")
     parser.add_argument("--quick", action="store_true", help="three knob values per method (a fast look)")
     parser.add_argument("--no-cost", action="store_true", help="skip the cost against T and N (and its figure)")
     parser.add_argument("--json", action="store_true", help="print the measurements as JSON instead of the table")
@@ -60,17 +68,25 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_gain_arguments(parser)
 
 
+def _spectral_radius(params) -> float:
+    """Largest |root| of s³ + k_v s² + k_p s + k_i (eq. xPhDot's A): the rate an explicit method must resolve."""
+    import numpy as np
+
+    try:
+        coefficients = [1.0, *(float(q) for q in (params.k_v, params.k_p, params.k_i))]
+    except OverflowError:
+        return math.inf
+    return float(np.max(np.abs(np.roots(coefficients))))
+
+
 def _state(text: str) -> tuple[float, float, float]:
     from .._infra.errors import UsageError
+    from .._infra.options import read_reals
 
-    parts = text.replace(" ", "").split(",")
     try:
-        values = tuple(float(p) for p in parts)
-    except ValueError:
-        raise UsageError(f"--z0 takes three numbers e_i,s,v; got {text!r}") from None
-    if len(values) != 3:
-        raise UsageError(f"--z0 takes three numbers e_i,s,v; got {len(values)} in {text!r}")
-    return values  # type: ignore[return-value]
+        return read_reals(text, name="--z0 (e_i,s,v)", size=3, bound=MAX_STATE)  # type: ignore[return-value]
+    except argparse.ArgumentTypeError as exc:
+        raise UsageError(str(exc)) from None
 
 
 def run(args: argparse.Namespace) -> int:
@@ -98,6 +114,13 @@ def run(args: argparse.Namespace) -> int:
         raise UsageError(f"--t-end must be > 0 and at most {MAX_T_END:g} (the reference's cost grows with it); got {t_end:g}")
     if not 2 <= args.samples <= MAX_SAMPLES:
         raise UsageError(f"--samples must be between 2 and {MAX_SAMPLES}; got {args.samples}")
+    stiffness = _spectral_radius(params) * t_end
+    if not stiffness <= MAX_STIFFNESS:
+        raise UsageError(
+            f"these gains are too stiff to compare every method over t_end = {t_end:g}: spectral radius × t_end = "
+            f"{stiffness:.3g}, at most {MAX_STIFFNESS:g} (explicit methods take about that many steps); "
+            "shorten --t-end or simulate the event method alone"
+        )
     if not args.no_figures:
         ensure_directory(args.out)  # an unusable --out fails now, not after the measurements
     result = measure_tradeoff(params, z0s, t_end, label=label, samples=args.samples, repeats=args.repeats, quick=args.quick)

@@ -1,8 +1,9 @@
 """``symbolic-friction verify FILE…``: exact re-check of certificate files.
 
 Each file is dispatched on its ``schema`` field: a stability certificate of
-the paper's model (:mod:`.._certify.verify`, exact rationals) or a hunting
-certificate (:mod:`.._hunting._certificate`, a Krawczyk proof in arb balls).
+the paper's model (:mod:`.._certify.verify`, exact rationals), a box
+certificate (:mod:`.._certify.box`: the same verifier at every piece's four
+corners) or a hunting certificate (a Krawczyk proof in arb balls).
 
 Exit status: 0 if every file proves its claim; 1 if some inequality fails
 (each failing one is named with its exact numbers); 2 if a file is missing
@@ -47,6 +48,7 @@ def run(args: argparse.Namespace) -> int:
         check_writable(args.junit_xml)
     failed = False
     malformed: list[Exception] = []
+    bad_names: list[str] = []
     cases: list = []
     payload: list[dict] = []
     from .._certify.templates import verify_any_file
@@ -59,12 +61,20 @@ def run(args: argparse.Namespace) -> int:
             hunting, report = verify_any_file(name)
         except (CertificateFormatError, InputFileError) as exc:
             malformed.append(exc)
+            bad_names.append(name)
             cases.append(Case(name=str(name), classname="verify", seconds=0.0, error=str(exc)))
             payload.append({"file": str(name), "status": "malformed", "error": str(exc)})
-            if not args.json:
+            if not args.json and len(args.files) > 1:
+                # one line per file in the listing; the closing error then names the files, not the reasons again
                 emit(f"MALFORMED {exc}", level=0)
             continue
         cert = report.certificate
+        from .._certify.box import BoxReport
+
+        if isinstance(report, BoxReport):
+            _box_result(report, name, args, cases, payload)
+            failed = failed or not report.proved
+            continue
         if hunting:
             _hunting_result(report, name, args, cases, payload)
             failed = failed or not report.proved
@@ -101,9 +111,14 @@ def run(args: argparse.Namespace) -> int:
         emit(json.dumps({"files": payload, "passed": not failed and not malformed}, indent=2, ensure_ascii=False), level=0)
     if malformed:
         # the CLI turns this into "error: …" and exit status 2
-        if len(malformed) == 1:
+        # each reason is printed once: a lone file's as the error, a listing's on its MALFORMED line (or in --json)
+        if len(args.files) == 1:
             raise malformed[0]
-        raise CertificateFormatError(f"{len(malformed)} files are missing or malformed; first: {malformed[0]}")
+        names = ", ".join(str(n) for n in bad_names)
+        where = "see the JSON above" if args.json else "reasons above"
+        raise CertificateFormatError(
+            f"{len(malformed)} of {len(args.files)} files are missing or malformed ({where}): {names}"
+        )
     return 1 if failed else 0
 
 
@@ -134,3 +149,26 @@ def _hunting_result(report, name, args, cases: list, payload: list) -> None:
         emit(report.summary(), level=0)
         for check in report.checks:
             emit(f"  {check}", level=2)
+
+
+def _box_result(report, name, args, cases: list, payload: list) -> None:
+    """One box certificate's line, JUnit case and JSON record (its checks: the cover and every piece's 4 corners)."""
+    from .._infra.junit import Case
+    from .._infra.output import emit
+
+    cert = report.certificate
+    gains = cert.gains_text()
+    cases.append(Case(name=str(name), classname="verify", seconds=0.0,
+                      failure=None if report.proved else "; ".join(c.message for c in report.failures[:5]), output=gains))
+    payload.append({
+        "file": str(name), "kind": "box", "status": "proved" if report.proved else "failed",
+        "box": cert.to_dict()["box"], "gains_text": gains, "pieces": len(cert.pieces),
+        "label": cert.provenance.get("label", ""), "overshoot_bound": cert.overshoot_bound,
+        "failures": [{"obligation": c.obligation, "inequality": c.name, "instance": c.instance} for c in report.failures],
+        **({"checks": [{"obligation": c.obligation, "inequality": c.name, "instance": c.instance, "holds": c.holds}
+                       for c in report.checks]} if args.verbose else {}),
+    })
+    if not args.json:
+        emit(f"{report.summary()} [{gains}]", level=0)
+        for check in report.checks:
+            emit(f"  {check}  [{check.obligation}]", level=2)

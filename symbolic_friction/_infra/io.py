@@ -23,8 +23,8 @@ from typing import IO
 from .errors import InputFileError, OutputPathError
 
 __all__ = [
-    "atomic_write", "atomic_write_text", "read_limited", "ensure_directory", "check_output_directory", "check_stem",
-    "describe_os_error",
+    "atomic_write", "atomic_write_text", "read_limited", "ensure_directory", "check_output_directory", "check_output_file",
+    "check_stem", "describe_os_error",
 ]
 
 # The longest file stem a --name may give.
@@ -58,8 +58,12 @@ def read_limited(path: str | os.PathLike[str], *, limit: int, what: str = "file"
 
     A FIFO, a device such as ``/dev/zero``, a directory, a symlink loop or a
     file larger than ``limit`` raises :class:`~symbolic_friction.InputFileError`
-    with one line saying so, without blocking and without reading it whole.
+    with one line saying so, without blocking and without reading it whole;
+    so does a path written with a trailing slash (a directory's spelling,
+    which :class:`~pathlib.Path` would drop).
     """
+    if isinstance(path, str) and path.endswith(("/", os.sep)):
+        raise InputFileError(f"cannot read {what} {path}: a trailing / names a directory, not a file")
     path = Path(path)
     try:
         # O_NONBLOCK: opening a FIFO must not wait for a writer.
@@ -91,8 +95,11 @@ def ensure_directory(path: str | os.PathLike[str], *, what: str = "output direct
     """Create ``path`` (and its parents) if needed and check it is a writable directory.
 
     Called before any long computation, so that an unusable ``--out`` fails
-    at once with one line instead of after the work.
+    at once with one line instead of after the work.  An empty path is
+    refused (it would silently mean the working directory).
     """
+    if isinstance(path, str) and not path.strip():
+        raise OutputPathError(f"{what} must name a directory; got {path!r} (use . for the working directory)")
     path = Path(path)
     try:
         if path.is_symlink() and not path.exists():
@@ -124,6 +131,7 @@ def atomic_write(path: str | os.PathLike[str], write: Callable[[IO[bytes]], obje
     Path
         ``path``.
     """
+    _check_file_spelling(path, what="output file")
     path = Path(path)
     try:
         st = os.lstat(path)
@@ -164,12 +172,7 @@ def _write_through(path: Path, st: os.stat_result, write: Callable[[IO[bytes]], 
     (``/dev/full``: no space left) is an error.
     """
     mode = st.st_mode
-    if stat.S_ISLNK(mode):
-        raise OutputPathError(f"{path}: is a symbolic link; give the file it points to (it is not replaced)")
-    if stat.S_ISDIR(mode):
-        raise OutputPathError(f"{path}: is a directory; give a file name")
-    if not (stat.S_ISCHR(mode) or stat.S_ISFIFO(mode)):
-        raise OutputPathError(f"{path}: is not a regular file, a character device or a FIFO; refusing to write to it")
+    _refuse_special(path, mode)
     flags = os.O_WRONLY | (os.O_NONBLOCK if stat.S_ISFIFO(mode) else 0)
     try:
         fd = os.open(path, flags)
@@ -188,6 +191,54 @@ def _write_through(path: Path, st: os.stat_result, write: Callable[[IO[bytes]], 
     return path
 
 
+def _refuse_special(path: Path, mode: int) -> None:
+    """Refuse what is neither a regular file, a character device nor a FIFO (see :func:`_write_through`)."""
+    if stat.S_ISLNK(mode):
+        raise OutputPathError(f"{path}: is a symbolic link; give the file it points to (it is not replaced)")
+    if stat.S_ISDIR(mode):
+        raise OutputPathError(f"{path}: is a directory; give a file name")
+    if not (stat.S_ISREG(mode) or stat.S_ISCHR(mode) or stat.S_ISFIFO(mode)):
+        raise OutputPathError(f"{path}: is not a regular file, a character device or a FIFO; refusing to write to it")
+
+
+def _check_file_spelling(path: str | os.PathLike[str], *, what: str) -> None:
+    """Refuse an empty file name and a trailing slash, both lost once the text becomes a Path (``Path("x/")`` is ``x``)."""
+    text = os.fspath(path)
+    if not isinstance(text, str):  # pragma: no cover - the package passes str paths
+        return
+    if not text.strip():
+        raise OutputPathError(f"{what} must name a file; got {text!r}")
+    if text.endswith(("/", os.sep)):
+        raise OutputPathError(f"{what} {text}: a trailing / names a directory, not a file")
+
+
+def check_output_file(path: str | os.PathLike[str], *, what: str = "output file") -> Path:
+    """Refuse, before any work, an output file that :func:`atomic_write` would refuse or could not create.
+
+    Empty, ending in ``/``, a directory, a symbolic link (dangling or looping
+    too), a socket or block device, a name too long, a path through a file or
+    an unwritable directory: :class:`~symbolic_friction.OutputPathError`.  A
+    regular file, a character device (``/dev/null``) or a FIFO passes; a FIFO
+    is only checked for a reader when written.  Nothing is created.
+    """
+    _check_file_spelling(path, what=what)
+    path = Path(path)
+    try:
+        st = os.lstat(path)
+    except FileNotFoundError:
+        st = None
+    except OSError as exc:
+        raise OutputPathError(f"cannot use {what} {describe_os_error(exc, path)}") from None
+    if st is not None:
+        try:
+            _refuse_special(path, st.st_mode)
+        except OutputPathError as exc:
+            raise OutputPathError(f"{what} {exc}") from None
+        return path
+    check_output_directory(path.parent if str(path.parent) else Path("."), what=f"directory of {what}")
+    return path
+
+
 def atomic_write_text(path: str | os.PathLike[str], text: str) -> Path:
     """Write ``text`` as UTF-8 with ``\\n`` line endings, atomically (see :func:`atomic_write`)."""
     data = text.encode("utf-8")
@@ -199,8 +250,10 @@ def check_output_directory(path: str | os.PathLike[str], *, what: str = "output 
 
     For outputs written only sometimes (counterexamples): the run fails at
     once on an unusable path, and a run that writes nothing leaves no empty
-    directory behind.
+    directory behind.  An empty path is refused, as by :func:`ensure_directory`.
     """
+    if isinstance(path, str) and not path.strip():
+        raise OutputPathError(f"{what} must name a directory; got {path!r} (use . for the working directory)")
     path = Path(path)
     try:
         for part in path.parts:

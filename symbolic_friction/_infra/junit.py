@@ -16,7 +16,7 @@ import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from pathlib import Path
 
-from .io import atomic_write, ensure_directory
+from .io import atomic_write, check_output_file, ensure_directory
 
 __all__ = ["Case", "write_junit", "render_junit", "check_writable"]
 
@@ -83,11 +83,7 @@ def render_junit(suite: str, cases: list[Case]) -> bytes:
 
 def check_writable(path: str | os.PathLike[str]) -> Path:
     """Refuse an unusable ``--junit-xml`` path before any work (its directory is created)."""
-    from .errors import OutputPathError
-
-    path = Path(path)
-    if path.is_dir():
-        raise OutputPathError(f"--junit-xml {path} is a directory; give a file name")
+    path = check_output_file(path, what="--junit-xml")
     ensure_directory(path.parent if str(path.parent) else Path("."), what="directory of --junit-xml")
     return path
 

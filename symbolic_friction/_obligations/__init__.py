@@ -26,6 +26,7 @@ def obligation_modules() -> tuple[ModuleType, ...]:
         assumption1,
         certificate,
         claim1,
+        closed_form,
         coordinates,
         cor1,
         distance,
@@ -35,13 +36,14 @@ def obligation_modules() -> tuple[ModuleType, ...]:
         lemma3,
         model,
         prop1,
+        quadratic,
         regularization,
         remark,
         table1,
     )
 
     return (coordinates, regularization, assumption1, equilibria, distance, model, lemma1, lemma2, remark,
-            claim1, prop1, lemma3, cor1, table1, certificate)
+            claim1, prop1, lemma3, cor1, table1, certificate, closed_form, quadratic)
 
 
 def registry() -> tuple[type[Obligation], ...]:
@@ -50,11 +52,13 @@ def registry() -> tuple[type[Obligation], ...]:
     The paper's model first (coordinates, regularisation, Assumption 1's Routh
     test, equilibria, distance), the binding obligations, Lemma 1, Lemma 2 and
     its Remark, Claim 1, Proposition 1's attractivity, Lemma 3, Proposition 1's
-    stability bound, Corollary 1, Table I, and last the verifier's bindings.
+    stability bound, Corollary 1, Table I, the verifier's bindings, and last the closed-form
+    certificate for all gains and the monotonicity that box certificates rest on.
     """
     from .assumption1 import Assumption1Encoding, Assumption1Routh
     from .certificate import CertificateVerifier, VerifierDecision
     from .claim1 import Claim1Cases
+    from .closed_form import ClosedFormAllGains, ClosedFormMonotone
     from .coordinates import Coordinates
     from .cor1 import Distances, Inflation
     from .distance import Distance
@@ -75,6 +79,7 @@ def registry() -> tuple[type[Obligation], ...]:
         VRuntime,
     )
     from .prop1 import Prop1Invariance, StabilityBound
+    from .quadratic import QuadraticPStructure, QuadraticStabilityBound, QuadraticUExit, QuadraticURate, QuadraticVDecrease
     from .regularization import Regularization
     from .remark import RemarkArmstrong
     from .table1 import TableI
@@ -85,7 +90,8 @@ def registry() -> tuple[type[Obligation], ...]:
         MatricesRuntime, ModesRuntime, PNormRuntime,
         Lemma1Uniqueness, Lemma2P, Lemma2LowerBound, Lemma2dVdt, RemarkArmstrong, Claim1Cases,
         Prop1Invariance, LemmaR, HatVBounds, HatVDerivative, StabilityBound, Inflation, Distances, TableI,
-        Assumption1Encoding, CertificateVerifier, VerifierDecision,
+        Assumption1Encoding, CertificateVerifier, VerifierDecision, ClosedFormAllGains, ClosedFormMonotone,
+        QuadraticPStructure, QuadraticVDecrease, QuadraticURate, QuadraticUExit, QuadraticStabilityBound,
     )
 
 

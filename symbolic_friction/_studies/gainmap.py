@@ -17,12 +17,12 @@ For each point (:func:`evaluate_point`):
 
 * Assumption 1 (``k_i > 0``, ``k_p > 0``, ``k_v·k_p > k_i``); a point outside
   it is marked, not an error;
-* the closed-form constants of Lemma 3 (:mod:`.._certify.closed_form`),
-  turned into a :class:`~.._certify.certificate.Certificate` whose status is
+* the closed-form certificate of Lemma 3
+  (:func:`~.._certify.closed_form.closed_form_certificate`), whose status is
   decided by the exact verifier (:func:`~.._certify.verify.verify_certificate`)
   alone; κ is the certificate's decimal bound, reported as the smallest
   float not below it (so the float is still an upper bound);
-* optionally the SDP's tightest κ (:func:`~.._certify.pipeline.certify`);
+* optionally the SDP's tightest κ (:func:`~.._certify.pipeline.certify` with ``search="sdp"``);
 * optionally the worst overshoot that the cross-check's adversary
   (:func:`~.._crosscheck._overshoot.search_overshoot`) finds on a small budget,
   and the tightness ``worst/κ`` (found, never proved);
@@ -408,7 +408,8 @@ def evaluate_point(spec: MapSpec, values: Mapping[str, Fraction]) -> dict[str, f
     """Every column of one point (see the module docstring); ``NaN`` or ``-1`` where a column does not apply."""
     from .._certify.verify import verify_certificate
     from .._infra.errors import SymbolicFrictionError
-    from .gainmap_point import closed_form_certificate, float_up, hunting_cycles, worst_overshoot
+    from .._certify.closed_form import closed_form_certificate
+    from .gainmap_point import float_up, hunting_cycles, worst_overshoot
 
     g = normalised(values)
     row: dict[str, float | int] = {n: float(v) for n, v in values.items()}
@@ -427,7 +428,7 @@ def evaluate_point(spec: MapSpec, values: Mapping[str, Fraction]) -> dict[str, f
     except AssumptionError:  # the spec keeps f_c > 0, so this is Assumption 1: marked, nothing to certify
         return row
     try:
-        cert = closed_form_certificate(k_p, k_i, k_v, f_c, mu=spec.mu)
+        cert = closed_form_certificate(params, mode="tightest", margin=spec.mu)
         proved = verify_certificate(cert).proved
     except (SymbolicFrictionError, ValueError):
         proved = False
@@ -438,7 +439,7 @@ def evaluate_point(spec: MapSpec, values: Mapping[str, Fraction]) -> dict[str, f
         from .._certify.pipeline import certify
 
         try:
-            row["kappa_sdp"] = float_up(certify(params, mode="tightest").overshoot_bound)
+            row["kappa_sdp"] = float_up(certify(params, mode="tightest", search="sdp").overshoot_bound)
         except SymbolicFrictionError:
             pass
     if spec.adversary:

@@ -1,7 +1,5 @@
 """The columns of one gain-map point beyond its gains (see :mod:`.gainmap`).
 
-* :func:`closed_form_certificate`: Lemma 3's closed-form constants
-  (:mod:`.._certify.closed_form`) as a certificate for the exact verifier;
 * :func:`float_up`: a decimal bound κ as the smallest float not below it;
 * :func:`worst_overshoot`: Proposition 1's adversary of the cross-check on a small budget (found, not proved);
 * :func:`hunting_cycles`: symmetric hunting cycles found and proved in arb balls.
@@ -15,30 +13,14 @@ from typing import Any
 
 import numpy as np
 
-from .._certify.closed_form import DEFAULT_MU
 
-__all__ = ["closed_form_certificate", "float_up", "worst_overshoot", "hunting_cycles"]
+__all__ = ["float_up", "worst_overshoot", "hunting_cycles"]
 
 
 def float_up(decimal: str) -> float:
     """The smallest float ``≥`` the decimal ``decimal`` (decided exactly)."""
     f = float(decimal)
     return math.nextafter(f, math.inf) if Fraction(f) < Fraction(decimal) else f
-
-
-def closed_form_certificate(k_p: Fraction, k_i: Fraction, k_v: Fraction, f_c: Fraction, *, mu: Fraction = DEFAULT_MU):
-    """The closed-form :class:`~.._certify.certificate.Certificate` of one gain set satisfying Assumption 1 (unverified)."""
-    from .._certify.certificate import Certificate
-    from .._certify.closed_form import closed_form_constants
-    from .._certify.rounding import KAPPA_DIGITS, sqrt_decimal_up
-
-    a = k_v / k_i
-    cf = closed_form_constants(a, a, k_p, k_p, mu=mu)
-    return Certificate(
-        k_p=k_p, k_i=k_i, k_v=k_v, f_c=f_c, k1=cf.k1, k2=cf.k2, k3=cf.k3, k4=cf.k4, c1=cf.c1, c2=cf.c2,
-        c1_hat=cf.c1_hat, c2_hat=cf.c2_hat, c=2 * (k_v * k_p - k_i),
-        overshoot_bound=sqrt_decimal_up(cf.kappa_squared, KAPPA_DIGITS),
-    )
 
 
 def worst_overshoot(params: Any, *, budget: int, seed: int) -> float:

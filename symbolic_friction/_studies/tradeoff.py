@@ -166,6 +166,13 @@ def measure_tradeoff(
     budget : float, keyword-only
     quick : bool, keyword-only
         Three knob values per method (for tests).
+
+    Examples
+    --------
+    >>> from symbolic_friction import Parameters, measure_tradeoff
+    >>> result = measure_tradeoff(Parameters.table_i("a"), [(0, 1, 0)], 5, samples=11, quick=True)  # doctest: +SKIP
+    >>> result  # doctest: +SKIP
+    Tradeoff('user gains', 1 initial state(s), t_end = 5, ... configurations)
     """
     from .._simulation import simulate
 

@@ -3,7 +3,7 @@
 Prints
 
 * the closed-form certificate of one gain set: building it
-  (:func:`~symbolic_friction._studies.gainmap.closed_form_certificate`) and
+  (:func:`~symbolic_friction._certify.closed_form.closed_form_certificate`) and
   verifying it exactly (:func:`~symbolic_friction._certify.verify.verify_certificate`),
   warm, median and mean over ``--per-point`` random gain sets (log-uniform
   ``k_p``, ``k_i``, ``k_v`` over 10⁻³..10³, inside Assumption 1);
@@ -41,7 +41,8 @@ import numpy as np  # noqa: E402
 
 from symbolic_friction._certify.verify import verify_certificate  # noqa: E402
 from symbolic_friction._studies.gainmap import map_spec  # noqa: E402
-from symbolic_friction._studies.gainmap_point import closed_form_certificate  # noqa: E402
+from symbolic_friction import Parameters  # noqa: E402
+from symbolic_friction._certify.closed_form import DEFAULT_MU, closed_form_certificate  # noqa: E402
 from symbolic_friction._studies.gainmap_run import run_map  # noqa: E402
 
 
@@ -55,13 +56,13 @@ def per_point(n: int, seed: int = 0) -> None:
     while len(gains) < n:
         k_p, k_i, k_v = (Fraction(f"{x:.6g}") for x in 10 ** rng.uniform(-3, 3, 3))
         if k_v * k_p > k_i:
-            gains.append((k_p, k_i, k_v, Fraction(1)))
+            gains.append(Parameters(k_p=k_p, k_i=k_i, k_v=k_v))
     for g in gains[:50]:  # warm
-        verify_certificate(closed_form_certificate(*g))
+        verify_certificate(closed_form_certificate(g, mode="tightest", margin=DEFAULT_MU))
     build, verify, proved = [], [], 0
     for g in gains:
         t0 = time.perf_counter()
-        cert = closed_form_certificate(*g)
+        cert = closed_form_certificate(g, mode="tightest", margin=DEFAULT_MU)
         t1 = time.perf_counter()
         proved += verify_certificate(cert).proved
         t2 = time.perf_counter()

@@ -12,7 +12,7 @@ from symbolic_friction._certify.certificate import json_schema, loads, validate_
 from symbolic_friction._infra.errors import CertificateFormatError
 
 REPO = Path(__file__).resolve().parents[2]
-PROOFS = sorted((REPO / "proofs").glob("*.json"))
+PROOFS = sorted((REPO / "proofs").glob("case_*.json"))  # the stability certificates (the box files have their own schema)
 
 
 def test_committed_certificates_match_the_schema():
@@ -80,3 +80,37 @@ def test_readme_publishes_the_shipped_schema():
     block = readme.split("<!-- certificate schema -->", 2)[1]
     text = block.split("```json", 1)[1].split("```", 1)[0]
     assert json.loads(text) == json_schema()
+
+
+def test_a_file_with_too_many_values_is_refused_before_the_schema():
+    """10⁵ array items would take the schema validator seconds: the reader counts values first."""
+    import time
+
+    from symbolic_friction._certify._json import MAX_VALUES, parse_json
+    from symbolic_friction._infra.errors import CertificateFormatError
+
+    assert parse_json(json.dumps({"a": ["x"] * (MAX_VALUES - 2)})) is not None
+    start = time.perf_counter()
+    with pytest.raises(CertificateFormatError, match=f"more than {MAX_VALUES} JSON values"):
+        parse_json(json.dumps({"a": ["x"] * 300_000}))
+    assert time.perf_counter() - start < 2
+
+
+def test_only_the_first_violations_are_ranked(monkeypatch):
+    """jsonschema's best_match ranks every error it is given: 3·10⁵ of them took 50 s; the first 100 are enough."""
+    from symbolic_friction._certify import _schema
+
+    error = next(_schema._validator().iter_errors({"schema": 1}))
+    taken = []
+
+    class Endless:
+        def iter_errors(self, data):
+            while True:
+                assert len(taken) <= _schema._MAX_ERRORS, "more violations ranked than needed"
+                taken.append(1)
+                yield error
+
+    monkeypatch.setattr(_schema, "_validator", lambda: Endless())
+    with pytest.raises(CertificateFormatError, match="does not match the certificate schema"):
+        validate_schema({})
+    assert len(taken) == _schema._MAX_ERRORS

@@ -21,7 +21,7 @@ def test_no_arguments_regenerates_table_i_in_both_modes(tmp_path, capsys):
     assert main(["certify", "--out", str(tmp_path)]) == 0
     out = capsys.readouterr().out.splitlines()
     assert len(out) == 4 and all(line.startswith("wrote ") for line in out)
-    assert "case_a_tightest.json and case_a_tightest.md (tightest): |x(t)|_A <= 3.46703" in out[1]
+    assert "case_a_tightest.json and case_a_tightest.md (tightest) for k_p=3, k_i=4, k_v=32/5, f_c=1: |x(t)|_A <= 3.46703" in out[1]
     for name in TABLE_I_FILES:
         assert verify_file(tmp_path / name).proved
         # identical to the committed proofs/ (the CLI is what generated them)
@@ -52,6 +52,8 @@ def test_one_gain_set_from_physical_parameters_with_name_margin_and_mode(tmp_pat
         "--mode", "feasible", "--margin", "1/1000", "--name", "mass2", "--out", str(tmp_path),
     ]  # fmt: skip
     assert main(argv) == 0
+    # the normalised gains that were certified are printed, with the physical values they came from
+    assert "for k_p=3, k_i=4, k_v=32/5, f_c=1 (m=2, k_p_bar=6," in capsys.readouterr().out
     cert = load(tmp_path / "mass2.json")
     params = Parameters.from_physical(m=2, k_p_bar=6, k_i_bar=8, k_d_bar="12.3", alpha_v="0.5", f_c_bar=2)
     assert (cert.k_p, cert.k_i, cert.k_v, cert.f_c) == (params.k_p, params.k_i, params.k_v, params.f_c)
@@ -104,3 +106,46 @@ def test_console_script_end_to_end(tmp_path):
     assert proc.returncode == 0, proc.stderr
     data = json.loads((tmp_path / "b.json").read_text(encoding="utf-8"))
     assert data["parameters"] == {"f_c": "1", "k_i": "2/25", "k_p": "33/50", "k_v": "3/2"}
+
+
+def test_the_sdp_search_is_still_available(tmp_path, capsys):
+    argv = ["certify", "--k-p", "3", "--k-i", "4", "--k-v", "6.4", "--f-c", "1", "--search", "sdp", "--name", "s",
+            "--out", str(tmp_path), "--json"]
+    assert main(argv) == 0
+    assert json.loads(capsys.readouterr().out)["search"] == "sdp"
+    cert = load(tmp_path / "s.json")
+    assert cert.provenance.search == "sdp" and cert.provenance.solver == "CLARABEL" and verify_file(tmp_path / "s.json").proved
+
+
+def test_a_box_of_gains_is_certified_and_verified(tmp_path, capsys):
+    argv = ["certify", "--k-p", "2.7:3.3", "--k-i", "3.6:4.4", "--k-v", "5.76:7.04", "--f-c", "1", "--pieces", "16",
+            "--name", "box_case_a_10pct", "--label", "Table I, case (a), every gain within 10 %", "--out", str(tmp_path)]
+    assert main(argv) == 0
+    assert "(16 piece(s)): |x(t)|_A <= 3.92278·|x(0)|_A for every gain set in the box" in capsys.readouterr().out
+    assert (tmp_path / "box_case_a_10pct.json").read_bytes() == (REPO / "proofs" / "box_case_a_10pct.json").read_bytes()
+    assert main(["verify", str(tmp_path / "box_case_a_10pct.json"), "--json"]) == 0
+    payload = json.loads(capsys.readouterr().out)
+    assert payload["passed"] and payload["files"][0]["kind"] == "box" and payload["files"][0]["pieces"] == 16
+
+
+def test_a_physical_box_reproduces_the_committed_file(tmp_path, capsys):
+    argv = ["certify", "--m", "1.9:2.1", "--k-p-bar", "5.8:6.2", "--k-i-bar", "7.8:8.2", "--k-d-bar", "12:12.6",
+            "--alpha-v", "0.4:0.6", "--f-c-bar", "1.8:2.2", "--pieces", "8", "--name", "box_physical",
+            "--label", "a 2 kg axis: mass ±5 %, gains and friction within a few per cent", "--out", str(tmp_path)]
+    assert main(argv) == 0
+    assert (tmp_path / "box_physical.json").read_bytes() == (REPO / "proofs" / "box_physical.json").read_bytes()
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--k-p", "0.5:3.3", "--k-i", "3.6:4.4", "--k-v", "5.76:7.04", "--f-c", "1"],
+     "the box leaves Assumption 1 at its corner k_p = 1/2, k_i = 22/5, k_v = 144/25: k_v·k_p = 72/25 ≤ k_i = 22/5"),
+    (["--k-p", "3:2", "--k-i", "4", "--k-v", "6.4", "--f-c", "1"], "--k-p 3:2: an interval LO:HI needs LO ≤ HI"),
+    (["--k-p", "3", "--k-i", "4", "--k-v", "6.4", "--f-c", "1", "--pieces", "4"], "--pieces and --kappa-tol apply to a box"),
+    (["--k-p", "2:3", "--k-i", "4", "--k-v", "6.4", "--f-c", "1", "--search", "sdp"], "a box is certified by the closed form only"),
+    (["--k-p", "2:3", "--k-i", "4", "--k-v", "6.4", "--f-c", "1", "--pieces", "2", "--kappa-tol", "0.1"], "give --pieces or --kappa-tol, not both"),
+])
+def test_bad_boxes_exit_2_naming_the_problem(tmp_path, capsys, argv, message):
+    assert main(["certify", *argv, "--out", str(tmp_path)]) == 2
+    err = capsys.readouterr().err
+    assert message in err and len(err.strip().splitlines()) == 1
+    assert list(tmp_path.glob("*.json")) == []

@@ -93,6 +93,26 @@ def test_no_certificate_found(monkeypatch, tmp_path, capsys):
     assert "no certificate given and no proofs/*.json" in capsys.readouterr().err
 
 
+def test_skipped_files_are_named_with_the_reason(monkeypatch, tmp_path, capsys):
+    import shutil
+
+    (tmp_path / "proofs").mkdir()
+    shutil.copy(PROOFS / "case_a_feasible.json", tmp_path / "proofs")
+    shutil.copy(PROOFS / "hunting" / "case_a_fs1.2.json", tmp_path / "proofs" / "hunt.json")
+    shutil.copy(PROOFS / "quadratic" / "case_a.json", tmp_path / "proofs" / "quad.json")
+    monkeypatch.chdir(tmp_path)
+    assert main(["crosscheck", "--trajectories", "4", "--no-adversarial", "--samples", "11"]) == 0
+    out = capsys.readouterr().out
+    assert "skipped proofs/hunt.json: a hunting certificate: it proves a cycle of the stiction model" in out
+    assert "skipped proofs/quad.json: a quadratic/v1 certificate: the cross-check's properties" in out
+    assert main(["crosscheck", "--trajectories", "4", "--no-adversarial", "--samples", "11", "--json"]) == 0
+    skipped = json.loads(capsys.readouterr().out)["skipped"]
+    assert [s["file"] for s in skipped] == ["proofs/hunt.json", "proofs/quad.json"] and "stiction" in skipped[0]["reason"]
+    (tmp_path / "proofs" / "case_a_feasible.json").unlink()
+    assert main(["crosscheck"]) == 2
+    assert "(skipped 2 of another template)" in capsys.readouterr().err
+
+
 def test_malformed_certificate(tmp_path, capsys):
     path = tmp_path / "bad.json"
     path.write_text("{not json", encoding="utf-8")
@@ -102,20 +122,24 @@ def test_malformed_certificate(tmp_path, capsys):
 
 @pytest.mark.parametrize(
     "option, value, message",
-    [("--rtol", "2", "--rtol must be < 1; got 2"), ("--theta", "1.5", "--theta must be ≤ 1; got 1.5")],
+    [("--rtol", "2", "--rtol must lie in (0, 1); got '2'"), ("--theta", "1.5", "--theta must lie in (0, 1]; got '1.5'")],
 )
 def test_option_ranges(option, value, message, capsys):
-    assert main(["crosscheck", str(PROOFS / "case_a_tightest.json"), option, value]) == 2
+    with pytest.raises(SystemExit) as exc:
+        main(["crosscheck", str(PROOFS / "case_a_tightest.json"), option, value])
+    assert exc.value.code == 2
     assert message in capsys.readouterr().err
 
 
 @pytest.mark.parametrize(
     "option, value, message",
     [
-        ("--trajectories", "0", "expected an integer ≥ 1; got 0"),
-        ("--trajectories", "many", "expected an integer ≥ 1; got 'many'"),
-        ("--horizon", "-3", "expected a finite number > 0; got '-3'"),
-        ("--horizon", "soon", "expected a number > 0; got 'soon'"),
+        ("--trajectories", "0", "--trajectories must be an integer from 1 to 1000000 (a bound on time and memory); got '0'"),
+        ("--trajectories", "many", "--trajectories must be an integer from 1 to 1000000 (ASCII digits); got 'many'"),
+        ("--trajectories", "٣", "(ASCII digits); got '٣'"),
+        ("--horizon", "-3", "--horizon must lie in (0, 1e+06]; got '-3'"),
+        ("--horizon", "soon", "--horizon must be a decimal such as '6.4' or a fraction such as '32/5'; got 'soon'"),
+        ("--horizon", "1e999", "--horizon must lie in (0, 1e+06]; got '1e999'"),
     ],
 )
 def test_argument_types(option, value, message, capsys):

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import json
 
+import pytest
+
 from symbolic_friction._cli.main import main
 
 A = ["--k-p", "3", "--k-i", "4", "--k-v", "6.4", "--f-c", "1"]
@@ -21,7 +23,8 @@ def test_case_a_prints_proves_and_writes_a_certificate(tmp_path, capsys):
     assert png.stat().st_size > 10_000
     cert = tmp_path / "a.json"
     data = json.loads(cert.read_text(encoding="utf-8"))
-    assert data["parameters"]["f_s"] == "6/5" and data["cycle"]["iss"]["within"] is True
+    assert data["parameters"]["f_s"] == "6/5" and data["cycle"]["stable"] is True
+    assert "iss" not in data["cycle"]  # an empirical comparison is printed, not certified
     assert main(["verify", str(cert)]) == 0
     assert capsys.readouterr().out.startswith("PROVED ")
     assert not list(tmp_path.glob("*.tmp*"))
@@ -42,4 +45,15 @@ def test_static_below_coulomb_is_a_usage_error(tmp_path, capsys):
 
 def test_bad_sweep_is_a_usage_error(tmp_path, capsys):
     assert main(["hunting", *A, "--f-s", "1.2", "--out", str(tmp_path), "--sweep", "0.5", "--no-iss", "--no-simulation"]) == 2
-    assert "--sweep ratios f_s/f_c must lie in (1, 100] (f_s > f_c); got 0.5" in capsys.readouterr().err
+    assert "--sweep ratios f_s/f_c must lie in [1 + 1e-06, 100] (f_s > f_c); got a ratio r with r - 1 = -0.5" in capsys.readouterr().err
+
+
+def test_sweep_help_states_its_ceilings(capsys):
+    """The help of --sweep says the bounds parse_sweep enforces (the command module imports no study at start-up)."""
+    from symbolic_friction._hunting._study import MAX_RATIO, MAX_SWEEP, MIN_EXCESS
+
+    with pytest.raises(SystemExit):
+        main(["hunting", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    assert f"at most {MAX_SWEEP} ratios, each in [1 + {float(MIN_EXCESS):g}, {MAX_RATIO}]" in text
+    assert f"f_s/f_c in [1 + {float(MIN_EXCESS):g}, {MAX_RATIO}]" in text

@@ -1,0 +1,159 @@
+"""Box certificates: one κ for every gain set in a box, decided at every piece's four corners.
+
+The committed boxes verify; 2,000 random gain sets inside each verify as point certificates
+with the box's constants; a shifted box, a box certified with a smaller box's constants, a
+broken cover and a box leaving Assumption 1 are refused.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+from fractions import Fraction as F
+from pathlib import Path
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from symbolic_friction import AssumptionError, CertificateFormatError, ParameterError
+from symbolic_friction._certify import Certificate, check_listed_certificates, verify_certificate
+from symbolic_friction._certify.box import (
+    BOX,
+    box_from_data,
+    certify_box,
+    dumps_box,
+    normalised_box,
+    verify_box,
+)
+from symbolic_friction._certify.templates import builtin_templates, read_certificate_file
+
+PROOFS = Path(__file__).resolve().parents[2] / "proofs"
+COMMITTED = ("box_case_a_10pct.json", "box_physical.json")
+
+
+def _pm(value: F, rel: F) -> tuple[F, F]:
+    return value * (1 - rel), value * (1 + rel)
+
+
+def case_a(rel: F) -> dict:
+    return {"k_p": _pm(F(3), rel), "k_i": _pm(F(4), rel), "k_v": _pm(F(32, 5), rel), "f_c": (F(1), F(1))}
+
+
+@pytest.fixture(scope="module")
+def committed():
+    return {name: read_certificate_file(PROOFS / name)[1] for name in COMMITTED}
+
+
+def test_the_committed_boxes_verify_and_are_up_to_date(committed):
+    for entry in check_listed_certificates(PROOFS, COMMITTED):
+        assert entry.ok, entry.describe()
+    assert builtin_templates()[2] is BOX
+    a = committed["box_case_a_10pct.json"]
+    assert a.box == case_a(F(1, 10)) and len(a.pieces) == 16
+    assert F(a.overshoot_bound) < F(4)
+
+
+def test_one_piece_and_a_finer_cover():
+    one, many = certify_box(case_a(F(1, 10))), certify_box(case_a(F(1, 10)), pieces=8)
+    assert one.overshoot_bound == "4.23132" and F(many.overshoot_bound) < F(one.overshoot_bound)
+    tol = certify_box(case_a(F(1, 10)), kappa_tol=F(1, 100))
+    assert F(tol.overshoot_bound) < F(one.overshoot_bound) and tol.provenance["kappa_tol"] == "1/100"
+
+
+def _piece_of(cert, point):
+    return next(p for p in cert.pieces if all(lo <= point[n] <= hi for n, (lo, hi) in
+                                              (("k_p", p.k_p), ("k_i", p.k_i), ("k_v", p.k_v))))
+
+
+def _inside(box: dict) -> st.SearchStrategy[dict]:
+    def coordinate(name: str) -> st.SearchStrategy[F]:
+        lo, hi = box[name]
+        return st.integers(0, 10**6).map(lambda n: lo + (hi - lo) * F(n, 10**6))
+
+    return st.fixed_dictionaries({n: coordinate(n) for n in ("k_p", "k_i", "k_v", "f_c")})
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", COMMITTED)
+def test_random_points_inside_a_committed_box_verify_as_points(name, committed):
+    cert = committed[name]
+
+    @settings(max_examples=2000, deadline=None, suppress_health_check=[HealthCheck.too_slow], derandomize=True)
+    @given(_inside(cert.box))
+    def check(point):
+        piece = _piece_of(cert, point)
+        c = 2 * (point["k_v"] * point["k_p"] - point["k_i"])
+        report = verify_certificate(Certificate(**point, **piece.constants, c=c, overshoot_bound=cert.overshoot_bound))
+        assert report.proved, report.summary()
+
+    check()
+
+
+def test_a_shifted_box_is_refused(committed):
+    cert = committed["box_case_a_10pct.json"]
+    shift = F(11, 10)
+    moved = dataclasses.replace(
+        cert, box={**cert.box, "k_p": tuple(x * shift for x in cert.box["k_p"])},
+        pieces=tuple(dataclasses.replace(p, k_p=tuple(x * shift for x in p.k_p)) for p in cert.pieces),
+    )
+    report = verify_box(moved)
+    assert not report.proved and any("corner" in c.name for c in report.failures)
+
+
+def test_the_constants_of_a_smaller_box_fail_on_the_larger_one():
+    small = certify_box(case_a(F(1, 20)))
+    large = dataclasses.replace(small, box=case_a(F(1, 10)), pieces=(dataclasses.replace(
+        small.pieces[0], **{n: case_a(F(1, 10))[n] for n in ("k_p", "k_i", "k_v")}),))
+    report = verify_box(large)
+    failing_corners = {c.name.split(":")[0] for c in report.failures if "corner" in c.name}
+    assert not report.proved and len(failing_corners) >= 2, report.summary()
+
+
+def test_a_broken_cover_is_refused():
+    cert = certify_box(case_a(F(1, 10)), pieces=4)
+    assert "volumes sum" in verify_box(dataclasses.replace(cert, pieces=cert.pieces[1:])).summary()
+    doubled = dataclasses.replace(cert, pieces=cert.pieces + cert.pieces[:1])
+    assert "interiors are disjoint" in verify_box(doubled).summary()
+
+
+def test_a_box_leaving_assumption_1_is_refused_naming_the_corner():
+    box = {"k_p": (F(1, 2), F(3)), "k_i": (F(1), F(4)), "k_v": (F(6), F(7)), "f_c": (F(1), F(1))}
+    with pytest.raises(AssumptionError, match="leaves Assumption 1 at its corner k_p = 1/2, k_i = 4, k_v = 6: k_v·k_p = 3 ≤ k_i = 4"):
+        certify_box(box)
+    with pytest.raises(ParameterError, match=r"needs 0 < k_p,lo ≤ k_p,hi; got k_p ∈ \[3, 2\]"):
+        certify_box({**box, "k_p": (F(3), F(2))})
+    with pytest.raises(ParameterError, match=r"--pieces must be an integer in \[1, 4096\]; got 0"):
+        certify_box(case_a(F(1, 10)), pieces=0)
+
+
+def test_a_physical_box_normalises_monotonically_and_is_checked(committed):
+    cert = committed["box_physical.json"]
+    assert cert.box == normalised_box(cert.physical)
+    assert cert.box["k_p"] == (F(29, 5) / F(21, 10), F(31, 5) / F(19, 10))
+    narrowed = dataclasses.replace(cert, box={**cert.box, "k_v": (cert.box["k_v"][0] * 2, cert.box["k_v"][1])})
+    assert "k_v of the physical box lies in the box" in verify_box(narrowed).summary()
+    with pytest.raises(AssumptionError, match="the mass needs m > 0 on the whole box"):
+        normalised_box({**cert.physical, "m": (F(0), F(1))})
+
+
+def test_the_file_round_trips_and_is_read_strictly(committed, tmp_path):
+    cert = committed["box_case_a_10pct.json"]
+    text = dumps_box(cert)
+    assert text == (PROOFS / "box_case_a_10pct.json").read_text(encoding="utf-8")
+    data = json.loads(text)
+    assert box_from_data(data) == cert
+    data["pieces"][0]["constants"]["k1"] = 2.0
+    with pytest.raises(CertificateFormatError, match=r"does not match the box certificate schema at pieces\[0\].constants.k1"):
+        box_from_data(data)
+    data = json.loads(text)
+    data["box"]["k_p"] = ["3", "2"]
+    with pytest.raises(CertificateFormatError, match=r"box.k_p must have lo ≤ hi; got \[3, 2\]"):
+        box_from_data(data)
+
+
+def test_a_changed_file_is_stale(committed, tmp_path):
+    path = tmp_path / "box.json"
+    path.write_text(dumps_box(committed["box_case_a_10pct.json"]).replace("\n", "\n "), encoding="utf-8")  # same claim
+    (entry,) = check_listed_certificates(tmp_path, ["box.json"])
+    assert entry.proved and entry.stale and "differs from what `symbolic-friction certify` writes now" in entry.reason

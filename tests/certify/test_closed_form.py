@@ -1,0 +1,87 @@
+"""The closed-form certificate: verified by the exact verifier for every gain set satisfying Assumption 1.
+
+Property tests draw exact rational gains over ratios up to 10¹² and Routh margins down to 1 + 10⁻³⁰;
+``certify`` (closed form by default) must return a certificate that the verifier proves.
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction as F
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from symbolic_friction import Parameters, ParameterError
+from symbolic_friction._certify import certify, verify_certificate
+from symbolic_friction._certify.closed_form import closed_form_constants, sqrt_up
+
+
+def _scaled(e_lo: int, e_hi: int) -> st.SearchStrategy[F]:
+    """Exact positive rationals m·10^e with 1 ≤ m < 10 of a few digits."""
+    return st.builds(lambda m, e: F(m, 1000) * F(10) ** e, st.integers(1000, 9999), st.integers(e_lo, e_hi))
+
+
+ROUTH = st.one_of(
+    st.just(1 + F(1, 10**30)),
+    st.builds(lambda k: 1 + F(1, 10**k), st.integers(1, 30)),
+    st.builds(lambda q: 1 + q, _scaled(-6, 12)),
+)
+
+
+@st.composite
+def gains(draw) -> Parameters:
+    k_i, k_v = draw(_scaled(-12, 12)), draw(_scaled(-12, 12))
+    routh = draw(ROUTH)  # k_v·k_p/k_i
+    return Parameters(k_p=routh * k_i / k_v, k_i=k_i, k_v=k_v, f_c=draw(_scaled(-6, 6)))
+
+
+@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(gains())
+def test_closed_form_certificates_verify_for_random_gains(params):
+    cert = certify(params)
+    assert verify_certificate(cert).proved
+    assert cert.provenance.search == "closed-form" and cert.provenance.solver == "none"
+
+
+@pytest.mark.parametrize("k_i, k_v, routh", [
+    (F(10**12), F(1), 1 + F(1, 10**30)),
+    (F(1), F(10**12), 1 + F(1, 10**30)),
+    (F(1, 10**12), F(10**12), F(10**12)),
+    (F(10**12), F(1, 10**12), 1 + F(1, 10**30)),
+    (F(4), F(32, 5), 1 + F(1, 10**30)),
+])
+def test_extremes_verify(k_i, k_v, routh):
+    params = Parameters(k_p=routh * k_i / k_v, k_i=k_i, k_v=k_v, f_c=1)
+    for mode in ("tightest", "feasible"):
+        assert verify_certificate(certify(params, mode=mode)).proved
+
+
+def test_table_i_kappa_is_the_sdp_tightest():
+    for case, kappa in (("a", "3.46703"), ("b", "7.88526")):
+        assert certify(Parameters.table_i(case)).overshoot_bound == kappa
+
+
+def test_without_margin_the_closed_form_is_refused():
+    with pytest.raises(ValueError, match="the margin μ must be positive"):
+        closed_form_constants(F(8, 5), F(8, 5), F(3), F(3), mu=F(0))
+    with pytest.raises(ParameterError, match=r"margin must be in \(0, 1\]"):
+        certify(Parameters.table_i("a"), margin=0)
+
+
+def test_a_corner_outside_assumption_1_is_refused():
+    with pytest.raises(ValueError, match="Assumption 1 needs k_v·k_p > k_i, i.e. a·k_p > 1; got 1/2·2 ≤ 1"):
+        closed_form_constants(F(1, 2), F(1), F(2), F(3))
+
+
+def test_an_unknown_search_is_refused():
+    with pytest.raises(ParameterError, match="search must be one of 'closed-form', 'sdp'; got 'newton'"):
+        certify(Parameters.table_i("a"), search="newton")
+
+
+@given(st.fractions(min_value=0, max_value=10**9, max_denominator=10**6), st.integers(2, 20))
+def test_sqrt_up_is_an_upper_bound_within_its_digits(q, digits):
+    s = sqrt_up(q, digits)
+    assert s >= 0 and s * s >= q
+    if q > 0:
+        assert s * s <= q * (1 + F(1, 10 ** (digits - 2))) ** 2
