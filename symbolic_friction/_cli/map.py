@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import re
 import textwrap
 
 HELP = "map Proposition 1's overshoot bound κ (closed-form certificates, exactly verified) over a grid or sample of gains"
@@ -33,6 +34,10 @@ _EPILOG = """examples:
 
 load the result:  pandas.read_csv("kappa_map/map.csv")   or   xarray.open_dataset("kappa_map/map.nc")
 """
+
+
+# a dask scheduler address: protocol://host[:port], checked before any connection is tried
+_ADDRESS = re.compile(r"(tcp|tls|inproc|ucx|ws|wss)://[A-Za-z0-9_.\-\[\]:/]{1,280}")
 
 
 def _flag(name: str) -> str:
@@ -96,13 +101,16 @@ def run(args: argparse.Namespace) -> int:
     if not args.no_plot:
         from .._studies.gainmap_plot import default_axes
 
-        axes = tuple(p.strip() for p in args.plot.split(",")) if args.plot else default_axes(spec)
+        axes = tuple(p.strip() for p in args.plot.split(",")) if args.plot is not None else default_axes(spec)
         if len(axes) != 2 or any(a not in {x.name for x in spec.ranged} for a in axes) or axes[0] == axes[1]:
             raise ParameterError(f"--plot needs two different ranged axes X,Y of {', '.join(a.name for a in spec.ranged)}; got {args.plot!r}")
+    if args.scheduler is not None and not _ADDRESS.fullmatch(args.scheduler):
+        shown = args.scheduler if len(args.scheduler) <= 60 else args.scheduler[:60] + "…"
+        raise ParameterError(f"--scheduler must be an address such as tcp://host:8786 (at most 300 characters); got {shown!r}")
     out = Path(args.out)
     executor, close = _executor(args)
     try:
-        result = run_map(spec, out, executor=executor, formats=args.format)
+        result = run_map(spec, args.out, executor=executor, formats=args.format)  # the text: an empty --out is refused
     finally:
         close()
     files = [str(f) for f in result.files]

@@ -193,6 +193,8 @@ def run_map(
     bad = [f for f in formats if f not in FORMATS]
     if bad:
         raise ParameterError(f"dataset formats are {', '.join(FORMATS)}; got {', '.join(map(repr, bad))}")
+    if isinstance(directory, str) and not directory.strip():
+        ensure_directory(directory, what="gain-map directory")  # refuses it: an empty path would mean the working directory
     directory = Path(directory)
     _claim_directory(directory, spec)
     start = time.perf_counter()
