@@ -1,5 +1,6 @@
 """The studies' parts: the cross-check's properties and estimates, hunting cycles, scenes,
-figures, the speed/accuracy trade-off and the extremes matrix.
+figures, the speed/accuracy trade-off, the extremes matrix and gain maps (κ of exactly verified
+closed-form certificates over a grid or a sample of gains: ``map_spec``, ``run_map``, ``read_map``, ``plot_map``).
 """
 
 from __future__ import annotations
@@ -32,6 +33,12 @@ _LAZY: dict[str, str] = {
     "Tradeoff": "._studies.tradeoff",
     "Extremes": "._extremes",
     "box_around": "._hunting",
+    "map_spec": "._studies.gainmap",
+    "MapSpec": "._studies.gainmap",
+    "run_map": "._studies.gainmap_run",
+    "MapRun": "._studies.gainmap_run",
+    "read_map": "._studies.gainmap_run",
+    "plot_map": "._studies.gainmap_plot",
 }
 
 __all__ = list(_LAZY)

@@ -77,6 +77,13 @@ KINDS: dict[tuple[str, str], str] = {
     # extremes
     ("extremes", "--out"): "out-dir", ("extremes", "--only"): "names", ("extremes", "--format"): "formats",
     ("extremes", "--json"): "flag",
+    # map
+    **{("map", f): "axis" for f in ("--k-p", "--k-i", "--k-v", "--f-c", "--f-s", "--m", "--k-p-bar", "--k-i-bar",
+                                    "--k-d-bar", "--alpha-v", "--f-c-bar", "--f-s-bar")},
+    ("map", "--sample"): "count", ("map", "--seed"): "seed", ("map", "--sdp"): "flag", ("map", "--adversary"): "count",
+    ("map", "--chunk"): "count", ("map", "--out"): "out-dir", ("map", "--format"): "formats",
+    ("map", "--workers"): "count", ("map", "--scheduler"): "text", ("map", "--plot"): "names",
+    ("map", "--no-plot"): "flag", ("map", "--json"): "flag",
 }
 """The kind of every option of every command (``--quiet``, ``--verbose`` and ``--help`` are everywhere and flags)."""
 
@@ -110,6 +117,7 @@ BASE: dict[str, list[str]] = {
     "tradeoff": ["tradeoff", *GAINS, "--quick", "--no-cost", "--no-figures", "--repeats", "1", "--samples", "11",
                  "--t-end", "1"],
     "extremes": ["extremes", "--only", "f_c", "--out", "{d}/out"],
+    "map": ["map", "--k-p", "1:3:2", "--k-i", "1:2:2", "--k-v", "2", "--f-c", "1", "--out", "{d}/out"],
 }
 
 # A positional's slot in BASE (the value it replaces).
@@ -122,6 +130,9 @@ BASE_FOR: dict[tuple[str, str], list[str]] = {
                            *BASE[command][BASE[command].index("--f-c") + 2:]]
        for command in ("certify", "tradeoff") if "--k-p" in BASE[command]
        for option in ("--m", "--k-p-bar", "--k-i-bar", "--k-d-bar", "--f-c-bar", "--alpha-v")},
+    **{("map", option): ["map", "--m", "2", "--k-p-bar", "6:8:2", "--k-i-bar", "8:9:2", "--k-d-bar", "12.8",
+                         "--f-c-bar", "2", "--out", "{d}/out"]
+       for option in ("--m", "--k-p-bar", "--k-i-bar", "--k-d-bar", "--f-c-bar", "--alpha-v", "--f-s-bar")},
     ("tradeoff", "--out"): [a for a in BASE["tradeoff"] if a != "--no-figures"],
 }
 """Where an option is only read with others: physical gains with the physical set, ``--out`` with figures on."""
@@ -252,6 +263,12 @@ VALUES: dict[str, list[tuple[str, str, dict]]] = {
     "seed": [("negative", "-1", {}), ("huge", BIG, {}), ("float", "1.5", {}), ("arabic-digits", "٣", {}),
              ("empty", "", {}), ("nan", "nan", {})],
     "stem": _STEMS,
+    # a map axis: a value or LO:HI:N[:log]; zero and negative values are points outside Assumption 1, not errors
+    "axis": [v for v in _NUMBERS if v[0] not in ("negative", "zero")] + [
+        ("reversed", "2:1:5", {}), ("no-points", "1:2", {}), ("one-point", "1:2:1", {}),
+        ("huge-grid", "1:2:100000000", {}), ("log-from-zero", "0:1:5:log", {}), ("five-parts", "1:2:3:4:5", {}),
+        ("float-points", "1:2:2.5", {}), ("scale-alone", "log", {}), ("huge-text", "1:" * 50_000, {}),
+    ],
     "text": [("huge", "x" * 100_000, {}), ("newline", "a\nb", {}), ("escape", "a\x1b[2Jb", {})],
     "names": [("unknown", "no-such-thing", {}), ("empty", "", {}), ("huge", "x" * 100_000, {})],
     "formats": [("unknown", "exe", {}), ("empty", "", {}), ("path", "../png", {}), ("huge", "x" * 100_000, {})],
@@ -272,15 +289,16 @@ VALUES: dict[str, list[tuple[str, str, dict]]] = {
 
 # The class (prefix of the id) of each kind.
 CLASS = {"in-file": "path", "in-dir": "path", "out-dir": "path", "out-file": "path", "stem": "name",
-         "gain": "number", "fraction": "number", "count": "number", "real": "number", "seed": "number",
+         "gain": "number", "axis": "number", "fraction": "number", "count": "number", "real": "number", "seed": "number",
          "sweep": "number", "state": "number", "text": "structure", "names": "usage", "formats": "usage",
          "choice": "usage"}
 
 # Combinations that are not hostile: the value is valid for this option.
 NOT_HOSTILE = {("certify", "--alpha-v", "zero"), ("tradeoff", "--alpha-v", "zero")}  # α_v = 0 is the default
+NOT_HOSTILE |= {("map", "--sample", "zero"), ("map", "--adversary", "zero")}  # a grid; no adversary
 
 
-PER_OPTION = {"gain": 5, "fraction": 8, "count": 6, "real": 6}
+PER_OPTION = {"gain": 5, "axis": 6, "fraction": 8, "count": 6, "real": 6}
 """Values tried per option of these kinds, rotating through the kind's list so that every value is tried on some
 option (the number readers are shared; the path kinds try every value on every option)."""
 

@@ -41,6 +41,10 @@ class Progress:
         Number of cells of the bar (``render``; tqdm fits its own bar to the terminal).
     min_interval : float, keyword-only
         Minimum seconds between two redraws (the final state is always drawn).
+    unit : str, keyword-only
+        What a step is, shown in the rate (``"pt"``: points/s).
+    initial : int, keyword-only
+        Steps already done before this run (a resumed run); they do not count in the rate.
     """
 
     def __init__(
@@ -52,6 +56,8 @@ class Progress:
         enabled: bool | None = None,
         width: int = 30,
         min_interval: float = 0.1,
+        unit: str = "it",
+        initial: int = 0,
     ) -> None:
         if total < 0:
             raise ValueError(f"total must be >= 0; got {total}")
@@ -67,7 +73,7 @@ class Progress:
         self.enabled = enabled
         self.width = width
         self.min_interval = min_interval
-        self.count = 0
+        self.count = int(initial)
         self._start = time.perf_counter()
         self._bar: Any = None
         if self.enabled:
@@ -78,6 +84,7 @@ class Progress:
             self._bar = tqdm(
                 total=self.total, desc=desc or None, file=self.stream, mininterval=min_interval, leave=True,
                 ncols=min(terminal_width(), 100), ascii=_ascii_only(self.stream),
+                unit=unit, initial=int(initial),
             )
 
     def update(self, n: int = 1) -> None:
