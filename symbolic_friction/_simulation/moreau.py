@@ -27,8 +27,8 @@ and the third is the same scalar inclusion with
 
 .. math::
 
-    D = 1 + g k_v + g^2 k_p + g^3 k_i,\qquad
-    r = v_n + c\,(\phi_n - k_v v_n) - g\,(k_i E + k_p S),
+    D = 1 + g k_v + g^2 k_p + g^3 k_i,\\qquad
+    r = v_n + c\\,(\\phi_n - k_v v_n) - g\\,(k_i E + k_p S),
 
 ``S = s_n + c v_n``, ``E = e_n + c s_n + g S`` (the friction impulse
 ``h f_c λ`` is not weighted: it is the reaction that the step solves for).
