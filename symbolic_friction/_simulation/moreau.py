@@ -86,7 +86,7 @@ import numpy as np
 from .._infra.errors import SimulationError
 from .._model.parameters import Parameters
 from ._base import SimulationMethod, Solution, Status, finite_or_raise
-from .friction import FrictionLaw, Step
+from .friction import FrictionLaw
 
 __all__ = ["Moreau", "step_grid"]
 
@@ -257,7 +257,7 @@ class Moreau(SimulationMethod):
         g_full, c_full = _weights(theta, h)
         D_full = 1.0 + g_full * (k_v + g_full * (k_p + g_full * k_i))
         g = c = 0.0
-        solve = None if law is None else law.solve_step
+        solve = None if law is None else law.stepper(k_p=k_p, k_i=k_i, k_v=k_v, f_c=f_c)
         # Without t_eval the samples are the step points: appended here, not through the recorder's
         # calls (a third of the time of a run with a friction law went into those calls).
         grid = t_eval is None
@@ -283,7 +283,7 @@ class Moreau(SimulationMethod):
                 a = hn * f_c
                 w = (r - a) / D if r > a else (r + a) / D if r < -a else 0.0
             else:
-                w, _ = solve(Step(t0, hn, sigma, phi, v, k_p, k_i, k_v, f_c))
+                w = solve(t0, hn, sigma, phi, v, D, r)
             if euler:
                 s1 = s + hn * w
                 e1 = e + hn * s1
