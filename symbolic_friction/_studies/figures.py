@@ -103,6 +103,11 @@ def drawn(out: Path, spec: FigureSpec, formats: tuple[str, ...], results: list |
     return written
 
 
+def draw_whole(name: str, out: Path, formats: tuple[str, ...]) -> list[Path]:
+    """Draw the registered figure ``name`` (in a child process of the parallel run)."""
+    return drawn(out, available_figures()[name], formats)
+
+
 def make_figures(
     out_dir: str | Path,
     names: Sequence[str] | None = None,
@@ -129,10 +134,11 @@ def make_figures(
     specs, fmts = chosen_figures(names, formats)
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    if jobs > 1:
-        from .figures_run import run_parallel
+    from .figures_run import can_fork, run_parallel
 
-        return run_parallel(out, specs, fmts, jobs=jobs, on_written=on_written, progress=progress)
+    if jobs > 1 and can_fork():  # without fork, one figure after the other gives the same files
+        return run_parallel(out, specs, fmts, jobs=jobs, drawn=drawn, draw_whole=draw_whole, on_written=on_written,
+                            progress=progress)
     written: list[Path] = []
     for spec in specs:
         for path in drawn(out, spec, fmts):

@@ -17,7 +17,7 @@ from typing import Any, Callable, Sequence
 
 from .figures_registry import FigureSpec, Task
 
-__all__ = ["Unit", "units", "run_parallel", "HEARTBEAT"]
+__all__ = ["Unit", "units", "run_parallel", "can_fork", "HEARTBEAT"]
 
 HEARTBEAT = 1.0
 """Seconds between two redraws of the progress display while units run (so no long gap is silent)."""
@@ -45,10 +45,15 @@ def units(specs: Sequence[FigureSpec]) -> list[Unit]:
     return sorted(out, key=lambda u: -u.cost)
 
 
-def _whole(name: str, out: Path, formats: tuple[str, ...]) -> list[Path]:
-    from .figures import available_figures, drawn
+def can_fork() -> bool:
+    """Whether this platform forks processes (the parallel run needs it)."""
+    import multiprocessing as mp
 
-    return drawn(out, available_figures()[name], formats)
+    try:
+        mp.get_context("fork")
+    except ValueError:
+        return False
+    return True
 
 
 def _run_task(task: Task) -> Any:
@@ -57,10 +62,12 @@ def _run_task(task: Task) -> Any:
 
 def _warm_up() -> None:
     """Import in the parent what every child needs, so that each forked child does not import it again."""
-    from .._simulation import _jit
-    from .figures import _pyplot
+    import matplotlib
 
-    _pyplot()
+    from .._simulation import _jit
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot  # noqa: F401
     if _jit.jit_enabled():
         _jit.compiled()  # the event kernel's machine code, loaded once and inherited
 
@@ -71,27 +78,23 @@ def run_parallel(
     formats: tuple[str, ...],
     *,
     jobs: int,
+    drawn: Callable[..., list[Path]],
+    draw_whole: Callable[[str, Path, tuple[str, ...]], list[Path]],
     on_written: Callable[[Path], Any] | None = None,
     progress: Any = None,
 ) -> list[Path]:
-    """Run the units of ``specs`` in ``jobs`` processes; return the files, figure by figure in ``specs``' order.
+    """Run the units of ``specs`` in ``jobs`` forked processes; return the files, figure by figure in ``specs``' order.
 
-    ``progress`` (a :class:`~symbolic_friction._infra.progress.Progress` over ``len(units(specs))``) is
-    advanced per unit and redrawn every :data:`HEARTBEAT` seconds with the units still running.
+    ``drawn(out, spec, formats, results)`` draws a split figure here from its tasks' results;
+    ``draw_whole(name, out, formats)`` (a module-level function: the pool sends it by name) draws a whole
+    figure in a child.  ``progress`` (a :class:`~symbolic_friction._infra.progress.Progress` over
+    ``len(units(specs))``) is advanced per unit and redrawn every :data:`HEARTBEAT` seconds with the units
+    still running.  Raises ``ValueError`` where processes cannot be forked.
     """
     import multiprocessing as mp
     from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 
-    from .figures import drawn
-
-    try:
-        ctx = mp.get_context("fork")
-    except ValueError:  # no fork here: the sequential path gives the same files
-        ctx = None
-    if ctx is None:
-        from .figures import make_figures
-
-        return make_figures(out, [s.name for s in specs], formats=formats, on_written=on_written, progress=progress)
+    ctx = mp.get_context("fork")
     by_name = {s.name: s for s in specs}
     todo = units(specs)
     results: dict[str, list[Any]] = {s.name: [None] * len(s.tasks()) for s in specs if s.tasks is not None}
@@ -102,7 +105,7 @@ def run_parallel(
     with ProcessPoolExecutor(max_workers=jobs, mp_context=ctx) as pool:
         futures = {}
         for u in todo:
-            f = pool.submit(_whole, u.figure, out, formats) if u.task is None else pool.submit(_run_task, u.task)
+            f = pool.submit(draw_whole, u.figure, out, formats) if u.task is None else pool.submit(_run_task, u.task)
             futures[f] = u
         pending = set(futures)
         try:
