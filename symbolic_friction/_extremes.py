@@ -18,7 +18,7 @@ Each (cell, method) is one of
 * ``ok`` — the run completed and its state error (sup over the sample times
   of ``|z - z_ref|∞``, relative to ``max_t |z_ref(t)|∞``) is within the
   method's claim at its knob, :func:`claimed_error`;
-* ``refused`` — the method raised :class:`~symbolic_friction.SimulationError`
+* ``refused`` — the method raised :class:`~symbolic_friction.errors.SimulationError`
   or stopped early with a status that says so; the reason is kept;
 * ``wrong`` — the run completed, said nothing, and its error exceeds the
   claim: *silently wrong*.  The package's contract is that no cell is;
@@ -268,8 +268,8 @@ def classify_certify(cell: Cell, ref: _Ref, cache: dict) -> Outcome:
 
 
 def _md(text: str) -> str:
-    """A Markdown table cell: ``|`` (as in ``|z0|``) escaped."""
-    return text.replace("|", "\\|")
+    """A Markdown table cell: ``|`` (as in ``|z0|``) escaped, line breaks folded (a row is one line)."""
+    return " ".join(text.split()).replace("|", "\\|")
 
 
 def _name(method: Any) -> str:
@@ -291,6 +291,11 @@ class Extremes:
     seconds: float
     reference_seconds: float
     references: dict = field(default_factory=dict, repr=False, compare=False)
+
+    def __repr__(self) -> str:
+        # the counts; report() has the table
+        counts = ", ".join(f"{v} {k}" for k, v in sorted(self.counts().items()))
+        return f"Extremes({len(self.cells)} cells × {len(self.methods) + 1} columns: {counts}; {self.seconds:.1f} s)"
 
     def counts(self) -> dict[str, int]:
         out: dict[str, int] = {}
@@ -334,7 +339,7 @@ class Extremes:
                 elif o.outcome == PROVED:
                     entries.append(f"proved ({o.reason})")
                 elif o.outcome == REFUSED:
-                    entries.append(f"refused: {o.reason[:90]}")
+                    entries.append(f"refused: {o.reason}")  # whole: a cut reason hides what to change
                 elif o.outcome == HUNG:
                     entries.append(f"no answer: {o.reason}")
                 else:
@@ -358,6 +363,14 @@ def run_extremes(
     """Run the matrix (or the cells whose group or label is in ``only``), each run stopped after ``limit`` s.
 
     ``theta`` is the weight of Moreau's θ-method among the default methods (ignored when ``methods`` is given).
+
+    Examples
+    --------
+    >>> from symbolic_friction import run_extremes
+    >>> result = run_extremes(only=["repeated roots"], certify=False)  # doctest: +SKIP
+    >>> result.silently_wrong  # doctest: +SKIP
+    []
+    >>> print(result.report())  # doctest: +SKIP
     """
     t0 = time.perf_counter()
     methods = list(default_methods(theta=theta) if methods is None else methods)

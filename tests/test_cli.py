@@ -34,3 +34,21 @@ def test_unknown_command_is_a_usage_error(capsys):
         main(["no-such-command"])
     assert exc.value.code == 2
     assert "invalid choice" in capsys.readouterr().err
+
+
+def test_a_bare_command_prints_the_help(capsys):
+    assert main([]) == 0
+    captured = capsys.readouterr()
+    assert captured.out.startswith("usage: symbolic-friction") and "COMMAND" in captured.out and captured.err == ""
+
+
+@pytest.mark.parametrize("value", ["-1,0,0", "-3/5,0,0", "-.5,-1e-3,0", "-1"])
+def test_negative_tuples_are_values_not_options(value):
+    args = build_parser().parse_args(["tradeoff", "--z0", value])
+    assert args.z0 == [value]
+
+
+def test_an_unknown_dash_option_is_still_refused(capsys):
+    with pytest.raises(SystemExit) as exc:
+        main(["tradeoff", "--z0", "-x,0,0"])
+    assert exc.value.code == 2 and "expected one argument" in capsys.readouterr().err

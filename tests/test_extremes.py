@@ -159,3 +159,29 @@ def test_cli_bad_theta(tmp_path, capsys):
     assert main(["extremes", "--theta", "1.5", "--out", str(tmp_path)]) == 2
     err = capsys.readouterr().err
     assert "--theta must be in [1/2, 1]" in err and "1.5" in err and err.count("\n") == 1
+
+
+def test_reasons_are_never_cut():
+    from symbolic_friction._extremes import Extremes, Outcome
+
+    cell = cells()[0]
+    reason = "stiff gains for the explicit integrator DOP853: " + "spectral radius 1e+08 over t_end = 5 needs " * 5 + "END"
+    report = Extremes(
+        cells=(cell,), methods=("moreau",),
+        outcomes=(Outcome(cell.label, "moreau", REFUSED, math.nan, 1.0, reason + "\nsecond line"),
+                  Outcome(cell.label, "certify", PROVED, 0.5, 1.0, "kappa = 3.467")),
+        seconds=0.0, reference_seconds=0.0,
+    ).report()
+    row = next(line for line in report.splitlines() if line.startswith("| ") and cell.label in line)
+    assert f"refused: {reason} second line" in row  # whole, and the row stays one line
+
+
+def test_repr_is_the_counts():
+    from symbolic_friction._extremes import Extremes, Outcome
+
+    cell = cells()[0]
+    result = Extremes(cells=(cell,), methods=("moreau",),
+                      outcomes=(Outcome(cell.label, "moreau", OK, 1e-9, 1.0),
+                                Outcome(cell.label, "certify", PROVED, 0.5, 1.0, "kappa = 3.467")),
+                      seconds=2.0, reference_seconds=1.0)
+    assert repr(result) == "Extremes(1 cells × 2 columns: 1 ok, 1 proved; 2.0 s)"

@@ -39,7 +39,7 @@ def test_a_failing_write_leaves_the_old_file_intact(tmp_path):
 def test_read_limited_refuses_what_is_not_a_small_regular_file(tmp_path):
     import os
 
-    from symbolic_friction import InputFileError
+    from symbolic_friction.errors import InputFileError
     from symbolic_friction._infra.io import read_limited
 
     (tmp_path / "ok").write_bytes(b"abc")
@@ -65,7 +65,7 @@ def test_read_limited_refuses_what_is_not_a_small_regular_file(tmp_path):
 
 
 def test_ensure_directory_and_check_output_directory(tmp_path):
-    from symbolic_friction import OutputPathError
+    from symbolic_friction.errors import OutputPathError
     from symbolic_friction._infra.io import check_output_directory, ensure_directory
 
     (tmp_path / "file").write_text("x", encoding="utf-8")

@@ -7,7 +7,8 @@ from fractions import Fraction as F
 import numpy as np
 import pytest
 
-from symbolic_friction import TABLE_I, Parameters, V, V_hat, V_k, distance_x, dz, in_R, squared_distance_x, x_to_z, z_to_x
+from symbolic_friction import TABLE_I, Parameters
+from symbolic_friction.model import V, V_hat, V_k, distance_x, dz, in_R, squared_distance_x, x_to_z, z_to_x
 from symbolic_friction._model.attractor import distance_z, in_attractor_x
 from symbolic_friction._model.coordinates import input_vector, system_matrix
 from symbolic_friction._model.lyapunov import lyapunov_matrix

@@ -5,7 +5,8 @@ from fractions import Fraction
 
 import pytest
 
-from symbolic_friction import TABLE_I, AssumptionError, InvalidNumberError, NonFiniteError, Parameters
+from symbolic_friction import TABLE_I, Parameters
+from symbolic_friction.errors import AssumptionError, InvalidNumberError, NonFiniteError
 
 
 def test_exact_storage_and_c():
@@ -83,7 +84,7 @@ def test_from_physical_non_finite():
 
 
 def test_from_physical_fc():
-    with pytest.raises(AssumptionError, match="f_c > 0; got f_c = 0"):
+    with pytest.raises(AssumptionError, match="f_c_bar > 0; got f_c_bar = 0"):
         Parameters.from_physical(m=1, k_p_bar=6, k_i_bar=8, k_d_bar=12, f_c_bar=0)
 
 
@@ -114,3 +115,28 @@ def test_static_level_above_coulomb():
 def test_static_level_below_coulomb_is_refused_with_the_numbers():
     with pytest.raises(AssumptionError, match=r"f_s ≥ f_c; got f_s = 9/10 < f_c = 1"):
         Parameters(k_p=3, k_i=4, k_v="6.4", f_c=1, f_s="0.9")
+
+
+def test_from_physical_keeps_the_physical_values():
+    from symbolic_friction._model.parameters import PhysicalParameters
+
+    p = Parameters.from_physical(m="0.5", k_p_bar="1.5", k_i_bar=2, k_d_bar="3.1", alpha_v="0.1", f_c_bar="0.5", f_s_bar="0.6")
+    assert p.physical == PhysicalParameters(m="1/2", k_p_bar="3/2", k_i_bar=2, k_d_bar="31/10", alpha_v="1/10",
+                                            f_c_bar="1/2", f_s_bar="3/5")
+    assert p.physical.as_dict() == {"m": Fraction(1, 2), "k_p_bar": Fraction(3, 2), "k_i_bar": 2,
+                                    "k_d_bar": Fraction(31, 10), "alpha_v": Fraction(1, 10), "f_c_bar": Fraction(1, 2)}
+    assert (p.k_p, p.k_i, p.k_v, p.f_c, p.f_s) == (3, 4, Fraction(32, 5), 1, Fraction(6, 5))
+    # the same dynamics compare and hash alike, wherever the gains came from
+    plain = Parameters(k_p=3, k_i=4, k_v="6.4", f_c=1, f_s="1.2")
+    assert p == plain and hash(p) == hash(plain) and plain.physical is None
+
+
+def test_physical_values_must_normalise_to_the_gains():
+    import dataclasses
+
+    p = Parameters.from_physical(m=2, k_p_bar=6, k_i_bar=8, k_d_bar="12.3", alpha_v="0.5", f_c_bar=2)
+    with pytest.raises(AssumptionError, match="k_p = 5 but the physical values give 3"):
+        dataclasses.replace(p, k_p=5)
+    with pytest.raises(AssumptionError, match="physical must be a PhysicalParameters"):
+        Parameters(k_p=3, k_i=4, k_v=7, physical={"m": 1})
+    assert dataclasses.replace(p, f_s=2).physical is p.physical  # the static level is not a certified gain

@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from symbolic_friction import InvalidNumberError, NonFiniteError, format_rational, to_rational
+from symbolic_friction import format_rational, to_rational
+from symbolic_friction.errors import InvalidNumberError, NonFiniteError
 
 
 @pytest.mark.parametrize(

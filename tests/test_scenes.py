@@ -7,7 +7,8 @@ from fractions import Fraction
 import numpy as np
 import pytest
 
-from symbolic_friction import Parameters, SceneError
+from symbolic_friction import Parameters
+from symbolic_friction.errors import SceneError
 from symbolic_friction._studies.scenes import OUTPUTS, Scene, builtin_scenes, load_scene
 from symbolic_friction._simulation.friction import InflatedCoulomb, Stribeck
 

@@ -124,3 +124,9 @@ def test_bad_theta_is_refused_before_the_reference(capsys, monkeypatch):
         assert main(["tradeoff", "--theta", bad, "--no-figures"]) == 2
         err = capsys.readouterr().err
         assert "--theta" in err and err.count("\n") == 1
+
+
+def test_repr_is_a_summary(small):
+    text = repr(small)
+    assert "\n" not in text and len(text) < 200 and text.startswith("Tradeoff('")
+    assert f"{len(small.curves)} methods" in text

@@ -260,7 +260,8 @@ class Certificate:
     c : Fraction
         Decrease rate of Lemma 2, item 2; must equal ``2(k_v k_p - k_i)``.
     overshoot_bound : str
-        Decimal string claimed to be ``≥ √(c₂ĉ₂/(c₁ĉ₁))`` (eq. stabState).
+        Decimal string claimed to be ``≥ √(c₂ĉ₂/(c₁ĉ₁))`` (eq. stabState), as
+        written in the file; :attr:`kappa` is the same number as a ``Fraction``.
     provenance : Provenance or None
         How the certificate was found.
     physical : dict or None
@@ -335,9 +336,12 @@ class Certificate:
         return kappa_squared(self.c1, self.c2, self.c1_hat, self.c2_hat)
 
     @property
-    def kappa(self) -> float:
-        """The claimed overshoot bound as a float (for display and plots)."""
-        return float(self.overshoot_bound)
+    def kappa(self) -> Fraction:
+        """The claimed overshoot bound κ as an exact number (``overshoot_bound`` is its decimal text).
+
+        ``float(cert.kappa)`` for plots; ``cert.kappa ** 2 >= cert.kappa_squared`` is the claim, exactly.
+        """
+        return Fraction(self.overshoot_bound)
 
     # -- (de)serialisation --------------------------------------------------
     def to_dict(self) -> dict[str, Any]:

@@ -49,7 +49,7 @@ def sqrt_up(q: Fraction, digits: int = SQRT_DIGITS) -> Fraction:
     >>> sqrt_up(Fraction(4))
     Fraction(2, 1)
     >>> s = sqrt_up(Fraction(2), 6); s * s >= 2, float(s)
-    (True, 1.41422)
+    (True, 1.414214)
     """
     q = Fraction(q)
     if q < 0:

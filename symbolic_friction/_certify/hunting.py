@@ -9,12 +9,17 @@ Format (JSON, every number that the proof reads is an exact rational string)::
       "box": {"sigma": [lo, hi], "tau": [lo, hi], "monotone_from": "…"},
       "precision_bits": 128,
       "verdict": "proved",
-      "cycle": {…}            # what the search reported (floats as text; never read by the proof)
+      "cycle": {"period": [lo, hi], "stable": true, …}   # optional: what it proves about the cycle
     }
 
 :func:`verify_hunting` re-runs :func:`._proof.prove_cycle` on the exact
-gains and box and accepts the file only if every check holds *and* the file
-says ``"proved"``.  Changing a gain or a corner of the box moves the
+gains and box, decides every number of ``cycle`` (:mod:`.hunting_cycle`:
+``sigma``, ``slip_time``, ``stick_time``, ``period``, ``multiplier``, each an
+interval that must hold the enclosure over the Krawczyk box, and ``stable``)
+and accepts the file only if every check holds *and* the file says
+``"proved"``.  A file is stale (:func:`hunting_staleness`) when it differs
+from what :func:`certificate_for` writes for its gains and the zero in its
+box.  Changing a gain or a corner of the box moves the
 problem: the Krawczyk test, the first-zero test or the stick test then fails
 (or a file that claims something it cannot show is refused).  ``symbolic-friction
 verify`` dispatches on the ``schema`` field; the stability certificates of the
@@ -28,6 +33,7 @@ gains, so no hunting cycle exists.
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 from dataclasses import dataclass
@@ -38,9 +44,11 @@ from typing import Any
 from .._infra.errors import CertificateFormatError, InputFileError, SymbolicFrictionError
 from .._model.parameters import Parameters
 from ._template import Template, register
-from .hunting_proof import PRECISION, Box, CycleProof, prove_cycle
+from .hunting_cycle import CycleClaims, decide_claims, polish, state_claims
+from .hunting_proof import PRECISION, Box, CycleProof, box_around, prove_cycle, Check
 
-__all__ = ["SCHEMA", "HuntingCertificate", "HuntingReport", "verify_hunting", "verify_hunting_file", "write_hunting", "HUNTING"]
+__all__ = ["SCHEMA", "HuntingCertificate", "HuntingReport", "verify_hunting", "verify_hunting_file", "write_hunting",
+           "certificate_for", "regenerate_hunting", "hunting_staleness", "HUNTING"]
 
 SCHEMA = "symbolic-friction/hunting-certificate/v1"
 TEMPLATE_ID = "hunting-cycle/v1"
@@ -72,7 +80,11 @@ class HuntingCertificate:
     box: Box
     precision_bits: int = PRECISION
     verdict: str = "proved"
-    cycle: dict | None = None
+    cycle: CycleClaims | None = None
+
+    def __post_init__(self) -> None:
+        if self.cycle is not None and not isinstance(self.cycle, CycleClaims):
+            raise CertificateFormatError(f"cycle must be CycleClaims or None; got {type(self.cycle).__name__}")
 
     def gains_text(self) -> str:
         """The exact gains, as ``check`` and ``verify`` print them."""
@@ -95,7 +107,7 @@ class HuntingCertificate:
             "verdict": self.verdict,
         }
         if self.cycle is not None:
-            out["cycle"] = self.cycle
+            out["cycle"] = self.cycle.to_dict()
         return out
 
     @classmethod
@@ -138,7 +150,7 @@ class HuntingCertificate:
             ),
             precision_bits=prec,
             verdict=data["verdict"],
-            cycle=data.get("cycle"),
+            cycle=CycleClaims.from_dict(data["cycle"]) if "cycle" in data else None,
         )
 
 
@@ -149,14 +161,16 @@ class HuntingReport:
     source: str
     certificate: HuntingCertificate
     proof: CycleProof
+    claims: tuple[Check, ...] = ()
 
     @property
-    def checks(self):
-        return self.proof.checks
+    def checks(self) -> tuple[Check, ...]:
+        """The proof's checks, then one per number the file's ``cycle`` states."""
+        return self.proof.checks + self.claims
 
     @property
     def proved(self) -> bool:
-        return self.proof.proved and self.certificate.verdict == "proved"
+        return self.proof.proved and all(c.holds for c in self.claims) and self.certificate.verdict == "proved"
 
     def summary(self) -> str:
         p = self.certificate.params
@@ -168,16 +182,91 @@ class HuntingReport:
                 f"PROVED {self.source}: a symmetric hunting cycle exists for {p} through σ* ∈ "
                 f"[{float(lo):.12g}, {float(hi):.12g}] (unique there); multiplier ∈ [{m_lo:.6g}, {m_hi:.6g}], {stab}"
             )
-        failing = [c.name for c in self.proof.checks if not c.holds]
+        failing = [c.name for c in self.checks if not c.holds]
         if not failing:
             return f"NOT PROVED {self.source}: the file's verdict is {self.certificate.verdict!r}"
         return f"NOT PROVED {self.source}: {', '.join(failing)} fail(s) for {p}"
 
 
 def verify_hunting(certificate: HuntingCertificate, *, source: str = "<certificate>") -> HuntingReport:
-    """Re-run the proof (:func:`._proof.prove_cycle`) on the certificate's exact gains and box."""
-    proof = prove_cycle(certificate.params, certificate.box, precision=certificate.precision_bits)
-    return HuntingReport(source=source, certificate=certificate, proof=proof)
+    """Re-run the proof (:func:`._proof.prove_cycle`) on the certificate's exact gains and box, and decide its ``cycle``."""
+    key = (certificate.params, certificate.box, certificate.precision_bits)
+    proof = _SHARED[key] if _SHARED is not None and key in _SHARED else prove_cycle(*key[:2], precision=key[2])
+    if _SHARED is not None:
+        _SHARED[key] = proof
+    _LAST_PROOF[:] = [(certificate, proof)]
+    claims = () if certificate.cycle is None else decide_claims(
+        certificate.params, proof, certificate.cycle, precision=certificate.precision_bits)
+    return HuntingReport(source=source, certificate=certificate, proof=proof, claims=claims)
+
+
+_SHARED: dict | None = None
+
+
+@contextlib.contextmanager
+def shared_proofs():
+    """Within the block, files with the same gains, box and precision share one proof (they differ only in ``cycle`` or ``verdict``)."""
+    global _SHARED
+    saved, _SHARED = _SHARED, {}
+    try:
+        yield
+    finally:
+        _SHARED = saved
+
+
+_LAST_PROOF: list = []
+"""The last certificate :func:`verify_hunting` decided (the object itself) and its proof: its staleness reuses it."""
+
+
+def certificate_for(params: Parameters, sigma: float | Fraction, tau: float | Fraction, *,
+                    known: tuple[Box, int, CycleProof] | None = None) -> tuple[HuntingCertificate, CycleProof]:
+    """The certificate ``symbolic-friction hunting`` writes for the cycle near ``(σ, τ)``, and its proof.
+
+    The zero is polished (:func:`.hunting_cycle.polish`) before the box is
+    drawn around it, so the file depends on the zero, not on the search
+    that found it; ``cycle`` states what the verifier proves about it (None
+    if the proof fails).
+    """
+    box = box_around(*polish(params, sigma, tau))
+    # `known`: a proof of (box, precision) for these gains just decided, which `check` need not repeat
+    proof = known[2] if known is not None and known[:2] == (box, PRECISION) else prove_cycle(params, box)
+    return HuntingCertificate(params=params, box=box, cycle=state_claims(params, proof)), proof
+
+
+def regenerate_hunting(certificate: HuntingCertificate) -> HuntingCertificate:
+    """What ``symbolic-friction hunting`` writes for the gains of ``certificate`` and the zero in its box.
+
+    Raises
+    ------
+    CertificateError
+        If the box drawn around the polished zero is not proved (nothing unproved is written).
+    """
+    from .._infra.errors import CertificateError
+
+    (s_lo, s_hi), (t_lo, t_hi) = certificate.box.sigma, certificate.box.tau
+    last = _LAST_PROOF[0] if _LAST_PROOF else None
+    # `check` verifies a file, then asks whether it is stale: the proof of that very certificate is reused
+    known = (certificate.box, certificate.precision_bits, last[1]) if last is not None and last[0] is certificate else None
+    fresh, proof = certificate_for(certificate.params, (s_lo + s_hi) / 2, (t_lo + t_hi) / 2, known=known)
+    if not proof.proved:
+        failing = ", ".join(c.name for c in proof.checks if not c.holds)
+        raise CertificateError(f"the box around the polished zero for {certificate.params} is not proved ({failing})")
+    return fresh
+
+
+def hunting_staleness(certificate: HuntingCertificate, path: Path) -> str:
+    """Why the committed ``path`` differs from what :func:`regenerate_hunting` writes now ("" if not)."""
+    from .._infra.errors import CertificateError
+    from .._infra.io import read_limited
+    from ._json import MAX_FILE_BYTES
+
+    try:
+        fresh = regenerate_hunting(certificate)
+    except CertificateError as exc:
+        return f"cannot be regenerated: {exc}"
+    if read_limited(path, limit=MAX_FILE_BYTES, what="certificate") != dumps(fresh).encode("utf-8"):
+        return f"{path.name} differs from what `symbolic-friction hunting` writes now for its gains"
+    return ""
 
 
 def is_hunting(data: object) -> bool:
@@ -232,8 +321,7 @@ HUNTING = register(Template(
     read=lambda data, source: hunting_from_data(data, source=source),
     verify=lambda certificate, source: verify_hunting(certificate, source=source),
     dumps=dumps,
-    # no search to be stale against: the Krawczyk proof is re-decided from the file alone
-    stale=lambda certificate, path: "",
+    stale=hunting_staleness,
     failure=lambda report: report.summary(),
     claim=lambda certificate: "a hunting cycle",
     default=True,

@@ -23,7 +23,8 @@ enclosed by ``arb_mat.exp`` for every ``τ`` of a ball):
   inside the interior of ``X`` proves that ``F`` has exactly one zero in
   ``X`` (``J`` is the Jacobian of ``F``, enclosed over the whole box);
 * **first zero**: ``v' > 0`` on ``[0, δ]`` (so ``v > 0`` on ``(0, δ]``, as
-  ``v(0) = 0``), ``v > 0`` on ``[δ, τ_a]`` (adaptive bisection) and
+  ``v(0) = 0``), ``v > 0`` on ``[δ, τ_a]`` (adaptive bisection; decided only
+  when the Krawczyk test and the start hold, since the box is refused otherwise) and
   ``∂v/∂τ < 0`` on ``[σ] × [τ_a, τ_hi]``, all for every ``σ`` of ``[σ]``;
 * **stick**: ``-f_s < f_c + p₁ < f_s`` over ``X``;
 * **stability** (reported, proved when it holds): the multiplier
@@ -84,12 +85,16 @@ class CycleProof:
         Lower and upper bound of ``-P'(σ*)`` (outward rounded to floats).
     stable : bool or None
         ``True`` if ``|multiplier| < 1`` is proved, ``False`` if ``> 1`` is, else ``None``.
+    zero : pair of pairs of Fraction, or None
+        ``([σ_lo, σ_hi], [τ_lo, τ_hi])``: exact corners of the Krawczyk box
+        ``K(X)``, which holds the zero ``(σ*, τ*)`` (None if the Krawczyk test fails).
     """
 
     checks: tuple[Check, ...]
     proved: bool
     multiplier: tuple[float, float]
     stable: bool | None
+    zero: tuple[tuple[Fraction, Fraction], tuple[Fraction, Fraction]] | None = None
 
 
 class _Arb:
@@ -161,6 +166,15 @@ def prove_cycle(params: Parameters, box: Box, *, precision: int = PRECISION) -> 
     CycleProof
         ``proved`` only if every check holds; a failing check is named with
         the enclosures that decided it.
+
+    Examples
+    --------
+    >>> from symbolic_friction import Parameters, find_cycles, prove_cycle
+    >>> from symbolic_friction.studies import box_around
+    >>> p = Parameters(k_p=3, k_i=4, k_v="6.4", f_s="1.2")
+    >>> cycle = find_cycles(p, points=40, general=False)[0]
+    >>> prove_cycle(p, box_around(cycle.sigma, cycle.slip_time)).proved
+    True
     """
     from flint import ctx
 
@@ -175,7 +189,7 @@ def prove_cycle(params: Parameters, box: Box, *, precision: int = PRECISION) -> 
 def _prove(params: Parameters, box: Box) -> CycleProof:
     checks: list[Check] = []
     (s_lo, s_hi), (t_lo, t_hi), t_a = box.sigma, box.tau, box.monotone_from
-    shape = params.f_s > params.f_c and 0 < s_lo < s_hi and 0 < t_a < t_lo < t_hi
+    shape = _shape_ok(params, box)
     checks.append(
         Check(
             "box",
@@ -211,10 +225,8 @@ def _prove(params: Parameters, box: Box) -> CycleProof:
         cf = C[i][0] * F[0] + C[i][1] * F[1]
         row = [(1 if i == j else 0) - (C[i][0] * J[0][j] + C[i][1] * J[1][j]) for j in range(2)]
         K.append(centre[i] - cf + row[0] * dx[0] + row[1] * dx[1])
-    inside = all(
-        bool((K[i] - M.q(lo)) > 0) and bool((M.q(hi) - K[i]) > 0)
-        for i, (lo, hi) in enumerate(((s_lo, s_hi), (t_lo, t_hi)))
-    )
+    inside = all(_inside(K[i], M.q(lo), M.q(hi)) for i, (lo, hi) in enumerate(((s_lo, s_hi), (t_lo, t_hi))))
+    zero = tuple((_exact_mid(k.lower()), _exact_mid(k.upper())) for k in K) if inside else None
     checks.append(
         Check(
             "krawczyk",
@@ -242,28 +254,18 @@ def _prove(params: Parameters, box: Box) -> CycleProof:
             if first_ok else "v' > 0 near τ = 0 could not be shown",
         )
     )
-    pieces, positive = 0, first_ok
-    if first_ok:
-        stack = [(delta + (t_a - delta) * Fraction(j, 64), delta + (t_a - delta) * Fraction(j + 1, 64)) for j in range(63, -1, -1)]
-        while stack and positive:
-            lo, hi = stack.pop()
-            pieces += 1
-            _, y, _ = M.state(S, M.ball(lo, hi))
-            if bool(y[2] > 0):
-                continue
-            if pieces > _MAX_PIECES or hi - lo < t_a * Fraction(1, 10**15) or bool(y[2] <= 0):
-                positive = False
-                break
-            mid = (lo + hi) / 2
-            stack.append((mid, hi))
-            stack.append((lo, mid))
-    checks.append(
-        Check(
-            "first_zero.positive",
-            positive,
-            f"v > 0 on [δ, τ_a] for every σ in the box ({pieces} balls)" if positive else f"v > 0 on [δ, τ_a] not shown ({pieces} balls)",
+    # The search is the proof's costly part: it runs only where the rest can still prove a cycle
+    # (a box without a proved zero, or a start not shown, is refused whatever v does in between).
+    if inside and first_ok:
+        positive, pieces = _positive_on(lambda lo, hi: M.state(S, M.ball(lo, hi))[1][2], delta, t_a,
+                                        floor=t_a * Fraction(1, 10**15))
+        checks.append(
+            Check(
+                "first_zero.positive",
+                positive,
+                f"v > 0 on [δ, τ_a] for every σ in the box ({pieces} balls)" if positive else f"v > 0 on [δ, τ_a] not shown ({pieces} balls)",
+            )
         )
-    )
     _, _, dyM = M.state(S, M.ball(t_a, t_hi))
     decreasing = bool(dyM[2] < 0)
     checks.append(
@@ -276,7 +278,7 @@ def _prove(params: Parameters, box: Box) -> CycleProof:
 
     # -- the mass sticks at the end of the slip, and the stick ends at -f_s ----------------
     phi1 = M.f_c + yX[1]
-    sticks = bool(phi1 > -M.f_s) and bool(phi1 < M.f_s)
+    sticks = _sticks(phi1, M.f_s)
     checks.append(
         Check(
             "stick",
@@ -296,7 +298,58 @@ def _prove(params: Parameters, box: Box) -> CycleProof:
     else:
         stable = None
     proved = all(ch.holds for ch in checks)
-    return CycleProof(tuple(checks), proved, (lo_m, hi_m), stable)
+    return CycleProof(tuple(checks), proved, (lo_m, hi_m), stable, zero)
+
+
+def _shape_ok(params: Parameters, box: Box) -> bool:
+    """The box's shape: ``f_s > f_c``, ``0 < σ_lo < σ_hi`` (a stick exit at ``φ = f_s`` needs ``σ > 0``), ``0 < τ_a < τ_lo < τ_hi``."""
+    (s_lo, s_hi), (t_lo, t_hi), t_a = box.sigma, box.tau, box.monotone_from
+    return params.f_s > params.f_c and 0 < s_lo < s_hi and 0 < t_a < t_lo < t_hi
+
+
+def _inside(k, lo, hi) -> bool:
+    """Whether the ball ``k`` lies in the *open* interval ``(lo, hi)``: both ends, each strictly (certain arb comparisons)."""
+    return bool((k - lo) > 0) and bool((hi - k) > 0)
+
+
+def _sticks(phi, f_s) -> bool:
+    """Whether the ball ``φ`` lies in ``(-f_s, f_s)``, both ends strictly: the mass sticks (``|φ| = f_s`` breaks away)."""
+    return bool(phi > -f_s) and bool(phi < f_s)
+
+
+def _positive_on(value, lo: Fraction, hi: Fraction, *, floor: Fraction) -> tuple[bool, int]:
+    """``(shown, pieces)``: whether ``value(a, b) > 0`` is shown for every piece ``[a, b]`` of ``[lo, hi]``.
+
+    ``[lo, hi]`` is cut into 64 pieces, each decided in turn (so a piece where
+    the value is certainly ``≤ 0`` ends the search at once); each piece whose
+    ball is not certainly positive (it may contain 0) is then halved, depth
+    first, until its halves are.  The search gives up, which is *not shown*,
+    when a ball is certainly ``≤ 0``, when a piece is narrower than ``floor``
+    or after ``_MAX_PIECES`` pieces.
+    """
+    first = [(lo + (hi - lo) * Fraction(j, 64), lo + (hi - lo) * Fraction(j + 1, 64)) for j in range(64)]
+    pieces, stack = 0, []
+    for a, b in first:
+        pieces += 1
+        ball = value(a, b)
+        if bool(ball > 0):
+            continue
+        if bool(ball <= 0):
+            return False, pieces
+        stack.append((a, b))
+    stack.reverse()  # refined left to right
+    while stack:
+        a, b = stack.pop()
+        mid = (a + b) / 2
+        for piece in ((a, mid), (mid, b)):
+            pieces += 1
+            ball = value(*piece)
+            if bool(ball > 0):
+                continue
+            if pieces > _MAX_PIECES or piece[1] - piece[0] < floor or bool(ball <= 0):
+                return False, pieces
+            stack.append(piece)
+    return True, pieces
 
 
 def _short(x: Fraction) -> Fraction:

@@ -41,6 +41,8 @@ __all__ = [
 TABLE_I_LABELS = {"a": "Table I, case (a)", "b": "Table I, case (b)"}
 TABLE_I_FILES: tuple[str, ...] = tuple(f"case_{case}_{mode}.json" for case in TABLE_I_LABELS for mode in MODES)
 """The committed certificates of ``proofs/`` (both cases of Table I, both modes)."""
+QUADRATIC_TABLE_I_FILES: tuple[str, ...] = ("case_a.json", "case_b.json")
+"""Table I's certificates in the quadratic template, under ``proofs/quadratic/``."""
 
 
 def certify(
@@ -64,6 +66,7 @@ def certify(
         The physical parameters ``params`` came from (``m``, ``k_p_bar``,
         ``k_i_bar``, ``k_d_bar``, ``alpha_v``, ``f_c_bar``), recorded in the
         certificate; the verifier checks that they normalise to ``params``.
+        Default: ``params.physical`` (set by :meth:`Parameters.from_physical`).
 
     Returns
     -------
@@ -93,6 +96,8 @@ def certify(
         )
     candidate = find_candidate(params, mode=mode, margin=margin)
     certificate = to_certificate(candidate, label=label)
+    if physical is None and params.physical is not None:  # gains from Parameters.from_physical
+        physical = params.physical.as_dict()
     if physical is not None:
         certificate = dataclasses.replace(certificate, physical=physical)
     report = verify_certificate(certificate)
@@ -239,16 +244,23 @@ def write_listed_certificates(directory: str | os.PathLike[str], names: Iterable
     mode, margin, label, physical parameters); a missing file named like one
     of Table I's (``case_a_tightest.json`` …) is certified for Table I's
     gains.  A missing file of any other name cannot be created (its gains are
-    unknown) and is left for :func:`check_listed_certificates` to report.
+    unknown) and is left for :func:`check_listed_certificates` to report.  A
+    hunting certificate is rewritten from its gains and the zero in its box
+    (:func:`.hunting.regenerate_hunting`).
 
     Returns the written paths (JSON and Markdown, in order).
     """
+    from .hunting import is_hunting_file, load_hunting, regenerate_hunting, write_hunting
+
     directory = Path(directory)
     written: list[Path] = []
     table_i = {table_i_stem(case, mode) + ".json": (case, mode) for case in TABLE_I_LABELS for mode in MODES}
     for name in names:
         path = directory / name
         fresh = None
+        if path.exists() and is_hunting_file(path):
+            written.append(write_hunting(regenerate_hunting(load_hunting(path)), path))
+            continue
         if path.exists():
             try:
                 fresh = regenerate(load(path))
@@ -259,4 +271,11 @@ def write_listed_certificates(directory: str | os.PathLike[str], names: Iterable
             fresh = certify(Parameters.table_i(case), mode=mode, label=TABLE_I_LABELS[case])
         if fresh is not None:
             written.extend(write_certificate(fresh, path))
+        elif path.parent == directory / "quadratic" and path.name in QUADRATIC_TABLE_I_FILES:
+            # Table I in the quadratic template: its gains are known from the name
+            from .quadratic import QUADRATIC
+            from .quadratic_search import certify_quadratic
+
+            case = path.stem[-1]
+            written.append(QUADRATIC.write(certify_quadratic(Parameters.table_i(case), label=TABLE_I_LABELS[case]), path))
     return written

@@ -3,7 +3,7 @@
 :func:`builtin_templates` imports the modules that register the package's
 templates (a missing one is an :class:`ImportError`): the stability
 certificate of Proposition 1 (:data:`.pipeline.STABILITY`) and the hunting
-certificate (:data:`.hunting.HUNTING`).  The functions below take any file,
+certificate (:data:`.hunting.HUNTING`) and the quadratic template (:data:`.quadratic.QUADRATIC`, beyond the paper).  The functions below take any file,
 pick its template from its ``template`` member or its ``schema``
 (:func:`._template.template_for`) and run that template's reader, exact
 verifier and staleness check; ``symbolic-friction verify`` and ``check`` go
@@ -35,8 +35,10 @@ def builtin_templates() -> tuple[Template, ...]:
     """The package's templates, registered (the stability certificate first); then every registered one."""
     from .hunting import HUNTING
     from .pipeline import STABILITY
+    from .quadratic import QUADRATIC
 
-    return (STABILITY, HUNTING) + tuple(t for t in registered() if t not in (STABILITY, HUNTING))
+    first = (STABILITY, HUNTING, QUADRATIC)
+    return first + tuple(t for t in registered() if t not in first)
 
 
 def read_certificate_file(path: str | os.PathLike[str]) -> tuple[Template, Any]:

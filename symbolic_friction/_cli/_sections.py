@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import re
 import sys
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -178,6 +179,28 @@ def _crashed(make: Callable[[argparse.Namespace], Section], exc: Exception) -> S
     reason = f"{name} crashed: {type(exc).__name__}: {exc}"
     return Section(name, ("error",), [(reason,)], {}, False, [f"FAILED {reason}"], summary=reason,
                    cases=[Case(name=name, classname="check.sections", error=reason)])
+
+
+_FAILURE_MARK = re.compile(r"\b(FAILED|FAILS|NOT PROVED|NOT CAUGHT|STALE|MALFORMED)\b")
+"""Words that mark a failing line; a section that prints one cannot pass, whatever its ``ok`` says."""
+
+
+def gate(section: Section) -> Section:
+    """The one gate between a section's lines and ``check``'s exit code.
+
+    A section passes only if it says so *and* none of its printed lines (notes
+    and table rows) says ``FAILED``, ``FAILS``, ``NOT PROVED``, ``NOT CAUGHT``,
+    ``STALE`` or ``MALFORMED``: a section whose flag and lines disagree fails,
+    so the exit code, the closing line and ``--json``'s ``passed`` always
+    agree with what was printed.  Returns the section, with ``ok`` cleared and
+    a note naming the line when they disagree.
+    """
+    lines = [str(note) for note in section.notes] + ["  ".join(str(cell) for cell in row) for row in section.rows]
+    marked = [line for line in lines if _FAILURE_MARK.search(line)]
+    if marked and section.ok:
+        section.ok = False
+        section.notes.append(f"FAILED {section.title}: it reported success but printed {marked[0]!r}")
+    return section
 
 
 def closing_line(sections: list[Section]) -> str:

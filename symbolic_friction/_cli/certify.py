@@ -173,5 +173,7 @@ def run(args: argparse.Namespace) -> int:
                 "overshoot_bound": cert.overshoot_bound, "proved": True,
             }, ensure_ascii=False), level=0)
         else:
-            emit(f"wrote {json_path} and {md_path.name} ({mode}): |x(t)|_A <= {cert.overshoot_bound}·|x(0)|_A", level=0)
+            # the normalised gains that were certified (physical values, when given, follow in parentheses)
+            emit(f"wrote {json_path} and {md_path.name} ({mode}) for {cert.gains_text()}: "
+                 f"|x(t)|_A <= {cert.overshoot_bound}·|x(0)|_A", level=0)
     return 0

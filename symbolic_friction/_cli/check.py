@@ -7,6 +7,12 @@ order and exits 0 only if every section is satisfied.  Further checks (for
 example the exact verification of every certificate under ``proofs/``) are
 added by appending a function to :data:`SECTIONS`.
 
+The sections: the obligations, the configured certificates, the
+cross-check's self-test and the self-check (the verifiers refuse the
+known-false certificates shipped with the package,
+:mod:`._self_check`).  One gate (:func:`._sections.gate`) fails a section
+that prints a ``FAILED`` or ``NOT PROVED`` line, whatever it reported.
+
 The obligations section runs every obligation from
 :func:`symbolic_friction._obligations.all_obligations`, lists the errata and
 compares ``<DIR>/obligations.md`` with what it would write now (``--write``
@@ -28,6 +34,7 @@ import argparse
 import json
 from collections.abc import Callable
 from typing import Any
+from ._self_check import self_check_section
 from ._sections import (
     Section,
     _crashed,
@@ -36,6 +43,7 @@ from ._sections import (
     _ObligationLayout,
     _wrap,
     closing_line,
+    gate,
     dataclasses_asdict,
     resolve_target,
 )
@@ -311,7 +319,8 @@ def crosscheck_section(args: argparse.Namespace) -> Section:
     )
 
 
-SECTIONS: list[Callable[[argparse.Namespace], Section]] = [obligations_section, certificates_section, crosscheck_section]
+SECTIONS: list[Callable[[argparse.Namespace], Section]] = [obligations_section, certificates_section, crosscheck_section,
+                                                          self_check_section]
 """The parts of ``check``, in order; append to extend the command."""
 
 
@@ -357,7 +366,7 @@ def run(args: argparse.Namespace) -> int:
             section = make(args)
         except Exception as exc:  # a crashing section fails loudly, it never passes
             section = _crashed(make, exc)
-        sections.append(section)
+        sections.append(gate(section))
         if not as_json:
             if not section.streamed:
                 emit(_format_table(section))

@@ -104,12 +104,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Run the cross-check, print the tables, write counterexamples; 1 if any property fails."""
-    from .._crosscheck import crosscheck, default_certificate_files, format_report, write_counterexamples
+    from .._crosscheck import crosscheck, default_certificate_selection, format_report, write_counterexamples
     from .._infra.errors import ParameterError, UnprovedCertificateError
     from .._infra.io import check_output_directory
     from .._infra.output import emit, verbosity
 
-    files = list(args.certificates) or default_certificate_files()
+    files, skipped = (list(args.certificates), []) if args.certificates else default_certificate_selection()
     if args.rtol >= 1:
         raise ParameterError(f"--rtol must be < 1; got {args.rtol:g}")
     if args.theta > 1:
@@ -124,6 +124,9 @@ def run(args: argparse.Namespace) -> int:
         from .._infra.junit import check_writable
 
         check_writable(args.junit_xml)
+    if not args.json:
+        for name, why in skipped:  # said before the long run, so a missing file is never a surprise
+            emit(f"skipped {name}: {why}")
     try:
         report = _run_crosscheck(crosscheck, files, args)
     except UnprovedCertificateError as exc:
@@ -143,7 +146,8 @@ def run(args: argparse.Namespace) -> int:
 
         write_junit(args.junit_xml, "symbolic-friction crosscheck", _junit_cases(report))
     if args.json:
-        emit(json.dumps(_json_report(report, written), indent=2, ensure_ascii=False, default=_json_default), level=0)
+        payload = {**_json_report(report, written), "skipped": [{"file": n, "reason": why} for n, why in skipped]}
+        emit(json.dumps(payload, indent=2, ensure_ascii=False, default=_json_default), level=0)
         return 0 if report.passed else 1
     emit(format_report(report))
     for path in written:

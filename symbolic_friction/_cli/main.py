@@ -13,9 +13,10 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import re
 import sys
 from collections.abc import Sequence
-from typing import NoReturn
+from typing import Any, NoReturn
 
 __all__ = ["main", "build_parser"]
 
@@ -24,6 +25,14 @@ COMMANDS = ("check", "certify", "verify", "simulate", "figures", "crosscheck", "
 
 class _Parser(argparse.ArgumentParser):
     """An argument parser whose usage errors are one line on stderr and exit status 2."""
+
+    # A tuple of numbers such as ``--z0 -1,0,0`` (or ``-3/5,0,0``) is a value, not an option:
+    # argparse by default only recognises plain negative numbers.  No option starts with a digit.
+    _NUMBERS = re.compile(r"^-\.?\d[\d.,/eE+-]*$")
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = self._NUMBERS
 
     def error(self, message: str) -> "NoReturn":  # type: ignore[override]
         message = " ".join(message.split())
@@ -75,6 +84,10 @@ def main(argv: Sequence[str] | None = None) -> int:
 
     install_ascii_fallback()
     parser = build_parser()
+    if not (sys.argv[1:] if argv is None else list(argv)):
+        # a bare command is a request for help, not a usage error
+        parser.print_help()
+        return 0
     args = parser.parse_args(argv)
     set_verbosity(0 if getattr(args, "quiet", False) else 2 if getattr(args, "verbose", False) else 1)
     prefix = f"symbolic-friction {args.command}: error:"

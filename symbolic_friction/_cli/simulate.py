@@ -47,6 +47,11 @@ def run(args: argparse.Namespace) -> int:
     scene = load_scene(args.scene)
     if args.theta is not None:
         scene = _with_theta(scene, args.theta)
+    if args.format is not None:
+        # the summary and the files name the format actually written, not the scene's default
+        import dataclasses
+
+        scene = dataclasses.replace(scene, format=args.format)
     ensure_directory(args.out)  # an unusable --out fails now, not after the simulation
     if not args.json:
         emit(scene.summary())
@@ -59,14 +64,15 @@ def run(args: argparse.Namespace) -> int:
         if not args.json:
             emit(f"  trajectory {i}: z0 = ({', '.join(f'{c:g}' for c in z0)}), {sol.t.size} samples, "
                  f"{len(sol.events)} events, {sol.status}")
-    files = result.write(args.out, fmt=args.format, png=args.png)
+    files = result.write(args.out, fmt=scene.format, png=args.png)
     if args.json:
-        emit(json.dumps({"scene": scene.name, "method": scene.method, "summary": scene.summary(),
+        emit(json.dumps({"scene": scene.name, "method": scene.method, "format": scene.format, "summary": scene.summary(),
                          "trajectories": trajectories, "files": [str(p) for p in files]}, indent=2, ensure_ascii=False),
              level=0)
     else:
         for path in files:
-            emit(f"wrote {path}", level=0)
+            kind = "PNG" if path.suffix == ".png" else scene.format.upper()
+            emit(f"wrote {path} ({kind})", level=0)
     return 0
 
 

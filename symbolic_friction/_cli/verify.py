@@ -47,6 +47,7 @@ def run(args: argparse.Namespace) -> int:
         check_writable(args.junit_xml)
     failed = False
     malformed: list[Exception] = []
+    bad_names: list[str] = []
     cases: list = []
     payload: list[dict] = []
     from .._certify.templates import verify_any_file
@@ -59,9 +60,11 @@ def run(args: argparse.Namespace) -> int:
             hunting, report = verify_any_file(name)
         except (CertificateFormatError, InputFileError) as exc:
             malformed.append(exc)
+            bad_names.append(name)
             cases.append(Case(name=str(name), classname="verify", seconds=0.0, error=str(exc)))
             payload.append({"file": str(name), "status": "malformed", "error": str(exc)})
-            if not args.json:
+            if not args.json and len(args.files) > 1:
+                # one line per file in the listing; the closing error then names the files, not the reasons again
                 emit(f"MALFORMED {exc}", level=0)
             continue
         cert = report.certificate
@@ -101,9 +104,14 @@ def run(args: argparse.Namespace) -> int:
         emit(json.dumps({"files": payload, "passed": not failed and not malformed}, indent=2, ensure_ascii=False), level=0)
     if malformed:
         # the CLI turns this into "error: …" and exit status 2
-        if len(malformed) == 1:
+        # each reason is printed once: a lone file's as the error, a listing's on its MALFORMED line (or in --json)
+        if len(args.files) == 1:
             raise malformed[0]
-        raise CertificateFormatError(f"{len(malformed)} files are missing or malformed; first: {malformed[0]}")
+        names = ", ".join(str(n) for n in bad_names)
+        where = "see the JSON above" if args.json else "reasons above"
+        raise CertificateFormatError(
+            f"{len(malformed)} of {len(args.files)} files are missing or malformed ({where}): {names}"
+        )
     return 1 if failed else 0
 
 

@@ -33,7 +33,7 @@ from ._overshoot import OvershootSearch
 from ._property import Evaluation, Property
 from ._properties import DEFAULT_RTOL, DEFAULT_THETA, PROPERTIES, Counterexample, PropertyResult
 from ._report import format_report, write_counterexamples
-from ._run import CertificateCheck, CrosscheckReport, crosscheck, default_certificate_files, default_horizon
+from ._run import CertificateCheck, CrosscheckReport, crosscheck, default_certificate_files, default_certificate_selection, default_horizon
 
 __all__ = [
     "Claims",
@@ -47,6 +47,7 @@ __all__ = [
     "DEFAULT_THETA",
     "default_horizon",
     "default_certificate_files",
+    "default_certificate_selection",
     "decay_fit",
     "DecayFit",
     "iss_gain",

@@ -140,6 +140,14 @@ class CrosscheckReport:
         Gain-set label -> :class:`~._overshoot.DecayFit` (if requested).
     iss : dict
         Gain-set label -> :class:`~._iss.IssEstimate` (if requested).
+
+    Examples
+    --------
+    >>> from symbolic_friction import crosscheck
+    >>> report = crosscheck(["proofs/case_a_tightest.json"], trajectories=1000)  # doctest: +SKIP
+    >>> report  # doctest: +SKIP
+    CrosscheckReport(crosscheck: PASSED — 1 certificate(s), 1000 trajectories (0 incomplete), ...)
+    >>> print(format_report(report))  # every property, its margin and its tightness  # doctest: +SKIP
     """
 
     checks: tuple[CertificateCheck, ...]
@@ -149,6 +157,10 @@ class CrosscheckReport:
     seconds: float
     decay: dict = field(default_factory=dict)
     iss: dict = field(default_factory=dict)
+
+    def __repr__(self) -> str:
+        # the verdict line, not thousands of characters of nested results (format_report prints those)
+        return f"CrosscheckReport({self.summary()})"
 
     @property
     def passed(self) -> bool:

@@ -237,6 +237,13 @@ def find_cycles(params: Parameters, *, points: int = 240, span: float = 1e4, gen
     -------
     list of HuntingCycle
         Sorted by ``σ*``; empty if there is none in the scanned range.
+
+    Examples
+    --------
+    >>> from symbolic_friction import Parameters, find_cycles
+    >>> p = Parameters(k_p=3, k_i=4, k_v="6.4", f_s="1.2")  # static friction 20 % above Coulomb
+    >>> [round(c.sigma, 6) for c in find_cycles(p, points=40, general=False)]
+    [0.105045]
     """
     from scipy.optimize import brentq
 

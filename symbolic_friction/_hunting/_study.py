@@ -15,8 +15,8 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
 
-from .._certify.hunting import HuntingCertificate
-from .._certify.hunting_proof import Box, CycleProof, box_around, prove_cycle
+from .._certify.hunting import HuntingCertificate, certificate_for
+from .._certify.hunting_proof import Box, CycleProof
 from .._model.parameters import Parameters
 from ._map import HuntingCycle
 
@@ -55,9 +55,13 @@ class CycleStudy:
 
 
 def study_cycle(params: Parameters, cycle: HuntingCycle, *, simulate: bool = True, iss: bool = True) -> CycleStudy:
-    """Prove ``cycle`` exactly and, if proved, compare it and build its certificate."""
-    box = box_around(cycle.sigma, cycle.slip_time)
-    proof = prove_cycle(params, box)
+    """Prove ``cycle`` exactly and, if proved, compare it and build its certificate.
+
+    The certificate states only what its verifier proves (:mod:`.._certify.hunting_cycle`);
+    the amplitudes, the simulation's agreement and Corollary 1's comparison are reported here, not certified.
+    """
+    certificate, proof = certificate_for(params, cycle.sigma, cycle.slip_time)
+    box = certificate.box
     if not proof.proved:
         return CycleStudy(cycle, box, proof)
     agreement = inside = None
@@ -72,22 +76,6 @@ def study_cycle(params: Parameters, cycle: HuntingCycle, *, simulate: bool = Tru
         from ._iss import iss_comparison
 
         comparison = iss_comparison(cycle)
-    m_lo, m_hi = proof.multiplier
-    info: dict[str, Any] = {
-        "sigma": f"{cycle.sigma:.17g}",
-        "period": f"{cycle.period:.17g}",
-        "slip_time": f"{cycle.slip_time:.17g}",
-        "stick_time": f"{cycle.stick_time:.17g}",
-        "amplitude_s": f"{cycle.amplitude_s:.17g}",
-        "amplitude_e_i": f"{cycle.amplitude_e_i:.17g}",
-        "amplitude_distance_z": f"{cycle.amplitude_distance:.17g}",
-        "multiplier": [f"{m_lo:.17g}", f"{m_hi:.17g}"],
-        "stable": proof.stable,
-    }
-    if comparison is not None:
-        info["iss"] = {"rho": f"{comparison.rho:.17g}", "gamma_hat": {k: f"{v:.17g}" for k, v in comparison.gamma.items()},
-                       "within": comparison.within}
-    certificate = HuntingCertificate(params=params, box=box, cycle=info)
     return CycleStudy(cycle, box, proof, agreement, inside, comparison, certificate)
 
 

@@ -32,7 +32,20 @@ __all__ = [
 
 
 class SymbolicFrictionError(Exception):
-    """Base class of every error raised on purpose by this package."""
+    """Base class of every error raised on purpose by this package.
+
+    Every subclass (:mod:`symbolic_friction.errors`) also derives from the
+    built-in it refines, and its message names the numbers that are wrong.
+
+    Examples
+    --------
+    >>> from symbolic_friction import Parameters, SymbolicFrictionError
+    >>> try:
+    ...     Parameters(k_p=3, k_i=4, k_v=1)
+    ... except SymbolicFrictionError as exc:
+    ...     print(type(exc).__name__, isinstance(exc, ValueError))
+    AssumptionError True
+    """
 
 
 class ParameterError(SymbolicFrictionError, ValueError):

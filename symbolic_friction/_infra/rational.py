@@ -161,6 +161,8 @@ def to_rational(value: object, *, name: str = "value", binary: bool = False) -> 
 def format_rational(q: Fraction) -> str:
     """Write a rational as ``"p/q"`` or ``"p"`` (the certificate file format).
 
+    Examples
+    --------
     >>> format_rational(Fraction(32, 5)), format_rational(Fraction(4))
     ('32/5', '4')
     """

@@ -23,7 +23,7 @@ from typing import ClassVar
 from .._infra.errors import AssumptionError
 from .._infra.rational import format_rational, short_rational, to_rational
 
-__all__ = ["Parameters", "TABLE_I"]
+__all__ = ["Parameters", "PhysicalParameters", "TABLE_I"]
 
 
 def _float(q: Fraction, name: str) -> float:
@@ -47,6 +47,64 @@ def _fmt(q: Fraction) -> str:
 
 
 @dataclass(frozen=True)
+class PhysicalParameters:
+    """Physical mass, PID gains and friction levels (paper §II-A), held exactly.
+
+    Built by :meth:`Parameters.from_physical` and kept in
+    :attr:`Parameters.physical`.  The normalisation is
+    ``k_p = k̄_p/m``, ``k_i = k̄_i/m``, ``k_v = (k̄_d + α_v)/m``, ``f_c = f̄_c/m``.
+
+    Raises
+    ------
+    InvalidNumberError, NonFiniteError
+        If a value is not a finite number.
+    AssumptionError
+        If ``m ≤ 0``, ``alpha_v < 0``, ``f_c_bar ≤ 0`` or ``f_s_bar < f_c_bar``.
+
+    Examples
+    --------
+    >>> PhysicalParameters(m=2, k_p_bar=6, k_i_bar=8, k_d_bar="12.3", alpha_v="0.5", f_c_bar=2).normalised()["k_v"]
+    Fraction(32, 5)
+    """
+
+    m: Fraction
+    k_p_bar: Fraction
+    k_i_bar: Fraction
+    k_d_bar: Fraction
+    alpha_v: Fraction = field(default=Fraction(0))
+    f_c_bar: Fraction = field(default=Fraction(1))
+    f_s_bar: Fraction | None = field(default=None)
+
+    NAMES: ClassVar[tuple[str, ...]] = ("m", "k_p_bar", "k_i_bar", "k_d_bar", "alpha_v", "f_c_bar")
+
+    def __post_init__(self) -> None:
+        for name in self.NAMES:
+            object.__setattr__(self, name, to_rational(getattr(self, name), name=name))
+        if self.f_s_bar is not None:
+            object.__setattr__(self, "f_s_bar", to_rational(self.f_s_bar, name="f_s_bar"))
+        if not self.m > 0:
+            raise AssumptionError(f"the mass needs m > 0; got m = {_fmt(self.m)}")
+        if self.alpha_v < 0:
+            raise AssumptionError(f"the viscous coefficient needs alpha_v ≥ 0; got alpha_v = {_fmt(self.alpha_v)}")
+        if not self.f_c_bar > 0:
+            raise AssumptionError(f"the Coulomb force needs f_c_bar > 0; got f_c_bar = {_fmt(self.f_c_bar)}")
+        if self.f_s_bar is not None and not self.f_s_bar >= self.f_c_bar:
+            raise AssumptionError(
+                f"the static force needs f_s_bar ≥ f_c_bar; got f_s_bar = {_fmt(self.f_s_bar)} < f_c_bar = {_fmt(self.f_c_bar)}"
+            )
+
+    def normalised(self) -> dict[str, Fraction]:
+        """``{"k_p": k̄_p/m, "k_i": k̄_i/m, "k_v": (k̄_d + α_v)/m, "f_c": f̄_c/m}`` (paper §II-A, exact)."""
+        m = self.m
+        return {"k_p": self.k_p_bar / m, "k_i": self.k_i_bar / m, "k_v": (self.k_d_bar + self.alpha_v) / m,
+                "f_c": self.f_c_bar / m}
+
+    def as_dict(self) -> dict[str, Fraction]:
+        """The six values a certificate records (``m``, ``k_p_bar``, ``k_i_bar``, ``k_d_bar``, ``alpha_v``, ``f_c_bar``)."""
+        return {name: getattr(self, name) for name in self.NAMES}
+
+
+@dataclass(frozen=True)
 class Parameters:
     """Normalised gains ``(k_p, k_i, k_v)``, Coulomb level ``f_c`` and static level ``f_s``.
 
@@ -63,6 +121,10 @@ class Parameters:
         ``f_s > f_c`` is the stiction its conclusion names as future work
         (see :mod:`symbolic_friction._hunting`).  A gain set with
         ``f_s = f_c`` compares, hashes and prints exactly as one without it.
+    physical : PhysicalParameters or None, default None
+        The physical values the gains were normalised from (set by
+        :meth:`from_physical`); checked to normalise to the gains, and
+        ignored by ``==`` and ``hash`` (the dynamics are the gains').
 
     Raises
     ------
@@ -86,6 +148,9 @@ class Parameters:
     k_v: Fraction
     f_c: Fraction = field(default=Fraction(1))
     f_s: Fraction = field(default=None)  # type: ignore[assignment]  # None: f_s = f_c
+    # the physical values the gains were normalised from (from_physical); the dynamics are the gains',
+    # so two gain sets compare and hash alike whether or not they remember where they came from
+    physical: "PhysicalParameters | None" = field(default=None, compare=False, repr=False)
 
     _names: ClassVar[tuple[str, ...]] = ("k_p", "k_i", "k_v", "f_c")
 
@@ -110,6 +175,20 @@ class Parameters:
                 f"the static level needs f_s ≥ f_c; got f_s = {_fmt(f_s)} < f_c = {_fmt(f_c)}"
             )
         object.__setattr__(self, "f_s", f_s)
+        if self.physical is not None:
+            self._check_physical()
+
+    def _check_physical(self) -> None:
+        """The recorded physical values must normalise to the gains (paper §II-A)."""
+        if not isinstance(self.physical, PhysicalParameters):
+            raise AssumptionError(
+                f"physical must be a PhysicalParameters (see Parameters.from_physical); got {type(self.physical).__name__}"
+            )
+        expected = self.physical.normalised()
+        wrong = [f"{n} = {_fmt(getattr(self, n))} but the physical values give {_fmt(q)}"
+                 for n, q in expected.items() if getattr(self, n) != q]
+        if wrong:
+            raise AssumptionError("the physical parameters do not normalise to the gains: " + "; ".join(wrong))
 
     def __hash__(self) -> int:
         # hashing four Fractions costs microseconds, and every simulation looks its gains up
@@ -153,23 +232,31 @@ class Parameters:
             If ``m <= 0``, ``alpha_v < 0`` or the normalised gains violate
             Assumption 1 or ``f_c > 0``.
 
+        Returns
+        -------
+        Parameters
+            The normalised gains, with the physical values kept exactly in
+            :attr:`physical` (:func:`~symbolic_friction.certify` records them in
+            the certificate, whose verifier checks that they normalise).
+
         Examples
         --------
-        >>> Parameters.from_physical(m=2, k_p_bar=6, k_i_bar=8, k_d_bar="12.3", alpha_v="0.5", f_c_bar=2).k_v
+        >>> p = Parameters.from_physical(m=2, k_p_bar=6, k_i_bar=8, k_d_bar="12.3", alpha_v="0.5", f_c_bar=2)
+        >>> p.k_v
         Fraction(32, 5)
+        >>> p.physical.m, p.physical.k_d_bar
+        (Fraction(2, 1), Fraction(123, 10))
+        >>> p == Parameters(k_p=3, k_i=4, k_v="6.4", f_c=1)  # the same dynamics
+        True
         """
-        m_q = to_rational(m, name="m")
-        if not m_q > 0:
-            raise AssumptionError(f"the mass needs m > 0; got m = {_fmt(m_q)}")
-        a_q = to_rational(alpha_v, name="alpha_v")
-        if a_q < 0:
-            raise AssumptionError(f"the viscous coefficient needs alpha_v ≥ 0; got alpha_v = {_fmt(a_q)}")
+        physical = PhysicalParameters(
+            m=m, k_p_bar=k_p_bar, k_i_bar=k_i_bar, k_d_bar=k_d_bar, alpha_v=alpha_v, f_c_bar=f_c_bar, f_s_bar=f_s_bar
+        )
+        gains = physical.normalised()
         return cls(
-            k_p=to_rational(k_p_bar, name="k_p_bar") / m_q,
-            k_i=to_rational(k_i_bar, name="k_i_bar") / m_q,
-            k_v=(to_rational(k_d_bar, name="k_d_bar") + a_q) / m_q,
-            f_c=to_rational(f_c_bar, name="f_c_bar") / m_q,
-            f_s=None if f_s_bar is None else to_rational(f_s_bar, name="f_s_bar") / m_q,
+            **gains,
+            f_s=None if physical.f_s_bar is None else physical.f_s_bar / physical.m,
+            physical=physical,
         )
 
     @classmethod

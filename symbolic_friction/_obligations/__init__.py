@@ -35,13 +35,14 @@ def obligation_modules() -> tuple[ModuleType, ...]:
         lemma3,
         model,
         prop1,
+        quadratic,
         regularization,
         remark,
         table1,
     )
 
     return (coordinates, regularization, assumption1, equilibria, distance, model, lemma1, lemma2, remark,
-            claim1, prop1, lemma3, cor1, table1, certificate)
+            claim1, prop1, lemma3, cor1, table1, certificate, quadratic)
 
 
 def registry() -> tuple[type[Obligation], ...]:
@@ -75,6 +76,7 @@ def registry() -> tuple[type[Obligation], ...]:
         VRuntime,
     )
     from .prop1 import Prop1Invariance, StabilityBound
+    from .quadratic import QuadraticPStructure, QuadraticStabilityBound, QuadraticUExit, QuadraticURate, QuadraticVDecrease
     from .regularization import Regularization
     from .remark import RemarkArmstrong
     from .table1 import TableI
@@ -86,6 +88,7 @@ def registry() -> tuple[type[Obligation], ...]:
         Lemma1Uniqueness, Lemma2P, Lemma2LowerBound, Lemma2dVdt, RemarkArmstrong, Claim1Cases,
         Prop1Invariance, LemmaR, HatVBounds, HatVDerivative, StabilityBound, Inflation, Distances, TableI,
         Assumption1Encoding, CertificateVerifier, VerifierDecision,
+        QuadraticPStructure, QuadraticVDecrease, QuadraticURate, QuadraticUExit, QuadraticStabilityBound,
     )
 
 

@@ -124,6 +124,19 @@ def simulate(
     Returns
     -------
     Solution
+        States ``z`` and ``x`` as ``(n_t, 3)`` rows; ``solution.states`` is
+        ``z`` as ``(3, n_t)``, python-control's orientation.
+
+    Examples
+    --------
+    >>> from symbolic_friction import Moreau, Parameters, simulate
+    >>> p = Parameters.table_i("a")
+    >>> sol = simulate(p, (0, 1, 0), 20)
+    >>> sol.status, len(sol.events) > 0, sol.z.shape == (sol.t.size, 3)
+    ('t_end reached', True, True)
+    >>> rough = simulate(p, (0, 1, 0), 20, method=Moreau(h=1e-3), t_eval=sol.t)
+    >>> bool(abs(rough.z - sol.z).max() < 1e-2)  # first order in h
+    True
     """
     if not isinstance(params, Parameters):
         raise SimulationError(f"params must be a Parameters instance; got {type(params).__name__}")

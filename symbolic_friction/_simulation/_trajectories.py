@@ -18,6 +18,7 @@ import numpy as np
 
 from .._infra.errors import SimulationError
 from .._model.parameters import Parameters
+from ._frames import SolutionFrames, TrajectoriesFrames
 
 __all__ = ["Trajectories", "Solution", "Status", "AlongStates"]
 
@@ -76,8 +77,15 @@ class AlongStates:
 
 
 @dataclass(frozen=True, eq=False)
-class Trajectories(AlongStates):
+class Trajectories(AlongStates, TrajectoriesFrames):
     """``N`` simulated solutions on common sample times ``t``.
+
+    State arrays are ``(N, m, 3)``: trajectory, then time, then state, so that
+    ``z[i]`` is one solution as ``(m, 3)`` rows.  python-control and
+    scipy.signal put the state first: :attr:`states` is the same array as
+    ``(3, N, m)`` (a view, ``np.moveaxis(z, -1, 0)``).  :meth:`to_pandas`,
+    :meth:`to_xarray` and :meth:`plot` hand the samples to pandas, xarray and
+    matplotlib.
 
     Attributes
     ----------
@@ -115,6 +123,19 @@ class Trajectories(AlongStates):
         A label per initial state (``"sphere r=1"``, …), ``""`` by default.
     options : dict
         The method's accuracy knobs.
+    time : ndarray, shape (m,)
+        ``t`` under python-control's name.
+    states : ndarray, shape (3, N, m)
+        ``z`` in python-control's orientation (state first).
+
+    Examples
+    --------
+    >>> from symbolic_friction import Parameters, simulate_batch
+    >>> batch = simulate_batch(Parameters.table_i("a"), [(0, 1, 0), (0, -1, 0)], 5, t_eval=[0, 1, 5])
+    >>> batch
+    Trajectories(2 × 3 samples on [0, 5], method 'event', 2 complete, Parameters(k_p=3, k_i=4, k_v=32/5, f_c=1))
+    >>> batch.z.shape, batch.states.shape
+    ((2, 3, 3), (3, 2, 3))
     """
 
     params: Parameters
@@ -161,6 +182,14 @@ class Trajectories(AlongStates):
             raise SimulationError("malformed trajectories: " + "; ".join(problems))
         if self.source is None:
             object.__setattr__(self, "source", np.full(N, "", dtype=object))
+
+    def __repr__(self) -> str:
+        # a summary, as numpy and xarray print: the arrays are a click away, not 400 lines of repr
+        m = self.t.size
+        span = f" on [{self.t[0]:g}, {self.t[-1]:g}]" if m else ""
+        complete = int(np.count_nonzero(self.complete))
+        return (f"Trajectories({self.size} × {m} samples{span}, method {self.method!r}, "
+                f"{complete} complete, {self.params})")
 
     @classmethod
     def _unchecked(cls, **fields: Any) -> "Trajectories":
@@ -258,8 +287,12 @@ class Trajectories(AlongStates):
         return (self.solution(i) for i in range(self.size))
 
 
-class Solution(AlongStates):
+class Solution(AlongStates, SolutionFrames):
     """One simulated solution: a view of one row of a :class:`.Trajectories`.
+
+    State arrays are ``(n, 3)``, one row per sample (as ``scipy.integrate.odeint``);
+    :attr:`states` is ``z`` in python-control's and ``solve_ivp``'s orientation,
+    ``(3, n)``.
 
     Attributes
     ----------
@@ -284,6 +317,21 @@ class Solution(AlongStates):
         The accuracy knobs used.
     trajectories, index
         The batch this is a view of, and the row.
+    time : ndarray, shape (n,)
+        ``t`` under python-control's name.
+    states : ndarray, shape (3, n)
+        ``z`` in python-control's orientation (``solution.states[1]`` is ``s(t)``).
+
+    Examples
+    --------
+    >>> from symbolic_friction import Parameters, simulate
+    >>> sol = simulate(Parameters.table_i("a"), (0, 1, 0), 10, t_eval=[0, 5, 10])
+    >>> sol
+    Solution(method='event', samples=3, events=3, status='t_end reached')
+    >>> sol.z.shape, sol.states.shape
+    ((3, 3), (3, 3))
+    >>> sol.to_pandas().columns.tolist()  # doctest: +SKIP
+    ['e_i', 's', 'v', 'sigma', 'phi', 'mode']
     """
 
     def __init__(self, trajectories: "Trajectories", index: int) -> None:

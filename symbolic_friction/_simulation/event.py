@@ -227,6 +227,13 @@ class EventDriven(SimulationMethod):
 
     Exact: no accuracy knob (``order = inf``); states agree with the 50-digit
     reference to about 1e-14 relative.
+
+    Examples
+    --------
+    >>> from symbolic_friction import EventDriven, Parameters, simulate
+    >>> sol = simulate(Parameters.table_i("b"), (0, 3, 0), 40, method=EventDriven(grid_points=5))
+    >>> sol.t.size - len(sol.events), sol.status  # the grid, plus every event time
+    (5, 't_end reached')
     """
 
     max_events: int = 10_000

@@ -200,6 +200,16 @@ def vector_field(params: Parameters, epsilon: float, law: str) -> tuple[Any, Any
 class Regularized(SimulationMethod):
     """``SGN(v) ≈ tanh(v/ε)`` (or ``sat(v/ε)``) integrated by a stiff scipy solver.
 
+    Examples
+    --------
+    >>> from symbolic_friction import Parameters, Regularized, simulate
+    >>> p = Parameters.table_i("a")
+    >>> exact = simulate(p, (0, 1, 0), 5, t_eval=[5])
+    >>> smooth = simulate(p, (0, 1, 0), 5, method=Regularized(epsilon=1e-3), t_eval=[5])
+    >>> bool(abs(smooth.z - exact.z).max() < 1e-2)
+    True
+
+
     See the module docstring for the options and the output conventions.
     """
 

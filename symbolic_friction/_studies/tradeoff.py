@@ -191,6 +191,13 @@ def measure_tradeoff(
     thetas : sequence of float, keyword-only
         The weights of the Moreau θ-method, one curve each (default ``1`` and ``½``);
         used only when ``sweeps`` is not given.
+
+    Examples
+    --------
+    >>> from symbolic_friction import Parameters, measure_tradeoff
+    >>> result = measure_tradeoff(Parameters.table_i("a"), [(0, 1, 0)], 5, samples=11, quick=True)  # doctest: +SKIP
+    >>> result  # doctest: +SKIP
+    Tradeoff('user gains', 1 initial state(s), t_end = 5, ... configurations)
     """
     from .._simulation import simulate
 

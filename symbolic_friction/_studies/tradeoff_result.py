@@ -118,6 +118,12 @@ class Tradeoff:
     cost: tuple[CostPoint, ...] = field(default=())
     kernel: str = ""  # the event kernel the timings used: "numba" (compiled) or "python"
 
+    def __repr__(self) -> str:
+        # a summary; the curves are in .curves and in the report
+        points = sum(len(c.points) for c in self.curves)
+        return (f"Tradeoff({self.label!r}, {len(self.z0s)} initial state(s), t_end = {self.t_end:g}, "
+                f"{len(self.curves)} methods, {points} configurations)")
+
     @property
     def event(self) -> Point:
         return next(c for c in self.curves if c.label == "event").points[0]

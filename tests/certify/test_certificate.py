@@ -10,7 +10,8 @@ from fractions import Fraction as F
 
 import pytest
 
-from symbolic_friction import CertificateFormatError, Parameters
+from symbolic_friction import Parameters
+from symbolic_friction.errors import CertificateFormatError
 from symbolic_friction._certify import OBLIGATIONS, SCHEMA, Certificate, Provenance, certify, dumps, load, loads
 from symbolic_friction._certify import certificate as certificate_module
 from symbolic_friction._certify.certificate import atomic_write_text
@@ -67,7 +68,8 @@ def test_no_timestamps_timings_or_library_versions(data):
 
 def test_kappa_squared_and_kappa(cert):
     assert cert.kappa_squared == cert.c2 * cert.c2_hat / (cert.c1 * cert.c1_hat)
-    assert cert.kappa == float(cert.overshoot_bound)
+    assert cert.kappa == F(cert.overshoot_bound) and isinstance(cert.kappa, F)
+    assert cert.kappa**2 >= cert.kappa_squared  # the claim, exactly
     assert list(cert.constants) == ["k1", "k2", "k3", "k4", "c1", "c2", "c1_hat", "c2_hat", "c"]
     assert list(cert.parameters) == ["k_p", "k_i", "k_v", "f_c"]
 
@@ -300,7 +302,7 @@ def test_atomic_write_keeps_the_old_file_when_replacing_fails(tmp_path, monkeypa
 
 
 def test_as_parameters(cert):
-    from symbolic_friction import AssumptionError
+    from symbolic_friction.errors import AssumptionError
 
     assert cert.as_parameters() == Parameters.table_i("a")
     with pytest.raises(AssumptionError, match=r"Assumption 1 needs k_v·k_p > k_i; got 3 ≤ 4"):

@@ -10,7 +10,8 @@ from pathlib import Path
 
 import pytest
 
-from symbolic_friction import CertificateError, CertificateFormatError, Parameters, ParameterError
+from symbolic_friction import Parameters
+from symbolic_friction.errors import CertificateError, CertificateFormatError, ParameterError
 from symbolic_friction._certify import (
     TABLE_I_FILES,
     certify,
@@ -20,6 +21,7 @@ from symbolic_friction._certify import (
     dumps,
     regenerate,
     render_files,
+    verify_certificate,
     write_certificate,
 )
 from symbolic_friction._certify import pipeline as pipeline_module
@@ -50,7 +52,7 @@ def test_regeneration_is_byte_identical(table_dir, tmp_path):
 def test_committed_proofs_are_verified_and_up_to_date():
     """The files under proofs/ are exactly what `symbolic-friction certify` writes now."""
     results = check_committed_certificates(REPO / "proofs", expected=TABLE_I_FILES)
-    results = [r for r in results if r.path.parent.name != "hunting"]  # those: tests/hunting
+    results = [r for r in results if r.path.parent.name not in ("hunting", "quadratic")]  # tests/hunting, test_quadratic
     assert [r.path.name for r in results] == sorted(TABLE_I_FILES)
     for result in results:
         assert result.ok, result.describe()
@@ -157,3 +159,14 @@ def test_write_listed_certificates_regenerates_from_provenance_and_never_invents
     entries = check_listed_certificates(tmp_path, ["mine.json", "absent.json"])
     assert [e.ok for e in entries] == [True, False]
     assert entries[1].reason.startswith("missing; create it with `symbolic-friction certify")
+
+
+def test_physical_values_reach_the_certificate():
+    params = Parameters.from_physical(m=2, k_p_bar=6, k_i_bar=8, k_d_bar="12.3", alpha_v="0.5", f_c_bar=2)
+    cert = certify(params, mode="feasible")
+    assert cert.physical == params.physical.as_dict()
+    assert verify_certificate(cert).proved
+    # the verifier re-derives the gains from them: a forged mass fails
+    forged = replace(cert, physical={**cert.physical, "m": F(3)})
+    assert not verify_certificate(forged).proved
+    assert certify(Parameters.table_i("a"), mode="feasible").physical is None

@@ -14,7 +14,8 @@ from fractions import Fraction as F
 import mpmath
 import pytest
 
-from symbolic_friction import InaccurateSolveError, InfeasibleError, Parameters, ParameterError
+from symbolic_friction import Parameters
+from symbolic_friction.errors import InaccurateSolveError, InfeasibleError, ParameterError
 from symbolic_friction._certify import search as search_module
 from symbolic_friction._certify.rounding import (
     DIGITS,
@@ -32,7 +33,7 @@ from symbolic_friction._certify.search import (
     eigen_bounds_P,
     find_candidate,
 )
-from symbolic_friction import CertificateError
+from symbolic_friction.errors import CertificateError
 from tests.tolerance import assert_close
 
 CASE_A = Parameters.table_i("a")
@@ -307,7 +308,7 @@ def test_optimal_without_a_point_is_not_a_candidate(monkeypatch):
 def test_a_formulation_that_is_not_dpp_is_refused(monkeypatch):
     import cvxpy as cp
 
-    from symbolic_friction import SolverError
+    from symbolic_friction.errors import SolverError
 
     monkeypatch.setattr(cp.Problem, "is_dpp", lambda self, context="dcp": False)
     with pytest.raises(SolverError, match="not DPP-compliant"):

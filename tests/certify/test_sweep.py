@@ -8,7 +8,8 @@ from fractions import Fraction as F
 
 import pytest
 
-from symbolic_friction import InaccurateSolveError, Parameters, ParameterError
+from symbolic_friction import Parameters
+from symbolic_friction.errors import InaccurateSolveError, ParameterError
 from symbolic_friction._certify import certify_many, dumps, verify_certificate
 from symbolic_friction._certify import sweep as sweep_module
 

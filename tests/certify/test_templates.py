@@ -15,7 +15,7 @@ from pathlib import Path
 
 import pytest
 
-from symbolic_friction import CertificateFormatError
+from symbolic_friction.errors import CertificateFormatError
 from symbolic_friction._certify import Template, check_listed_certificates, register
 from symbolic_friction._certify._template import registered, unregister
 from symbolic_friction._certify.templates import builtin_templates, read_certificate_file, verify_template_file

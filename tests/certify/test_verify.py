@@ -10,7 +10,8 @@ from fractions import Fraction as F
 import mpmath
 import pytest
 
-from symbolic_friction import CertificateError, Parameters
+from symbolic_friction import Parameters
+from symbolic_friction.errors import CertificateError
 from symbolic_friction._certify import Certificate, VerificationReport, certify, verify_certificate, verify_file
 from symbolic_friction._certify import verify as verify_module
 from symbolic_friction._certify.verify import Inequality, Semidefinite, _det, decide

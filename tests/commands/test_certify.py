@@ -21,7 +21,7 @@ def test_no_arguments_regenerates_table_i_in_both_modes(tmp_path, capsys):
     assert main(["certify", "--out", str(tmp_path)]) == 0
     out = capsys.readouterr().out.splitlines()
     assert len(out) == 4 and all(line.startswith("wrote ") for line in out)
-    assert "case_a_tightest.json and case_a_tightest.md (tightest): |x(t)|_A <= 3.46703" in out[1]
+    assert "case_a_tightest.json and case_a_tightest.md (tightest) for k_p=3, k_i=4, k_v=32/5, f_c=1: |x(t)|_A <= 3.46703" in out[1]
     for name in TABLE_I_FILES:
         assert verify_file(tmp_path / name).proved
         # identical to the committed proofs/ (the CLI is what generated them)
@@ -52,6 +52,8 @@ def test_one_gain_set_from_physical_parameters_with_name_margin_and_mode(tmp_pat
         "--mode", "feasible", "--margin", "1/1000", "--name", "mass2", "--out", str(tmp_path),
     ]  # fmt: skip
     assert main(argv) == 0
+    # the normalised gains that were certified are printed, with the physical values they came from
+    assert "for k_p=3, k_i=4, k_v=32/5, f_c=1 (m=2, k_p_bar=6," in capsys.readouterr().out
     cert = load(tmp_path / "mass2.json")
     params = Parameters.from_physical(m=2, k_p_bar=6, k_i_bar=8, k_d_bar="12.3", alpha_v="0.5", f_c_bar=2)
     assert (cert.k_p, cert.k_i, cert.k_v, cert.f_c) == (params.k_p, params.k_i, params.k_v, params.f_c)

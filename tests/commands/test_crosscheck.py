@@ -93,6 +93,26 @@ def test_no_certificate_found(monkeypatch, tmp_path, capsys):
     assert "no certificate given and no proofs/*.json" in capsys.readouterr().err
 
 
+def test_skipped_files_are_named_with_the_reason(monkeypatch, tmp_path, capsys):
+    import shutil
+
+    (tmp_path / "proofs").mkdir()
+    shutil.copy(PROOFS / "case_a_feasible.json", tmp_path / "proofs")
+    shutil.copy(PROOFS / "hunting" / "case_a_fs1.2.json", tmp_path / "proofs" / "hunt.json")
+    shutil.copy(PROOFS / "quadratic" / "case_a.json", tmp_path / "proofs" / "quad.json")
+    monkeypatch.chdir(tmp_path)
+    assert main(["crosscheck", "--trajectories", "4", "--no-adversarial", "--samples", "11"]) == 0
+    out = capsys.readouterr().out
+    assert "skipped proofs/hunt.json: a hunting certificate: it proves a cycle of the stiction model" in out
+    assert "skipped proofs/quad.json: a quadratic/v1 certificate: the cross-check's properties" in out
+    assert main(["crosscheck", "--trajectories", "4", "--no-adversarial", "--samples", "11", "--json"]) == 0
+    skipped = json.loads(capsys.readouterr().out)["skipped"]
+    assert [s["file"] for s in skipped] == ["proofs/hunt.json", "proofs/quad.json"] and "stiction" in skipped[0]["reason"]
+    (tmp_path / "proofs" / "case_a_feasible.json").unlink()
+    assert main(["crosscheck"]) == 2
+    assert "(skipped 2 of another template)" in capsys.readouterr().err
+
+
 def test_malformed_certificate(tmp_path, capsys):
     path = tmp_path / "bad.json"
     path.write_text("{not json", encoding="utf-8")

@@ -51,7 +51,11 @@ def test_writes_csv_npz_and_png(tmp_path, capsys):
     assert list(rows[0]) == ["trajectory", "t", "mode", "e_i", "s", "v", "sigma", "phi", "V", "distance"]
     assert len(rows) == 3 * 3001
     assert (tmp_path / "triple-root_events.csv").read_text().startswith("trajectory,t,mode_before,mode_after\n")
+    assert "as csv" in out and "triple-root.csv (CSV)" in out
     assert main(["simulate", "triple-root", "--out", str(tmp_path), "--format", "npz", "--png"]) == 0
+    out = capsys.readouterr().out
+    # the summary and the closing lines name the format written, not the scene's default
+    assert "as npz" in out and "as csv" not in out and "triple-root.npz (NPZ)" in out and "triple-root.png (PNG)" in out
     data = np.load(tmp_path / "triple-root.npz")
     assert data["z_0"].shape == (3001, 3) and data["t_0"][-1] == 30.0
     assert (tmp_path / "triple-root.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

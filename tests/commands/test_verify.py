@@ -114,8 +114,23 @@ def test_every_file_is_checked_and_the_worst_status_wins(tmp_path, capsys):
     lines = captured.out.splitlines()
     assert lines[0].startswith("PROVED ") and lines[1].startswith("FAILED ") and lines[2].startswith("MALFORMED ")
     assert main(["verify", *files[:2]]) == 1
-    assert main(["verify", files[2], _write(tmp_path, "{}", "empty.json")]) == 2
-    assert "2 files are missing or malformed; first: " in capsys.readouterr().err
+    empty = _write(tmp_path, "{}", "empty.json")
+    assert main(["verify", files[2], empty]) == 2
+    captured = capsys.readouterr()
+    assert f"2 of 2 files are missing or malformed (reasons above): {files[2]}, {empty}" in captured.err
+
+
+def test_each_error_is_printed_once(tmp_path, capsys):
+    # a lone file: its reason is the error line and nothing else
+    junk = _write(tmp_path, "[", "junk.json")
+    assert main(["verify", junk]) == 2
+    captured = capsys.readouterr()
+    assert captured.out == "" and (captured.out + captured.err).count("not valid JSON") == 1
+    # a listing: the reason on the file's line, the closing error names the file only
+    assert main(["verify", str(PROOFS / "case_a_feasible.json"), junk]) == 2
+    captured = capsys.readouterr()
+    assert (captured.out + captured.err).count("not valid JSON") == 1
+    assert "MALFORMED" in captured.out and "1 of 2 files are missing or malformed" in captured.err
 
 
 def test_console_script_exit_codes(tmp_path):

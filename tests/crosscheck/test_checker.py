@@ -5,9 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from symbolic_friction import ParameterError
+from symbolic_friction.errors import ParameterError
 from symbolic_friction import Parameters
-from symbolic_friction import SimulationError
+from symbolic_friction.errors import SimulationError
 from symbolic_friction._crosscheck import Claims
 from symbolic_friction._simulation import Trajectories
 from symbolic_friction._crosscheck._checker import BatchChecker

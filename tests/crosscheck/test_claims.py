@@ -5,7 +5,7 @@ from __future__ import annotations
 import dataclasses
 import pytest
 
-from symbolic_friction import CertificateFormatError
+from symbolic_friction.errors import CertificateFormatError
 from symbolic_friction._crosscheck import Claims
 from tests.crosscheck.helpers import _cert
 

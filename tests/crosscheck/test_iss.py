@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from symbolic_friction import ParameterError
+from symbolic_friction.errors import ParameterError
 from symbolic_friction import Parameters
 from symbolic_friction._crosscheck import iss_gain
 

@@ -7,7 +7,8 @@ from fractions import Fraction
 import numpy as np
 import pytest
 
-from symbolic_friction import ParameterError, Parameters
+from symbolic_friction import Parameters
+from symbolic_friction.errors import ParameterError
 from symbolic_friction._crosscheck._iss_search import (
     _BOUNDS,
     FAMILIES,

@@ -14,3 +14,8 @@ def test_verdicts(paper_report):
     for check in paper_report.checks:
         assert check.verdict == "passed" and check.complete
         assert check.tightness["all"] == max(check.max_overshoot.values()) / check.claims.kappa
+
+
+def test_repr_is_the_verdict_line(paper_report):
+    text = repr(paper_report)
+    assert text == f"CrosscheckReport({paper_report.summary()})" and "\n" not in text and len(text) < 300

@@ -6,7 +6,7 @@ import dataclasses
 import numpy as np
 import pytest
 
-from symbolic_friction import ParameterError
+from symbolic_friction.errors import ParameterError
 from symbolic_friction import Parameters
 from symbolic_friction._crosscheck import PROPERTIES
 from symbolic_friction._crosscheck import Claims
@@ -64,7 +64,7 @@ def test_crosscheck_needs_a_certificate():
 def test_unproved_certificate_is_refused_by_default(tmp_path):
     from dataclasses import replace
 
-    from symbolic_friction import UnprovedCertificateError
+    from symbolic_friction.errors import UnprovedCertificateError
     from symbolic_friction._certify import load
 
     cert = load(PROOFS / "case_a_tightest.json")

@@ -8,8 +8,10 @@ from pathlib import Path
 
 import pytest
 
-from symbolic_friction import CertificateFormatError, Parameters
-from symbolic_friction._hunting import HuntingCertificate, box_around, find_cycles, verify_hunting_file, write_hunting
+from symbolic_friction import Parameters
+from symbolic_friction.errors import CertificateFormatError
+from symbolic_friction._certify.hunting import certificate_for
+from symbolic_friction._hunting import find_cycles, verify_hunting_file, write_hunting
 from symbolic_friction._hunting._report import with_static
 from symbolic_friction._cli.main import main
 
@@ -20,7 +22,7 @@ PROOFS = Path(__file__).resolve().parents[2] / "proofs"
 @pytest.fixture(scope="module")
 def cert_file(tmp_path_factory):
     (c,) = find_cycles(A12, general=False)
-    cert = HuntingCertificate(params=A12, box=box_around(c.sigma, c.slip_time), cycle={"period": f"{c.period:.17g}"})
+    cert, _ = certificate_for(A12, c.sigma, c.slip_time)
     return write_hunting(cert, tmp_path_factory.mktemp("h") / "a.json")
 
 
@@ -106,7 +108,8 @@ def test_the_committed_hunting_certificates_verify():
 def test_check_verifies_a_listed_hunting_certificate_and_catches_a_moved_box(cert_file, tmp_path):
     from symbolic_friction._certify import check_listed_certificates
 
-    good = edited(tmp_path, cert_file, lambda d: None)
+    good = tmp_path / "good.json"
+    good.write_bytes(Path(cert_file).read_bytes())
     (entry,) = check_listed_certificates(tmp_path, [good.name])
     assert entry.ok and "a hunting cycle" in entry.describe()
     bad = edited(tmp_path, cert_file, _shift_sigma)
@@ -131,3 +134,61 @@ def test_hunting_files_are_read_as_strictly_as_stability_certificates(cert_file,
     loose = edited(tmp_path, cert_file, lambda d: d["parameters"].update(k_p="3.0"))
     with pytest.raises(CertificateFormatError, match="parameters.k_p must be an exact rational string"):
         verify_hunting_file(loose)
+
+
+def test_every_number_of_cycle_is_decided_and_an_edited_one_fails_naming_it(cert_file, tmp_path, capsys):
+    data = json.loads(Path(cert_file).read_text(encoding="utf-8"))
+    assert sorted(data["cycle"]) == ["multiplier", "period", "sigma", "slip_time", "stable", "stick_time"]
+    for field, value in [("period", ["99", "99"]), ("stick_time", ["0", "1"]), ("slip_time", ["1", "2"]),
+                         ("sigma", ["1/2", "1"]), ("multiplier", ["-1", "0"]), ("stable", False)]:
+        path = edited(tmp_path, cert_file, lambda d: d["cycle"].update({field: value}))
+        report = verify_hunting_file(path)
+        assert [c.name for c in report.checks if not c.holds] == [f"cycle.{field}"]
+        assert main(["verify", str(path)]) == 1
+        out = capsys.readouterr().out
+        assert out.startswith("NOT PROVED ") and f"cycle.{field}" in out
+
+
+def test_a_looser_but_true_cycle_verifies_and_is_stale(cert_file, tmp_path):
+    """A wider interval is still proved (it holds the enclosure); it is not what `hunting` writes, so `check` says stale."""
+    from symbolic_friction._certify import check_listed_certificates
+
+    path = edited(tmp_path, cert_file, lambda d: d["cycle"].update(period=["46", "47"]))
+    assert verify_hunting_file(path).proved
+    (entry,) = check_listed_certificates(tmp_path, [path.name])
+    assert entry.proved and entry.stale and "differs from what `symbolic-friction hunting` writes" in entry.reason
+
+
+def test_regenerating_a_committed_hunting_file_gives_its_bytes():
+    from symbolic_friction._certify.hunting import dumps, load_hunting
+
+    for path in COMMITTED:
+        cert = load_hunting(path)
+        (s_lo, s_hi), (t_lo, t_hi) = cert.box.sigma, cert.box.tau
+        fresh, proof = certificate_for(cert.params, (s_lo + s_hi) / 2, (t_lo + t_hi) / 2)
+        assert proof.proved and dumps(fresh) == path.read_text(encoding="utf-8"), path
+        # from a start off by 1e-12 (what a float search returns) the polished zero, hence the file, is the same
+        again, _ = certificate_for(cert.params, float(s_lo) * (1 + 1e-12), float(t_hi))
+        assert dumps(again) == dumps(fresh)
+
+
+def test_a_cycle_member_that_is_not_intervals_is_malformed(cert_file, tmp_path):
+    for edit, match in [
+        (lambda d: d["cycle"].update(period="46.86"), "cycle.period must be a list"),
+        (lambda d: d["cycle"].update(iss={}), "cycle must have exactly the keys"),
+        (lambda d: d["cycle"].update(period=["47", "46"]), "lo ≤ hi"),
+        (lambda d: d["cycle"].update(stable="yes"), "cycle.stable must be true, false or null"),
+    ]:
+        with pytest.raises(CertificateFormatError, match=match):
+            verify_hunting_file(edited(tmp_path, cert_file, edit))
+
+
+def test_check_write_regenerates_a_stale_hunting_file(cert_file, tmp_path):
+    from symbolic_friction._certify import check_listed_certificates, write_listed_certificates
+
+    path = edited(tmp_path, cert_file, lambda d: d["cycle"].update(period=["46", "47"]))
+    assert check_listed_certificates(tmp_path, [path.name])[0].stale
+    assert write_listed_certificates(tmp_path, [path.name]) == [path]
+    assert path.read_bytes() == Path(cert_file).read_bytes()
+    (entry,) = check_listed_certificates(tmp_path, [path.name])
+    assert entry.ok

@@ -7,7 +7,8 @@ from fractions import Fraction as F
 import numpy as np
 import pytest
 
-from symbolic_friction import ParameterError, Parameters, simulate
+from symbolic_friction import Parameters, simulate
+from symbolic_friction.errors import ParameterError
 from symbolic_friction._hunting import HuntingMap, find_cycles
 from symbolic_friction._hunting._map import real_root_escape
 from symbolic_friction._hunting._report import simulation_agreement, with_static

@@ -8,7 +8,8 @@ import mpmath
 import numpy as np
 import pytest
 
-from symbolic_friction import Parameters, SimulationError
+from symbolic_friction import Parameters
+from symbolic_friction.errors import SimulationError
 from symbolic_friction._simulation.affine import (
     MatrixExponential,
     ScanTable,

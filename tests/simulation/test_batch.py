@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from symbolic_friction import SimulationError
+from symbolic_friction.errors import SimulationError
 from symbolic_friction._simulation import Status, simulate
 from symbolic_friction._simulation import Trajectories
 from symbolic_friction._simulation.batch import iter_batches, simulate_batch

@@ -6,7 +6,8 @@ from fractions import Fraction
 import numpy as np
 import pytest
 
-from symbolic_friction import Parameters, ParameterError, SimulationError
+from symbolic_friction import Parameters
+from symbolic_friction.errors import ParameterError, SimulationError
 from symbolic_friction._simulation import Status, simulate
 from symbolic_friction._simulation.friction import Coulomb, InflatedCoulomb, Step, Stribeck
 

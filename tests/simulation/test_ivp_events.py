@@ -4,7 +4,8 @@ and its guards."""
 import numpy as np
 import pytest
 
-from symbolic_friction import Parameters, SimulationError
+from symbolic_friction import Parameters
+from symbolic_friction.errors import SimulationError
 from symbolic_friction._simulation import Status, simulate
 from symbolic_friction._model.coordinates import x_to_z
 from symbolic_friction._reference import Reference, reference_table_mode
@@ -125,7 +126,7 @@ def test_an_explicit_integrator_is_refused_on_stiff_gains_with_the_reason():
     from fractions import Fraction as F
 
     from symbolic_friction import Parameters
-    from symbolic_friction import SimulationError
+    from symbolic_friction.errors import SimulationError
     from symbolic_friction._simulation import IvpEvents, simulate
 
     # (s + 1e8)(s² + 0.2 s + 1): spectral radius 1e8, 2e9 over t_end = 20

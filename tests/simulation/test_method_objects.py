@@ -9,7 +9,8 @@ import warnings
 import numpy as np
 import pytest
 
-from symbolic_friction import EventDriven, IvpEvents, Moreau, Parameters, Regularized, SimulationError, simulate
+from symbolic_friction import EventDriven, IvpEvents, Moreau, Parameters, Regularized, simulate
+from symbolic_friction.errors import SimulationError
 from symbolic_friction._simulation import SimulationMethod, Status, configure
 
 P = Parameters.table_i("a")

@@ -4,7 +4,8 @@
 import numpy as np
 import pytest
 
-from symbolic_friction import Parameters, SimulationError
+from symbolic_friction import Parameters
+from symbolic_friction.errors import SimulationError
 from symbolic_friction._simulation import simulate
 from symbolic_friction._simulation.regularized import vector_field
 

@@ -5,7 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from symbolic_friction import Parameters, SimulationError
+from symbolic_friction import Parameters
+from symbolic_friction.errors import SimulationError
 from symbolic_friction._simulation import simulate
 
 P = Parameters.table_i("a")

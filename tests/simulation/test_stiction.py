@@ -18,7 +18,8 @@ from fractions import Fraction as F
 import numpy as np
 import pytest
 
-from symbolic_friction import Parameters, SimulationError
+from symbolic_friction import Parameters
+from symbolic_friction.errors import SimulationError
 from symbolic_friction._model.coordinates import z_to_x
 from symbolic_friction._simulation import simulate
 from symbolic_friction._simulation._kernel import mode_after_slip
@@ -183,7 +184,8 @@ def test_the_reference_comparison_can_fail():
 def test_other_methods_and_the_certificate_refuse_stiction():
     with pytest.raises(SimulationError, match="f_s = 6/5 > f_c = 1"):
         simulate(A12, (0.0, 1.0, 0.0), 1.0, method="moreau", h=1e-3)
-    from symbolic_friction import ParameterError, certify
+    from symbolic_friction import certify
+    from symbolic_friction.errors import ParameterError
 
     with pytest.raises(ParameterError, match="f_s = 6/5 > f_c = 1"):
         certify(A12)

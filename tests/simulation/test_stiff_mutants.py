@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from symbolic_friction import Parameters
-from symbolic_friction import SimulationError
+from symbolic_friction.errors import SimulationError
 from symbolic_friction._simulation import IvpEvents, Status, _kernel, _kernel_flow, simulate
 from symbolic_friction._simulation.search import slip_model
 

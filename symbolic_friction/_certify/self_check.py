@@ -1,0 +1,188 @@
+"""The verifiers refuse known-false certificates: ``check`` checks its own trusted base where it runs.
+
+The package ships, in ``false_certificates/``, certificates that must *not*
+be proved, and a true one per template that must be (a verifier that refuses
+everything fails too).  ``manifest.json`` lists each file with the premise it
+breaks and the exact set of checks that fail:
+
+* a stability certificate per premise of :func:`.verify.premises`, and a
+  quadratic one per premise of :func:`.quadratic.quadratic_premises`, its
+  numbers edited so that this premise fails (with the premises it implies,
+  when the premises are not independent: ``c₁ ≤ c₂`` cannot fail while
+  ``P - c₁I ⪰ 0`` and ``c₂I - P ⪰ 0`` hold).  Where the file format already
+  refuses the edit (a positive field made ``≤ 0``: ``reader`` names the key),
+  the reader must refuse it naming the key, and the premise is decided on
+  the file's numbers directly (:func:`expected_failures`), so the verifier's
+  own premise is still shown to fail;
+* hunting certificates: a box around a later zero of ``v``, a box that
+  holds no zero, boxes shifted so that the zero lies just outside each end
+  in ``σ`` and in ``τ`` (the Krawczyk inclusion, both ends), ``σ_lo = 0``, a
+  monotonicity start ``τ_a`` before ``v`` peaks, a ``σ`` range where ``v' > 0``
+  near ``τ = 0`` cannot be shown, each number of ``cycle`` edited, and a
+  ``verdict`` of ``not proved``.
+
+:func:`refuse_false_certificates` verifies every file through the same
+route as ``symbolic-friction verify`` and holds only if each false one is
+refused naming exactly its manifest's checks, each true one is proved, and
+every premise of the stability and quadratic verifiers has a false certificate.  A
+dropped premise, a broken python-flint or sympy, or a patched install then
+fails ``check``.
+"""
+
+from __future__ import annotations
+
+import json
+import time
+from dataclasses import dataclass
+from fractions import Fraction
+from pathlib import Path
+from typing import Any
+
+__all__ = ["DIRECTORY", "Refusal", "SelfCheck", "refuse_false_certificates", "expected_failures", "named_failures"]
+
+DIRECTORY = Path(__file__).with_name("false_certificates")
+"""Where the known-false (and the two true) certificates are shipped."""
+
+
+@dataclass(frozen=True)
+class Refusal:
+    """One shipped file and what the verifier said about it.
+
+    Attributes
+    ----------
+    file : str
+    premise : str or None
+        The premise it breaks (None for a true control certificate).
+    expected, named : tuple of str
+        The checks that must fail, and those that failed (``reader: KEY`` when the format refused it).
+    ok : bool
+    """
+
+    file: str
+    premise: str | None
+    expected: tuple[str, ...]
+    named: tuple[str, ...]
+    ok: bool
+
+    def describe(self) -> str:
+        if self.premise is None:
+            return f"{self.file}: true, {'proved' if self.ok else 'REFUSED'}"
+        if self.ok:
+            return f"{self.file}: refused, naming {', '.join(self.named)}"
+        return f"{self.file}: breaks {self.premise}; expected {', '.join(self.expected) or 'a refusal'}, got {', '.join(self.named) or 'proved'}"
+
+
+@dataclass(frozen=True)
+class SelfCheck:
+    """The outcome of :func:`refuse_false_certificates`."""
+
+    refusals: tuple[Refusal, ...]
+    uncovered: tuple[str, ...]
+    seconds: float
+
+    @property
+    def ok(self) -> bool:
+        """Every file as its manifest says, every premise covered, and at least one file checked."""
+        return bool(self.refusals) and all(r.ok for r in self.refusals) and not self.uncovered
+
+
+class _Raw:
+    """A certificate's numbers read as plain rationals, past the format's positivity checks."""
+
+    def __init__(self, data: dict) -> None:
+        for group in ("parameters", "constants"):
+            for name, value in data[group].items():
+                setattr(self, name, Fraction(value))
+        self.constants = {name: Fraction(value) for name, value in data["constants"].items()}
+        self.kappa = Fraction(data["overshoot_bound"])
+
+
+def _is_quadratic(data: dict) -> bool:
+    from .quadratic import TEMPLATE_ID
+
+    return data.get("template") == TEMPLATE_ID
+
+
+def expected_failures(data: dict) -> list[str]:
+    """The premises that fail on a stability or quadratic file's numbers, decided exactly by its verifier's own functions."""
+    if _is_quadratic(data):
+        from .quadratic import decide_premise, quadratic_premises
+
+        return [check.name for check in map(decide_premise, quadratic_premises(_Raw(data))) if not check.holds]
+    from .verify import decide, premises
+
+    return [check.name for check in map(decide, premises(_Raw(data))) if not check.holds]
+
+
+def named_failures(report: Any) -> list[str]:
+    """The names of the failing checks of a report of either template (``verdict`` when only the file's verdict fails)."""
+    failing = [c.name for c in report.checks if not c.holds]
+    if not failing and not report.proved:
+        return ["verdict"]
+    return failing
+
+
+def _premise_names() -> dict[str, list[str]]:
+    """Every premise name of the stability and the quadratic verifier (on a stand-in whose numbers are all 1)."""
+    from .quadratic import CONSTANTS, quadratic_premises
+    from .verify import premises
+
+    class One:
+        constants = {name: Fraction(1) for name in CONSTANTS}
+
+        def __getattr__(self, name: str) -> Fraction:
+            return Fraction(1)
+
+    return {"stability": [p.name for p in premises(One())], "quadratic": [p.name for p in quadratic_premises(One())]}
+
+
+def _verify(path: Path) -> Any:
+    """Read and decide a file as ``verify`` does, without the stability format's second reader (the JSON Schema: 10 ms a file)."""
+    from ._json import read_json
+    from ._template import template_for
+    from .certificate import Certificate
+    from .templates import builtin_templates
+
+    stability = builtin_templates()[0]
+    data = read_json(path)
+    template = template_for(data, fallback=stability)
+    certificate = Certificate.from_dict(data) if template is stability else template.read(data, str(path))
+    return template.verify(certificate, str(path))
+
+
+def _one(path: Path, entry: dict) -> Refusal:
+    from .._infra.errors import CertificateFormatError
+
+    premise, expected = entry["premise"], tuple(entry["fails"])
+    try:
+        report = _verify(path)
+    except CertificateFormatError as exc:
+        reader = entry.get("reader")
+        if reader is None or reader not in str(exc):
+            return Refusal(path.name, premise, expected, (f"reader: {exc}",), False)
+        named = tuple(expected_failures(json.loads(path.read_text(encoding="utf-8"))))
+        return Refusal(path.name, premise, expected, (f"reader: {reader}",) + named, named == expected)
+    named = tuple(named_failures(report))
+    if premise is None:
+        return Refusal(path.name, None, (), named, report.proved)
+    if "reader" in entry:  # the format let it through: the verifier must refuse it, naming the premise
+        return Refusal(path.name, premise, expected, named, not report.proved and premise in named)
+    return Refusal(path.name, premise, expected, named, not report.proved and named == expected)
+
+
+def refuse_false_certificates(directory: str | Path = DIRECTORY) -> SelfCheck:
+    """Verify every file of ``directory``'s manifest and compare with what it must give (module docstring)."""
+    start = time.perf_counter()
+    directory = Path(directory)
+    manifest = json.loads((directory / "manifest.json").read_text(encoding="utf-8"))["false_certificates"]
+    from .hunting import shared_proofs
+
+    with shared_proofs():
+        refusals = tuple(_one(directory / entry["file"], entry) for entry in manifest)
+    uncovered = tuple(
+        f"{template}: {name}"
+        for template, names in _premise_names().items()
+        for name in names
+        if name not in {entry["premise"] for entry in manifest if entry["template"] == template}
+    )
+    return SelfCheck(refusals, uncovered, time.perf_counter() - start)

@@ -1,0 +1,61 @@
+"""Benchmark: certify and verify time per certificate template, on Table I.
+
+Run from the repository root with the package installed::
+
+    python tests/benchmarks/bench_templates.py [--repeats N]
+
+For each template and search it prints the first (cold: imports and problem
+compilation) and the median warm time of ``certify`` (search, rounding and
+exact verification) and of the exact verification alone, with the proven κ:
+
+* ``paper`` (the constants of Lemmas 2 and 3), searched by the closed form and by the SDP;
+* ``quadratic`` (beyond the paper: free ``P`` with ``P₁₂ = 0``, ``U = yᵀKy``), searched by an SDP.
+"""
+
+from __future__ import annotations
+
+import argparse
+import inspect
+import statistics
+import time
+
+
+def _time(fn, repeats: int):
+    start = time.perf_counter()
+    result = fn()
+    cold = time.perf_counter() - start
+    warm = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        fn()
+        warm.append(time.perf_counter() - start)
+    return result, cold, statistics.median(warm) if warm else float("nan")
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeats", type=int, default=5)
+    args = parser.parse_args()
+
+    from symbolic_friction import Parameters
+    from symbolic_friction._certify.pipeline import certify
+    from symbolic_friction._certify.quadratic import verify_quadratic
+    from symbolic_friction._certify.quadratic_search import certify_quadratic
+    from symbolic_friction._certify.verify import verify_certificate
+
+    searches = ["closed-form", "sdp"] if "search" in inspect.signature(certify).parameters else ["sdp"]
+    print(f"{'case':5s} {'template':10s} {'search':12s} {'certify cold':>13s} {'certify warm':>13s} {'verify warm':>12s}  kappa")
+    for case in "ab":
+        params = Parameters.table_i(case)
+        for search in searches:
+            kwargs = {"search": search} if len(searches) > 1 else {}
+            cert, cold, warm = _time(lambda: certify(params, **kwargs), args.repeats)
+            _, _, verify = _time(lambda: verify_certificate(cert), args.repeats)
+            print(f"({case})   {'paper':10s} {search:12s} {cold * 1e3:10.1f} ms {warm * 1e3:10.2f} ms {verify * 1e3:9.2f} ms  {cert.overshoot_bound}")
+        cert, cold, warm = _time(lambda: certify_quadratic(params), args.repeats)
+        _, _, verify = _time(lambda: verify_quadratic(cert), args.repeats)
+        print(f"({case})   {'quadratic':10s} {'sdp':12s} {cold * 1e3:10.1f} ms {warm * 1e3:10.2f} ms {verify * 1e3:9.2f} ms  {cert.overshoot_bound}")
+
+
+if __name__ == "__main__":
+    main()

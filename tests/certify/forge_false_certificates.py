@@ -1,0 +1,212 @@
+"""Writes the known-false certificates shipped in ``symbolic_friction/_certify/false_certificates/``.
+
+Each is a true certificate with its numbers edited so that one premise of the
+verifier fails (or, where the premises are not independent, that premise and
+the ones it implies; ``fails`` lists them all).  Run ``python -m
+tests.certify.forge_false_certificates`` to rewrite them; ``test_self_check.py``
+checks that the shipped files are what this writes.
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+from fractions import Fraction as F
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parents[2]
+TARGET = REPO / "symbolic_friction" / "_certify" / "false_certificates"
+
+# -- stability certificates: (file stem, premise, base, edits) ----------------------------------------
+# `reader`: the file format refuses the edit first (a positive field made ≤ 0); the premise is then
+# decided on the file's numbers directly.
+STABILITY = [
+    ("k_i_positive", "k_i > 0", "a", {"k_i": "-4", "c": "232/5"}, "parameters.k_i"),
+    ("k_p_positive", "k_p > 0", "a", {"k_p": "-3"}, "parameters.k_p"),
+    ("assumption1", "k_v·k_p > k_i", "a", {"k_p": "5/8"}, None),
+    ("f_c_positive", "f_c > 0", "a", {"f_c": "-1"}, "parameters.f_c"),
+    ("c_equation", "c = 2(k_v·k_p − k_i)", "a", {"c": "153/5"}, None),
+    ("c_positive", "c > 0", "a", {"c": "-152/5"}, "constants.c"),
+    ("c1_positive", "c1 > 0", "a", {"c1": "-1"}, "constants.c1"),
+    ("c1_below_lambda_min", "P − c1·I ⪰ 0", "a", {"c1": "88896553/25000000"}, None),
+    ("c2_above_lambda_max", "c2·I − P ⪰ 0", "a", {"c2": "990099009/1000000000"}, None),
+    ("k1_positive", "k1 > 0", "a", {"k1": "-2"}, "constants.k1"),
+    ("k2_positive", "k2 > 0", "a", {"k2": "-2"}, "constants.k2"),
+    ("k3_positive", "k3 > 0", "a", {"k3": "-101/50"}, "constants.k3"),
+    ("k4_positive", "k4 > 0", "a", {"k4": "-303/50"}, "constants.k4"),
+    ("k3_over_k1", "k3 > (k_i/k_v)·k1", "a", {"k1": "101/25", "c2_hat": "4", "overshoot_bound": "3.8"}, None),
+    ("k3_over_k2", "k3 > k2", "a", {"k3": "2"}, None),
+    ("k4_over_k3", "k4 > (k_i/k_v)·k3", "a", {"k2": "1/10", "k4": "101/80", "c1_hat": "1/20", "overshoot_bound": "16"}, None),
+    ("k4_over_k2", "k4 > k_p·k2", "a", {"k4": "6"}, None),
+    ("k_definite", "k1·k4 > k3²", "a", {"k1": "1/2", "c1_hat": "1/4", "overshoot_bound": "7.1"}, None),
+    ("c1_hat_positive", "c1_hat > 0", "a", {"c1_hat": "-1"}, "constants.c1_hat"),
+    ("c1_hat_k1", "c1_hat ≤ k1/2", "a", {"k1": "19/10"}, None),
+    ("c1_hat_k2", "c1_hat ≤ k2/2", "a", {"k2": "19/10"}, None),
+    ("c1_hat_k4", "c1_hat ≤ k4/2", "b", {"k4": "19/10", "k1": "5/2", "c2_hat": "3", "overshoot_bound": "9.8"}, None),
+    ("c2_hat_above_K", "c2_hat·I − K/2 ⪰ 0", "a", {"c2_hat": "1"}, None),
+    ("c1_above_c2", "c1 ≤ c2", "a", {"c1": "4"}, None),
+    ("c1_hat_above_c2_hat", "c1_hat ≤ c2_hat", "a", {"c2_hat": "1/2"}, None),
+    ("kappa_positive", "overshoot_bound > 0", "a", {"overshoot_bound": "-3.51842"}, "overshoot_bound"),
+    ("kappa_too_small", "overshoot_bound² ≥ c2·c2_hat/(c1·c1_hat)", "a", {"overshoot_bound": "3.5"}, None),
+]
+
+
+# -- quadratic certificates: (file stem, premise, edits: constant or gain -> factor, or the bound) -----------
+QUADRATIC = [
+    ("k_i_positive", "k_i > 0", {"k_i": -1}, "parameters.k_i"),
+    ("k_p_positive", "k_p > 0", {"k_p": -1}, "parameters.k_p"),
+    ("assumption1", "k_v·k_p > k_i", {"k_p": F(1, 10)}, None),
+    ("f_c_positive", "f_c > 0", {"f_c": -1}, "parameters.f_c"),
+    ("p_lower", "P − I ⪰ 0", {"p11": F(99, 100)}, None),
+    ("p_upper", "c2·I − P ⪰ 0", {"c2": 0}, None),
+    ("c_positive", "c > 0", {"c": 0}, None),
+    ("v_decrease", "−(AᵀP + PA) − c·e3e3ᵀ ⪰ 0", {"k_p": F(1, 2)}, None),
+    ("u_rate_plus", "−(K·B+ + B+ᵀ·K) copositive", {"k22": 2}, None),
+    ("band_plus", "band form (s = +1) copositive", {"k11": -100}, None),
+    ("u_rate_minus", "−(K·B− + B−ᵀ·K) copositive", {"k22": F(101, 100)}, None),
+    ("band_minus", "band form (s = −1) copositive", {"k11": F(1001, 1000)}, None),
+    ("k31", "K31 ≥ 0", {"k13": F(-999, 1000)}, None),
+    ("k32", "K32 ≥ 0", {"k23": -1}, None),
+    ("k33", "K33 ≥ 0", {"k33": F(-1, 10)}, None),
+    ("u_lower", "K − I copositive", {"k22": 0}, None),
+    ("u_upper", "gamma·I − K copositive", {"gamma": 0}, None),
+    ("exit_rest", "U − V copositive at v = 0", {"k22": F(999, 1000)}, None),
+    ("exit_edge", "U − V copositive at φ = ±f_c", {"k11": F(9, 10)}, None),
+    ("kappa_positive", "overshoot_bound > 0", {"overshoot_bound": "-1.80834"}, "overshoot_bound"),
+    ("kappa_c2", "overshoot_bound² ≥ c2", {"c2": 2}, None),
+    ("kappa_gamma", "overshoot_bound² ≥ gamma", {"gamma": 2}, None),
+]
+
+
+def _quadratic(edits: dict | None = None) -> dict:
+    from symbolic_friction._infra.rational import format_rational
+
+    data = json.loads((REPO / "proofs" / "quadratic" / "case_a.json").read_text(encoding="utf-8"))
+    del data["provenance"]
+    for key, factor in (edits or {}).items():
+        if key == "overshoot_bound":
+            data[key] = factor
+            continue
+        group = "parameters" if key in data["parameters"] else "constants"
+        data[group][key] = format_rational(F(data[group][key]) * factor)
+    return data
+
+
+def _stability_base(case: str) -> dict:
+    data = json.loads((REPO / "proofs" / f"case_{case}_feasible.json").read_text(encoding="utf-8"))
+    del data["provenance"]  # a forged file claims nothing about its origin
+    return data
+
+
+def _edit(data: dict, edits: dict) -> dict:
+    out = copy.deepcopy(data)
+    for key, value in edits.items():
+        if key == "overshoot_bound":
+            out[key] = value
+        elif key in out["parameters"]:
+            out["parameters"][key] = value
+        else:
+            out["constants"][key] = value
+    return out
+
+
+def _text(data: dict) -> str:
+    return json.dumps(data, indent=2, sort_keys=True, ensure_ascii=False) + "\n"
+
+
+def forged() -> tuple[dict[str, str], list[dict]]:
+    """``({file name: text}, manifest entries)``."""
+    from symbolic_friction._certify.self_check import expected_failures
+
+    files: dict[str, str] = {}
+    manifest: list[dict] = []
+    control = _stability_base("a")
+    files["true_stability.json"] = _text(control)
+    manifest.append({"file": "true_stability.json", "template": "stability", "premise": None, "fails": []})
+    for stem, premise, case, edits, reader in STABILITY:
+        data = _edit(_stability_base(case), edits)
+        name = f"stability_{stem}.json"
+        files[name] = _text(data)
+        entry = {"file": name, "template": "stability", "premise": premise, "fails": expected_failures(data)}
+        if reader is not None:
+            entry["reader"] = reader
+        manifest.append(entry)
+    files["true_quadratic.json"] = _text(_quadratic())
+    manifest.append({"file": "true_quadratic.json", "template": "quadratic", "premise": None, "fails": []})
+    for stem, premise, edits, reader in QUADRATIC:
+        data = _quadratic(edits)
+        name = f"quadratic_{stem}.json"
+        files[name] = _text(data)
+        entry = {"file": name, "template": "quadratic", "premise": premise, "fails": expected_failures(data)}
+        if reader is not None:
+            entry["reader"] = reader
+        manifest.append(entry)
+    for name, premise, data in _hunting():
+        files[name] = _text(data)
+        manifest.append({"file": name, "template": "hunting", "premise": premise,
+                         "fails": [] if premise is None else _hunting_failures(data)})
+    return files, manifest
+
+
+def _hunting():
+    from symbolic_friction import Parameters
+    from symbolic_friction._certify.hunting import certificate_for
+    from symbolic_friction._certify.hunting_cycle import polish
+
+    p = Parameters(k_p=3, k_i=4, k_v="32/5", f_c=1, f_s="6/5")
+    true, _ = certificate_for(p, 0.10504486800579656, 2.6531212420323778)
+    base = true.to_dict()
+    yield "true_hunting.json", None, base
+    (s_lo, s_hi), (t_lo, t_hi) = true.box.sigma, true.box.tau
+    ws, wt = s_hi - s_lo, t_hi - t_lo
+
+    def box(**edits):
+        d = copy.deepcopy(base)
+        del d["cycle"]  # a forged box claims no cycle numbers: its refusal names the proof's step only
+        for key, (lo, hi) in edits.items():
+            d["box"][key] = [str(lo), str(hi)] if key != "monotone_from" else str(lo)
+        return d
+
+    later, _ = certificate_for(p, *polish(p, 0.02355118, 9.962899))  # a zero of F after a sign change of v
+    d = later.to_dict()
+    del d["cycle"]
+    yield "hunting_later_zero.json", "first_zero.positive", d
+    yield "hunting_no_fixed_point.json", "krawczyk", box(sigma=(s_lo + 2 * ws, s_hi + 2 * ws))
+    shift = ws * F(6, 10)
+    yield "hunting_zero_above_sigma.json", "krawczyk", box(sigma=(s_lo - shift, s_hi - shift))
+    yield "hunting_zero_below_sigma.json", "krawczyk", box(sigma=(s_lo + shift, s_hi + shift))
+    shift = wt * F(6, 10)
+    yield "hunting_zero_above_tau.json", "krawczyk", box(tau=(t_lo - shift, t_hi - shift))
+    yield "hunting_zero_below_tau.json", "krawczyk", box(tau=(t_lo + shift, t_hi + shift))
+    yield "hunting_sigma_not_positive.json", "box", box(sigma=(F(0), s_hi))
+    yield "hunting_monotone_too_early.json", "first_zero.decreasing", box(monotone_from=(F(1, 10), None))
+    yield "hunting_start_unshown.json", "first_zero.start", box(sigma=(F(1, 10), F(10) ** 30))
+    for field, value in [("period", ["99", "99"]), ("stick_time", ["20", "41/2"]), ("slip_time", ["2", "5/2"]),
+                         ("sigma", ["1/10", "21/200"]), ("multiplier", ["0", "1/20"]), ("stable", False)]:
+        d = copy.deepcopy(base)
+        d["cycle"][field] = value
+        yield f"hunting_cycle_{field}.json", f"cycle.{field}", d
+    d = copy.deepcopy(base)
+    d["verdict"] = "not proved"
+    yield "hunting_verdict.json", "verdict", d
+
+
+def _hunting_failures(data: dict) -> list[str]:
+    from symbolic_friction._certify.hunting import hunting_from_data, verify_hunting
+    from symbolic_friction._certify.self_check import named_failures
+
+    return named_failures(verify_hunting(hunting_from_data(data)))
+
+
+def write() -> None:
+    files, manifest = forged()
+    TARGET.mkdir(exist_ok=True)
+    for old in TARGET.glob("*.json"):
+        old.unlink()
+    for name, text in files.items():
+        (TARGET / name).write_text(text, encoding="utf-8")
+    (TARGET / "manifest.json").write_text(_text({"false_certificates": manifest}), encoding="utf-8")
+
+
+if __name__ == "__main__":
+    write()

@@ -1,0 +1,191 @@
+"""`check` checks itself: the shipped false certificates are refused naming their premise, and breaking the
+verifier (a dropped premise, a wrong decision, a broken python-flint) makes the self-check, hence `check`, fail."""
+
+from __future__ import annotations
+
+import json
+from fractions import Fraction as F
+
+import pytest
+
+from symbolic_friction._certify import hunting_proof, self_check
+from symbolic_friction._certify import verify as verify_module
+from symbolic_friction._certify.self_check import DIRECTORY, refuse_false_certificates
+from symbolic_friction._cli.main import main
+
+MANIFEST = json.loads((DIRECTORY / "manifest.json").read_text(encoding="utf-8"))["false_certificates"]
+FALSE = [e for e in MANIFEST if e["premise"] is not None]
+
+
+def test_the_shipped_files_are_what_the_forger_writes():
+    from tests.certify.forge_false_certificates import forged
+
+    files, manifest = forged()
+    assert manifest == MANIFEST
+    assert sorted(p.name for p in DIRECTORY.glob("*.json")) == sorted(list(files) + ["manifest.json"])
+    for name, text in files.items():
+        assert (DIRECTORY / name).read_text(encoding="utf-8") == text, name
+
+
+def test_every_premise_has_a_false_certificate_that_names_it():
+    from symbolic_friction._certify.quadratic import quadratic_premises
+
+    for template, premises, count in (("stability", verify_module.premises, 27), ("quadratic", quadratic_premises, 22)):
+        names = [p.name for p in premises(_Ones())]
+        targeted = [e["premise"] for e in FALSE if e["template"] == template]
+        assert sorted(targeted) == sorted(names) and len(names) == count, template
+    for e in FALSE:
+        assert e["premise"] in e["fails"], e["file"]
+    # where the premises are independent, exactly that premise fails
+    alone = [e for e in FALSE if e["fails"] == [e["premise"]]]
+    assert len(alone) >= 40
+
+
+class _Ones:
+    from symbolic_friction._certify.quadratic import CONSTANTS
+
+    constants = {name: F(1) for name in CONSTANTS}
+
+    def __getattr__(self, name):
+        return F(1)
+
+
+def test_the_self_check_passes_on_this_install():
+    result = refuse_false_certificates()
+    assert result.ok and result.uncovered == ()
+    assert len(result.refusals) == len(MANIFEST) == 68
+
+
+@pytest.mark.parametrize("entry", [e for e in FALSE if "reader" not in e], ids=lambda e: e["file"])
+def test_verify_refuses_each_false_file_naming_its_premise(entry, capsys):
+    assert main(["verify", str(DIRECTORY / entry["file"])]) == 1
+    out = capsys.readouterr().out
+    assert out.startswith(("FAILED ", "NOT PROVED ")) and (entry["premise"] in out or entry["premise"] == "verdict"), out
+    if entry["premise"] == "verdict":
+        assert "verdict is 'not proved'" in out
+
+
+@pytest.mark.parametrize("entry", [e for e in FALSE if "reader" in e], ids=lambda e: e["file"])
+def test_a_premise_the_format_guards_is_refused_by_the_reader_and_by_the_premise(entry, capsys):
+    """Positivity is checked where the file is read (exit 2 naming the key); the verifier's premise refuses the same numbers."""
+    path = DIRECTORY / entry["file"]
+    assert main(["verify", str(path)]) == 2
+    assert entry["reader"] in capsys.readouterr().err
+    data = json.loads(path.read_text(encoding="utf-8"))
+    assert self_check.expected_failures(data) == entry["fails"]
+
+
+def test_the_true_controls_are_proved(capsys):
+    for name in ("true_stability.json", "true_hunting.json", "true_quadratic.json"):
+        assert main(["verify", str(DIRECTORY / name)]) == 0
+    assert capsys.readouterr().out.count("PROVED ") == 3
+
+
+# -- breaking the verifier breaks the self-check ----------------------------------------------------------
+
+
+def _failed(result):
+    return [r.file for r in result.refusals if not r.ok]
+
+
+def test_a_dropped_premise_fails_the_self_check(monkeypatch):
+    real = verify_module.premises
+    monkeypatch.setattr(verify_module, "premises", lambda cert: [p for p in real(cert) if p.name != "k3 > k2"])
+    result = refuse_false_certificates()
+    assert not result.ok and "stability_k3_over_k2.json" in _failed(result)
+
+
+def test_leading_minors_only_fail_the_self_check(monkeypatch):
+    """A PSD test by leading principal minors accepts [[0, 0], [0, -1]]-like matrices: the forged c2_hat file is then proved."""
+    from symbolic_friction._certify.verify import Semidefinite
+
+    monkeypatch.setattr(Semidefinite, "minors", lambda self: [
+        (tuple(range(k)), verify_module._det([row[:k] for row in self.matrix[:k]])) for k in (1, 2, 3)])
+    result = refuse_false_certificates()
+    assert not result.ok
+
+
+def test_a_non_strict_decision_fails_the_self_check(monkeypatch):
+    monkeypatch.setitem(verify_module._DECIDE, ">", lambda m: m >= 0)
+    monkeypatch.setitem(verify_module._DECIDE, ">=", lambda m: m >= -1)
+    assert not refuse_false_certificates().ok
+
+
+def test_a_broken_matrix_exponential_fails_the_self_check(monkeypatch):
+    import flint
+
+    monkeypatch.setattr(flint.arb_mat, "exp", lambda self: self * 0 + flint.arb_mat(3, 3, [1, 0, 0, 0, 1, 0, 0, 0, 1]),
+                        raising=False)
+    result = refuse_false_certificates()
+    assert not result.ok and "true_hunting.json" in _failed(result)
+
+
+def test_a_krawczyk_test_on_one_end_fails_the_self_check(monkeypatch):
+    monkeypatch.setattr(hunting_proof, "_inside", lambda k, lo, hi: bool((k - lo) > 0))
+    result = refuse_false_certificates()
+    assert _failed(result) == ["hunting_zero_above_sigma.json", "hunting_zero_above_tau.json"]
+
+
+def _mutant(module, name, old, new):
+    import inspect
+    import textwrap
+
+    source = textwrap.dedent(inspect.getsource(getattr(module, name)))
+    assert old in source, old
+    namespace = dict(vars(module))
+    exec(compile(source.replace(old, new, 1), f"<mutant of {name}>", "exec"), namespace)
+    return namespace[name]
+
+
+@pytest.mark.parametrize("old, new, caught_by", [
+    # the derivative sign from τ_a onward, not only on the final box
+    ("M.ball(t_a, t_hi)", "M.ball(t_lo, t_hi)", "hunting_monotone_too_early.json"),
+    # σ > 0
+    ("shape = _shape_ok(params, box)", "shape = params.f_s > params.f_c", "hunting_sigma_not_positive.json"),
+    # the first-zero search runs on the whole of [δ, τ_a]
+    ("delta, t_a,\n", "t_a - (t_a - delta) / 64, t_a,\n", "hunting_later_zero.json"),
+    # the start: v' > 0 on [0, δ] for every σ of the box
+    ("M.state(S, M.ball(Fraction(0), delta))", "M.state(M.q(s_lo), M.ball(Fraction(0), delta))",
+     "hunting_start_unshown.json"),
+])
+def test_a_weakened_hunting_proof_fails_the_self_check(monkeypatch, old, new, caught_by):
+    monkeypatch.setattr(hunting_proof, "_prove", _mutant(hunting_proof, "_prove", old, new))
+    assert caught_by in _failed(refuse_false_certificates())
+
+
+def test_an_unchecked_cycle_fails_the_self_check(monkeypatch):
+    from symbolic_friction._certify import hunting
+
+    monkeypatch.setattr(hunting, "decide_claims", lambda *a, **k: ())
+    failed = _failed(refuse_false_certificates())
+    assert "hunting_cycle_period.json" in failed and "hunting_cycle_stable.json" in failed
+
+
+def test_a_copositivity_decision_that_trusts_undecided_fails_the_self_check(monkeypatch):
+    from symbolic_friction._certify import copositive, quadratic
+
+    real = copositive.decide_copositive
+
+    def lenient(matrix):
+        decision = real(matrix)
+        return type(decision)(True, decision.reason) if decision.holds is False else decision
+
+    monkeypatch.setattr(quadratic, "decide_copositive", lenient)
+    failed = _failed(refuse_false_certificates())
+    assert "quadratic_u_upper.json" in failed and "true_quadratic.json" not in failed
+
+
+def test_a_wrong_manifest_is_a_failure_not_a_pass(tmp_path):
+    import shutil
+
+    for path in DIRECTORY.glob("*.json"):
+        shutil.copy(path, tmp_path / path.name)
+    manifest = json.loads((tmp_path / "manifest.json").read_text(encoding="utf-8"))
+    manifest["false_certificates"] = [e for e in manifest["false_certificates"] if e["premise"] != "k3 > k2"]
+    (tmp_path / "manifest.json").write_text(json.dumps(manifest), encoding="utf-8")
+    result = refuse_false_certificates(tmp_path)
+    assert not result.ok and result.uncovered == ("stability: k3 > k2",)
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    (empty / "manifest.json").write_text('{"false_certificates": []}', encoding="utf-8")
+    assert not refuse_false_certificates(empty).ok  # nothing refused proves nothing
