@@ -6,7 +6,8 @@ import math
 import numpy as np
 import pytest
 
-from symbolic_friction import Parameters, SimulationError
+from symbolic_friction import Parameters
+from symbolic_friction.errors import SimulationError
 from symbolic_friction._model.coordinates import system_matrix, z_to_x
 from symbolic_friction._reference import Reference
 from symbolic_friction._simulation import Moreau, simulate
