@@ -131,16 +131,17 @@ def cells() -> list[Cell]:
     return out
 
 
-def default_methods() -> list[Any]:
-    """Each method at its default knobs (what a user gets without choosing)."""
+def default_methods(*, theta: float = 1.0) -> list[Any]:
+    """Each method at its default knobs (what a user gets without choosing); Moreau's θ-method at ``theta``."""
     from ._simulation import EventDriven, IvpEvents, Moreau, Regularized
 
-    return [EventDriven(), Moreau(), Regularized(), IvpEvents()]
+    return [EventDriven(), Moreau(theta=theta), Regularized(), IvpEvents()]
 
 
 def claimed_error(method: Any) -> float:
-    """The relative state error a method claims at its knob (see the module docstring)."""
-    order = type(method).order
+    """The relative state error a method claims at its knob (see the module docstring; Moreau at ``θ = ½``
+    claims its second order)."""
+    order = getattr(method, "accuracy_order", type(method).order)
     if math.isinf(order):
         return EVENT_CLAIM
     q = float(getattr(method, type(method).knob))
@@ -273,7 +274,11 @@ def _md(text: str) -> str:
 
 def _name(method: Any) -> str:
     knob = type(method).knob
-    return type(method).name if knob is None else f"{type(method).name}({knob}={getattr(method, knob):g})"
+    if knob is None:
+        return type(method).name
+    theta = getattr(method, "theta", 1.0)
+    extra = "" if theta == 1.0 else f", theta={theta:g}"
+    return f"{type(method).name}({knob}={getattr(method, knob):g}{extra})"
 
 
 @dataclass(frozen=True)
@@ -353,8 +358,11 @@ def run_extremes(
     only: Sequence[str] | None = None,
     certify: bool = True,
     limit: float = RUN_LIMIT,
+    theta: float = 1.0,
 ) -> Extremes:
     """Run the matrix (or the cells whose group or label is in ``only``), each run stopped after ``limit`` s.
+
+    ``theta`` is the weight of Moreau's θ-method among the default methods (ignored when ``methods`` is given).
 
     Examples
     --------
@@ -365,7 +373,7 @@ def run_extremes(
     >>> print(result.report())  # doctest: +SKIP
     """
     t0 = time.perf_counter()
-    methods = list(default_methods() if methods is None else methods)
+    methods = list(default_methods(theta=theta) if methods is None else methods)
     chosen = [c for c in cells() if only is None or c.group in only or c.label in only]
     if not chosen:
         raise SimulationError(f"no extreme cell matches {list(only or [])}; groups: {sorted({c.group for c in cells()})}")
@@ -441,7 +449,8 @@ def _register() -> None:
     from ._studies.figures import _FORMATS_NOW, register
     from ._infra.io import atomic_write
 
-    @register("extremes", "the extremes matrix: every method and certify on hard cases (report extremes.md + heat map)")
+    @register("extremes", "the extremes matrix: every method and certify on hard cases (report extremes.md + heat map)",
+              cost=30.0)
     def extremes(out: Path) -> list[Path]:
         result = run_extremes()
         report = out / "extremes.md"

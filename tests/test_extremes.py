@@ -141,6 +141,26 @@ def test_cli_fails_on_a_silently_wrong_cell(tmp_path, monkeypatch, capsys):
     assert "**WRONG** made wrong on purpose" in capsys.readouterr().out
 
 
+def test_theta_knob():
+    from symbolic_friction._extremes import _name
+
+    half = Moreau(h=1e-3, theta=0.5)
+    assert claimed_error(half) == pytest.approx(1e3 * 1e-6)  # θ = ½ claims its second order
+    assert _name(half) == "moreau(h=0.001, theta=0.5)" and _name(Moreau(h=1e-3)) == "moreau(h=0.001)"
+    assert default_methods(theta=0.5)[1].theta == 0.5
+    res = run_extremes(only=["case (a), f_c = 1e3"], certify=False, theta=0.5)
+    o = res.get("case (a), f_c = 1e3", "moreau(h=0.001, theta=0.5)")
+    assert o.outcome == "ok" and o.error <= 1e-3
+
+
+def test_cli_bad_theta(tmp_path, capsys):
+    from symbolic_friction._cli.main import main
+
+    assert main(["extremes", "--theta", "1.5", "--out", str(tmp_path)]) == 2
+    err = capsys.readouterr().err
+    assert "--theta must be in [1/2, 1]" in err and "1.5" in err and err.count("\n") == 1
+
+
 def test_reasons_are_never_cut():
     from symbolic_friction._extremes import Extremes, Outcome
 

@@ -21,6 +21,7 @@ def small():
     sweeps = [
         Sweep("event", (EventDriven(),)),
         Sweep("moreau", tuple(Moreau(h=h) for h in (1e-1, 1e-2, 1e-3))),
+        Sweep("moreau theta=0.5", tuple(Moreau(h=h, theta=0.5) for h in (1e-1, 3e-2, 1e-2, 3e-3)), 2.0),
         Sweep("ivp-events", tuple(IvpEvents(rtol=r, atol=r * 1e-3) for r in (1e-4, 1e-7, 1e-10))),
     ]
     return measure_tradeoff(A, [(0.0, 1.0, 0.0)], 10.0, label="case (a)", samples=101, repeats=3, sweeps=sweeps)
@@ -33,6 +34,9 @@ def test_errors_orders_and_ratio(small):
     assert 0.8 < moreau.fitted_order < 1.2  # Moreau is first order in h, as declared
     errs = [p.error_state for p in moreau.points]
     assert errs == sorted(errs, reverse=True)
+    half = next(c for c in small.curves if c.label == "moreau theta=0.5")
+    assert 1.9 < half.fitted_order < 2.1 and half.declared_order == 2.0  # the θ-method at θ = ½ is second order
+    assert half.points[2].error_state <= 5e-5 and half.points[2].config == "moreau(h=0.01, theta=0.5)"
     eq = small.equal_error()
     assert eq["levels"] and all(lvl["ratio"] > 0 for lvl in eq["levels"])
     note = small.note()
@@ -87,7 +91,7 @@ def test_cli_user_gains_json(tmp_path, capsys):
     data = json.loads(capsys.readouterr().out)
     assert data["params"]["k_v"] == "32/5"  # read exactly, as certify reads it
     labels = [c["label"] for c in data["curves"]]
-    assert labels == ["event", "moreau", "regularized tanh", "regularized sat", "ivp-events"]
+    assert labels == ["event", "moreau", "moreau theta=0.5", "regularized tanh", "regularized sat", "ivp-events"]
     assert (tmp_path / "tradeoff_user_pareto.png").exists()
 
 
@@ -98,6 +102,28 @@ def test_cli_errors(capsys):
     assert "three numbers" in capsys.readouterr().err
     assert main(["tradeoff", "--format", "gif"]) == 2
     assert "unknown figure format" in capsys.readouterr().err
+
+
+def test_default_sweeps_one_moreau_curve_per_theta():
+    from symbolic_friction._studies.tradeoff import default_sweeps
+
+    sweeps = {s.label: s for s in default_sweeps(quick=True, thetas=(1, 0.75, 0.5, 0.5))}
+    assert [k for k in sweeps if k.startswith("moreau")] == ["moreau", "moreau theta=0.75", "moreau theta=0.5"]
+    assert sweeps["moreau theta=0.5"].declared_order == 2.0 and sweeps["moreau theta=0.75"].declared_order == 1.0
+    assert all(m.theta == 0.75 for m in sweeps["moreau theta=0.75"].methods)
+
+
+def test_bad_theta_is_refused_before_the_reference(capsys, monkeypatch):
+    import symbolic_friction._studies.tradeoff as tradeoff
+    from symbolic_friction._infra.errors import SimulationError
+
+    monkeypatch.setattr(tradeoff, "_reference", lambda *a, **k: pytest.fail("the reference ran"))
+    with pytest.raises(SimulationError, match=r"theta.*\[1/2, 1\].*0\.4"):
+        measure_tradeoff(A, [(0.0, 1.0, 0.0)], 1.0, thetas=(0.4,))
+    for bad in ("0.4", "1.0001", "nan", "x"):
+        assert main(["tradeoff", "--theta", bad, "--no-figures"]) == 2
+        err = capsys.readouterr().err
+        assert "--theta" in err and err.count("\n") == 1
 
 
 def test_repr_is_a_summary(small):

@@ -18,6 +18,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--only", nargs="+", metavar="GROUP", help="run only these groups or cells (e.g. 'Routh boundary' f_c)")
     parser.add_argument("--format", nargs="+", default=["png"], metavar="FMT", help="heat-map formats: png (always), pdf, svg")
     parser.add_argument("--json", action="store_true", help="print the outcomes as JSON")
+    parser.add_argument("--theta", default=None, metavar="THETA",
+                        help="weight θ in [1/2, 1] of the moreau θ-method (default 1: implicit Euler; 1/2: second order)")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -28,9 +30,12 @@ def run(args: argparse.Namespace) -> int:
     from .._infra.output import emit
     from .._studies.tradeoff import check_formats
 
+    from .tradeoff import theta_value
+
     formats = check_formats(args.format)
+    theta = 1.0 if args.theta is None else theta_value(args.theta)
     out = ensure_directory(args.out)  # an unusable --out fails now, not after the run
-    result = run_extremes(only=args.only)
+    result = run_extremes(only=args.only, theta=theta)
     report = atomic_write_text(out / "extremes.md", result.report())
     files = [report, *extremes_figure(result, out / "extremes_heatmap.png", formats)]
     if args.json:

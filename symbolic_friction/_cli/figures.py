@@ -20,27 +20,36 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--list", action="store_true", help="list the available figures and exit")
     parser.add_argument("--format", nargs="+", default=["png"], metavar="FMT",
                         help="also write these formats: pdf, svg (png is always written)")
+    parser.add_argument("--jobs", type=int, default=None, metavar="N",
+                        help="processes drawing figures at once (default: the number of cores; 1: one after the other)")
 
 
 def run(args: argparse.Namespace) -> int:
-    """Draw each figure, printing every file as it is written (a progress bar on a terminal)."""
-    from .._studies.figures import available_figures, make_figures
+    """Draw the figures (in ``--jobs`` processes), printing every file as it is written, with a progress bar."""
+    import os
+
+    from .._infra.errors import UsageError
     from .._infra.io import ensure_directory
     from .._infra.output import emit
     from .._infra.progress import Progress
+    from .._studies.figures import available_figures, chosen_figures, make_figures
+    from .._studies.figures_run import units
 
     figures = available_figures()
     if args.list:
         for spec in figures.values():
-            emit(f"{spec.name:10s} {spec.description}", level=0)
+            emit(f"{spec.name:22s} {spec.description}", level=0)
         return 0
-    names = list(args.only) if args.only else list(figures)
-    unknown = [n for n in names if n not in figures]
-    if unknown:
-        make_figures(args.out, unknown)  # raises, naming them and the available figures, before any drawing
+    jobs = args.jobs if args.jobs is not None else (os.cpu_count() or 1)
+    if not 1 <= jobs <= MAX_JOBS:
+        raise UsageError(f"--jobs must be between 1 and {MAX_JOBS}; got {jobs}")
+    specs, _ = chosen_figures(args.only, args.format)  # unknown names or formats fail before any drawing
     ensure_directory(args.out)  # an unusable --out fails now, not after drawing
-    with Progress(len(names), desc="figures") as bar:
-        for name in names:
-            make_figures(args.out, [name], formats=args.format, on_written=lambda path: bar.write(f"wrote {path}", level=0))
-            bar.update()
+    with Progress(len(units(specs)), desc="figures") as bar:
+        make_figures(args.out, [s.name for s in specs], formats=args.format, jobs=jobs, progress=bar,
+                     on_written=lambda path: bar.write(f"wrote {path}", level=0))
     return 0
+
+
+# more processes than this only queue for the same cores
+MAX_JOBS = 64

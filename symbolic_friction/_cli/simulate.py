@@ -18,6 +18,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--out", default=".", metavar="DIR", help="output directory (default: current directory)")
     parser.add_argument("--format", choices=("csv", "npz"), default=None, help="output format (default: the scene's)")
     parser.add_argument("--png", action="store_true", help="also write a PNG of the solutions (needs matplotlib)")
+    parser.add_argument("--theta", default=None, metavar="THETA",
+                        help="for a moreau scene: the weight θ in [1/2, 1] of its θ-method (1: implicit Euler, "
+                             "1/2: second order), replacing the scene's")
     parser.add_argument("--list", action="store_true", help="list the built-in scenes and exit")
     parser.add_argument("--json", action="store_true",
                         help="print one JSON object (scene, trajectories, events, status, files written) instead of text")
@@ -42,6 +45,8 @@ def run(args: argparse.Namespace) -> int:
     if args.scene is None:
         raise SceneError("no scene given; pass a .toml path or one of: " + ", ".join(builtin_scenes()))
     scene = load_scene(args.scene)
+    if args.theta is not None:
+        scene = _with_theta(scene, args.theta)
     if args.format is not None:
         # the summary and the files name the format actually written, not the scene's default
         import dataclasses
@@ -69,3 +74,17 @@ def run(args: argparse.Namespace) -> int:
             kind = "PNG" if path.suffix == ".png" else scene.format.upper()
             emit(f"wrote {path} ({kind})", level=0)
     return 0
+
+
+def _with_theta(scene, text: str):  # type: ignore[no-untyped-def]
+    """``scene`` with the Moreau weight θ of ``--theta`` (refused for a scene of another method)."""
+    import dataclasses
+
+    from .._infra.errors import UsageError
+    from .tradeoff import theta_value
+
+    theta = theta_value(text)
+    if scene.method != "moreau":
+        raise UsageError(f"--theta is a knob of method moreau; scene {scene.name!r} uses method {scene.method!r}")
+    knobs = tuple((k, v) for k, v in scene.knobs if k != "theta") + (("theta", theta),)
+    return dataclasses.replace(scene, knobs=knobs)

@@ -21,6 +21,7 @@ _EPILOG = """examples:
   symbolic-friction tradeoff --case b --z0 0,3,0 --t-end 60
   symbolic-friction tradeoff --k-p 3 --k-i 4 --k-v 6.4 --f-c 1 --z0 0,1,0 --z0 1,1,1 --format pdf svg
   symbolic-friction tradeoff --json --no-cost > tradeoff.json
+  symbolic-friction tradeoff --theta 1/2 --no-cost --no-figures   # the second-order Moreau θ-method alone
 """
 
 DEFAULT_Z0 = {"a": "0,1,0", "b": "0,3,0"}
@@ -40,7 +41,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     from .certify import add_gain_arguments
 
     parser.description = textwrap.fill(
-        f"{HELP}. For every method (event, moreau across h, regularized across epsilon for tanh and sat, "
+        f"{HELP}. For every method (event, moreau across h for each θ of --theta, regularized across epsilon for tanh and sat, "
         "ivp-events across rtol): the error in the state, the final state and the stick start times, the "
         "time per trajectory (median of repeats, with spread), the fitted order of accuracy; a table, a "
         "Pareto figure and a figure of the cost against the horizon T and the batch size N."
@@ -59,6 +60,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help=f"sample times where errors are measured (default 301; at most {MAX_SAMPLES})")
     parser.add_argument("--repeats", type=count_option("--repeats", high=MAX_REPEATS), default=7, metavar="R",
                         help=f"timed runs per configuration (default 7; at most {MAX_REPEATS})")
+    parser.add_argument("--theta", nargs="+", default=None, metavar="THETA",
+                        help="weights θ in [1/2, 1] of the Moreau θ-method, one curve each (default: 1 and 1/2; "
+                             "1 is implicit Euler, 1/2 the second-order trapezoidal smooth part)")
     parser.add_argument("--quick", action="store_true", help="three knob values per method (a fast look)")
     parser.add_argument("--no-cost", action="store_true", help="skip the cost against T and N (and its figure)")
     parser.add_argument("--json", action="store_true", help="print the measurements as JSON instead of the table")
@@ -89,6 +93,19 @@ def _state(text: str) -> tuple[float, float, float]:
         raise UsageError(str(exc)) from None
 
 
+def theta_value(text: str, *, option: str = "--theta") -> float:
+    """The weight ``θ`` of the Moreau θ-method read exactly (``1/2``, ``0.5``), refused outside ``[1/2, 1]``."""
+    from fractions import Fraction
+
+    from .._infra.errors import UsageError
+    from .._infra.rational import to_rational
+
+    theta = to_rational(text.strip(), name=option)
+    if not Fraction(1, 2) <= theta <= 1:
+        raise UsageError(f"{option} must be in [1/2, 1] (1: implicit Euler, 1/2: trapezoidal); got {option} {text}")
+    return float(theta)
+
+
 def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
@@ -96,10 +113,11 @@ def run(args: argparse.Namespace) -> int:
     from .._infra.io import ensure_directory
     from .._infra.output import emit
     from .._model.parameters import Parameters
-    from .._studies.tradeoff import check_formats, measure_cost, measure_tradeoff, tradeoff_figures
+    from .._studies.tradeoff import DEFAULT_THETAS, check_formats, measure_cost, measure_tradeoff, tradeoff_figures
     from .certify import _gains
 
     formats = check_formats(args.format)
+    thetas = tuple(theta_value(t) for t in args.theta) if args.theta else DEFAULT_THETAS
     params = _gains(args)
     if params is not None and args.case is not None:
         raise UsageError("give either --case or gains, not both")
@@ -123,7 +141,8 @@ def run(args: argparse.Namespace) -> int:
         )
     if not args.no_figures:
         ensure_directory(args.out)  # an unusable --out fails now, not after the measurements
-    result = measure_tradeoff(params, z0s, t_end, label=label, samples=args.samples, repeats=args.repeats, quick=args.quick)
+    result = measure_tradeoff(params, z0s, t_end, label=label, samples=args.samples, repeats=args.repeats, quick=args.quick,
+                              thetas=thetas)
     if not args.no_cost:
         from dataclasses import replace
 

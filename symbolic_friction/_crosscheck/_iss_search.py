@@ -40,6 +40,7 @@ must lie below the worst found, or the search is not done
 
 from __future__ import annotations
 
+import bisect
 import math
 from dataclasses import dataclass, field
 from fractions import Fraction
@@ -73,6 +74,7 @@ def selection(family: str, theta: np.ndarray, rho: float) -> Callable[[float, tu
 
     if family == "velocity-shaped":
         a0, c, q = th[0], th[1:5], th[5]
+        edges = _EDGES.tolist()
 
         def law(t: float, x: tuple) -> tuple[float, float]:
             _, phi, v = x
@@ -81,7 +83,7 @@ def selection(family: str, theta: np.ndarray, rho: float) -> Callable[[float, tu
             s = _sign(v)
             if abs(v) < q * rho:
                 return -rho * s, -rho * s  # SGN(v + d) flips: a push along the motion, (1 + ρ) f_c
-            return 0.0, rho * c[int(np.searchsorted(_EDGES, abs(v)))] * s
+            return 0.0, rho * c[bisect.bisect_left(edges, abs(v))] * s  # np.searchsorted's bin, without a numpy call per step
     elif family == "bang-bang":
         a0, alpha0, alpha = th[0], th[1], th[2:5]
 

@@ -74,6 +74,7 @@ class Progress:
         self.width = width
         self.min_interval = min_interval
         self.count = int(initial)
+        self.last_note = ""
         self._start = time.perf_counter()
         self._bar: Any = None
         if self.enabled:
@@ -92,6 +93,12 @@ class Progress:
         self.count += n
         if self._bar is not None:
             self._bar.update(n)
+
+    def note(self, text: str) -> None:
+        """Show ``text`` after the bar and redraw it (the elapsed time too): work that takes long is seen running."""
+        self.last_note = text
+        if self._bar is not None:
+            self._bar.set_postfix_str(text, refresh=True)
 
     def write(self, line: str, *, level: int = 1) -> None:
         """Print ``line`` on stdout, above the bar while one is drawn (see :func:`~symbolic_friction._infra.output.emit`)."""

@@ -22,7 +22,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from .figures import _pyplot, _save, register
+from .figures import Task, _pyplot, _save, register_split
 
 __all__ = [
     "plot_tightness",
@@ -44,13 +44,14 @@ _MODE_STYLE = {
 }
 
 
-def table_i_certificates(directory: str | Path = "proofs") -> list[Any]:
-    """The four Table I certificates: from ``directory`` if present, else certified now (exactly verified)."""
+def table_i_certificates(directory: str | Path = "proofs", *, cases: Sequence[str] = ("a", "b")) -> list[Any]:
+    """The Table I certificates (feasible, tightest) of ``cases``: from ``directory`` if present, else certified
+    now (exactly verified)."""
     from .._certify import certify, verify_certificate
     from .._model.parameters import Parameters
 
     out = []
-    for case in ("a", "b"):
+    for case in cases:
         for mode in ("feasible", "tightest"):
             path = Path(directory) / f"case_{case}_{mode}.json"
             if path.exists():
@@ -161,26 +162,108 @@ def plot_iss(estimates: Sequence[Any], path: str | Path, *, labels: Sequence[str
     return _save(fig, Path(path))
 
 
-@register("crosscheck_tightness", "Cross-check: observed overshoot against the certified kappa (Table I certificates)")
-def figure_tightness(out: Path) -> list[Path]:
-    """Cross-check the Table I certificates and draw :func:`plot_tightness`."""
+# -- the two figures, each split into independent tasks (one per gain set, one per searched rho)
+# so that ``symbolic-friction figures`` spreads them over the cores; run one after the other they
+# compute exactly what one call of ``crosscheck`` / ``iss_gain`` computes.
+_CASES = ("a", "b")
+_MODES = ("feasible", "tightest")
+ISS_RHOS = ("0", "0.001", "0.003", "0.01", "0.03", "0.1", "0.3", "1")
+ISS_SEARCH_RHOS = ("0.01", "0.1", "1")
+
+
+def _tightness_checks(case: str) -> list[Any]:
+    """The cross-check of case ``case``'s Table I certificates, seeded as gain set ``case`` of the joint run.
+
+    ``crosscheck`` seeds gain set ``gi`` (in the order of the certificates) with ``seed + 1000 gi``; the
+    certificates of one case share a gain set, so case (a) is gain set 0 and case (b) gain set 1.
+    """
     from .._crosscheck import crosscheck
 
-    report = crosscheck(table_i_certificates(), trajectories=TIGHTNESS_TRAJECTORIES, progress=False)
+    gi = _CASES.index(case)
+    certs = table_i_certificates(cases=(case,))
+    report = crosscheck(certs, trajectories=TIGHTNESS_TRAJECTORIES, seed=1000 * gi, progress=False)
+    return list(report.checks)
+
+
+def _tightness_tasks() -> list[Task]:
+    return [Task(f"crosscheck_tightness ({c})", _tightness_checks, (c,), cost=4.0) for c in _CASES]
+
+
+def _tightness_draw(out: Path, parts: list[list[Any]]) -> list[Path]:
+    checks = [c for part in parts for c in part]
     # named by case and mode, whether the certificates came from proofs/ or were certified now
     # (so the legend does not depend on the working directory)
-    labels = [f"({case}) {mode}" for case in ("a", "b") for mode in ("feasible", "tightest")]
-    if len(report.checks) != len(labels):
+    labels: list[str] | None = [f"({case}) {mode}" for case in _CASES for mode in _MODES]
+    if len(checks) != len(labels):
         labels = None
-    return [plot_tightness(report.checks, Path(out) / "crosscheck_tightness.png", labels=labels)]
+    return [plot_tightness(checks, Path(out) / "crosscheck_tightness.png", labels=labels)]
 
 
-@register("crosscheck_iss", "Cross-check: empirical ISS gain gamma(rho) of Corollary 1 (Table I cases)")
-def figure_iss(out: Path) -> list[Path]:
-    """Estimate ``γ̂(ρ)`` for Table I's cases and draw :func:`plot_iss`."""
+def _iss_defaults() -> dict[str, Any]:
+    """The horizon and step ``iss_gain`` simulates with (its defaults), which its searches are given too."""
+    import inspect
+
+    from .._crosscheck import iss_gain
+
+    params = inspect.signature(iss_gain).parameters
+    return {"horizon": params["horizon"].default, "h": params["h"].default}
+
+
+def _iss_sweep(case: str) -> Any:
+    """``γ̂(ρ)`` of case ``case`` over :data:`ISS_RHOS`, without the search (``iss_gain`` as the figure calls it)."""
     from .._crosscheck import iss_gain
     from .._model.parameters import Parameters
 
-    rhos = ("0", "0.001", "0.003", "0.01", "0.03", "0.1", "0.3", "1")
-    estimates = [iss_gain(Parameters.table_i(c), rhos, search_rhos=("0.01", "0.1", "1")) for c in ("a", "b")]
-    return [plot_iss(estimates, Path(out) / "crosscheck_iss.png", labels=["case (a)", "case (b)"])]
+    return iss_gain(Parameters.table_i(case), ISS_RHOS)
+
+
+def _iss_search(case: str, rho: str) -> Any:
+    """The worst selection found at ``rho`` for case ``case``, with the arguments ``iss_gain`` passes."""
+    import numpy as np
+
+    from .._crosscheck import worst_found
+    from .._crosscheck._initial import default_initial_states
+    from .._model.parameters import Parameters
+
+    params = Parameters.table_i(case)
+    Z0 = np.asarray(default_initial_states(params), dtype=float).reshape(-1, 3)
+    return worst_found(params, rho, initial_states=Z0, **_iss_defaults())
+
+
+def _iss_tasks() -> list[Task]:
+    tasks = [Task(f"crosscheck_iss sweep ({c})", _iss_sweep, (c,), cost=6.0) for c in _CASES]
+    tasks += [Task(f"crosscheck_iss search rho={r} ({c})", _iss_search, (c, r), cost=20.0)
+              for c in _CASES for r in ISS_SEARCH_RHOS]
+    return tasks
+
+
+def _iss_draw(out: Path, parts: list[Any]) -> list[Path]:
+    from dataclasses import replace
+
+    n = len(ISS_SEARCH_RHOS)
+    sweeps, searches = parts[: len(_CASES)], parts[len(_CASES):]
+    estimates = []
+    for i, sweep in enumerate(sweeps):
+        found = {w.rho: w for w in searches[i * n: (i + 1) * n]}
+        estimates.append(replace(sweep, worst_found=found))
+    return [plot_iss(estimates, Path(out) / "crosscheck_iss.png", labels=[f"case ({c})" for c in _CASES])]
+
+
+FIGURE_TIGHTNESS = register_split(
+    "crosscheck_tightness", "Cross-check: observed overshoot against the certified kappa (Table I certificates)",
+    tasks=_tightness_tasks, draw=_tightness_draw,
+)
+FIGURE_ISS = register_split(
+    "crosscheck_iss", "Cross-check: empirical ISS gain gamma(rho) of Corollary 1 (Table I cases)",
+    tasks=_iss_tasks, draw=_iss_draw,
+)
+
+
+def figure_tightness(out: Path) -> list[Path]:
+    """Cross-check the Table I certificates and draw :func:`plot_tightness`."""
+    return FIGURE_TIGHTNESS.function(out)
+
+
+def figure_iss(out: Path) -> list[Path]:
+    """Estimate ``γ̂(ρ)`` for Table I's cases (with the search at :data:`ISS_SEARCH_RHOS`) and draw :func:`plot_iss`."""
+    return FIGURE_ISS.function(out)

@@ -17,6 +17,12 @@ decorate a function ``f(out_dir: Path) -> list[Path]`` with
 :data:`FIGURE_MODULES`.  ``symbolic-friction figures`` imports those modules
 and runs every registered figure (or the ones named with ``--only``).
 File names are deterministic (``fig2_region_R.png``, ``fig3a_solutions.png``, …).
+
+A figure whose data takes long to compute is registered with
+:func:`register_split`: its computation is a list of independent
+:class:`Task` objects and a ``draw(out_dir, results)`` function, so that
+:mod:`.figures_run` can spread the tasks of every figure over the cores
+(the results, and so the files, are those of the sequential run).
 """
 
 from __future__ import annotations
@@ -29,32 +35,20 @@ from typing import Any
 
 from .._infra.errors import SymbolicFrictionError
 from .._infra.io import atomic_write
+from .figures_registry import FIGURES, FigureFunction, FigureSpec, Task, register, register_split
 
 __all__ = [
     "FigureSpec",
     "FIGURES",
     "FIGURE_MODULES",
     "register",
+    "register_split",
+    "Task",
     "available_figures",
     "make_figures",
     "FIG3_INITIAL_STATES",
     "plot_scene",
 ]
-
-FigureFunction = Callable[[Path], list[Path]]
-
-
-@dataclass(frozen=True)
-class FigureSpec:
-    """A registered figure: its name, a one-line description and the function."""
-
-    name: str
-    description: str
-    function: FigureFunction
-
-
-FIGURES: dict[str, FigureSpec] = {}
-"""Registered figures, in registration order."""
 
 FIGURE_MODULES: tuple[str, ...] = (
     "symbolic_friction._studies.figures",
@@ -65,18 +59,6 @@ FIGURE_MODULES: tuple[str, ...] = (
 Add a module here (e.g. the cross-check's figures) to extend ``symbolic-friction figures``."""
 
 
-def register(name: str, description: str) -> Callable[[FigureFunction], FigureFunction]:
-    """Decorator registering ``function(out_dir) -> list[Path]`` as figure ``name``."""
-
-    def deco(function: FigureFunction) -> FigureFunction:
-        if name in FIGURES and FIGURES[name].function is not function:
-            raise ValueError(f"a figure named {name!r} is already registered")
-        FIGURES[name] = FigureSpec(name, description, function)
-        return function
-
-    return deco
-
-
 def available_figures() -> dict[str, FigureSpec]:
     """Import :data:`FIGURE_MODULES` and return the registry."""
     for module in FIGURE_MODULES:
@@ -84,21 +66,14 @@ def available_figures() -> dict[str, FigureSpec]:
     return dict(FIGURES)
 
 
-def make_figures(
-    out_dir: str | Path, names: Sequence[str] | None = None, *, formats: Sequence[str] = ("png",), on_written: Any = None
-) -> list[Path]:
-    """Write the figures ``names`` (default: all) into ``out_dir``; return the files.
-
-    Each figure is written as PNG and, if ``formats`` asks for it, as PDF and/or SVG too.
-    ``on_written(path)``, if given, is called as soon as each file is written
-    (the command line prints it at once instead of after every figure).
+def chosen_figures(names: Sequence[str] | None, formats: Sequence[str]) -> tuple[list[FigureSpec], tuple[str, ...]]:
+    """The registered figures ``names`` (default: all) and the formats to write (png first), refusing unknown ones.
 
     Raises
     ------
     SymbolicFrictionError
         If a name is not a registered figure, or a format is not one of png, pdf, svg.
     """
-    global _FORMATS
     bad = [f for f in formats if f not in FIGURE_FORMATS]
     if bad:
         raise SymbolicFrictionError(f"unknown figure format(s) {', '.join(map(repr, bad))}; expected some of {', '.join(FIGURE_FORMATS)}")
@@ -109,22 +84,69 @@ def make_figures(
         raise SymbolicFrictionError(
             f"unknown figure(s) {', '.join(map(repr, unknown))}; available: {', '.join(figures)}"
         )
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
+    return [figures[n] for n in chosen], tuple(dict.fromkeys(("png", *formats)))
+
+
+def drawn(out: Path, spec: FigureSpec, formats: tuple[str, ...], results: list | None = None) -> list[Path]:
+    """Draw ``spec`` into ``out`` in ``formats`` (from its tasks' ``results`` if given); return every file written."""
+    global _FORMATS
     written: list[Path] = []
-    previous, _FORMATS = _FORMATS, tuple(dict.fromkeys(("png", *formats)))
+    previous, _FORMATS = _FORMATS, formats
     try:
-        for name in chosen:
-            for path in figures[name].function(out):
-                paths = [path]
-                if path.suffix == ".png":  # the same figure in the other formats asked for
-                    paths += [path.with_suffix(f".{fmt}") for fmt in _FORMATS[1:] if path.with_suffix(f".{fmt}").exists()]
-                written += paths
-                if on_written is not None:
-                    for each in paths:
-                        on_written(each)
+        paths = spec.function(out) if results is None else spec.draw(out, results)  # type: ignore[misc]
+        for path in paths:
+            written.append(path)
+            if path.suffix == ".png":  # the same figure in the other formats asked for
+                written += [path.with_suffix(f".{fmt}") for fmt in formats[1:] if path.with_suffix(f".{fmt}").exists()]
     finally:
         _FORMATS = previous
+    return written
+
+
+def draw_whole(name: str, out: Path, formats: tuple[str, ...]) -> list[Path]:
+    """Draw the registered figure ``name`` (in a child process of the parallel run)."""
+    return drawn(out, available_figures()[name], formats)
+
+
+def make_figures(
+    out_dir: str | Path,
+    names: Sequence[str] | None = None,
+    *,
+    formats: Sequence[str] = ("png",),
+    on_written: Any = None,
+    jobs: int = 1,
+    progress: Any = None,
+) -> list[Path]:
+    """Write the figures ``names`` (default: all) into ``out_dir``; return the files.
+
+    Each figure is written as PNG and, if ``formats`` asks for it, as PDF and/or SVG too.
+    ``on_written(path)``, if given, is called as soon as each file is written
+    (the command line prints it at once instead of after every figure).
+    With ``jobs > 1`` the figures, and the tasks of split figures, run in that many
+    processes (:func:`.figures_run.run_parallel`; the files are the same);
+    ``progress`` (a :class:`~symbolic_friction._infra.progress.Progress`) then counts the tasks.
+
+    Raises
+    ------
+    SymbolicFrictionError
+        If a name is not a registered figure, or a format is not one of png, pdf, svg.
+    """
+    specs, fmts = chosen_figures(names, formats)
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    from .figures_run import can_fork, run_parallel
+
+    if jobs > 1 and can_fork():  # without fork, one figure after the other gives the same files
+        return run_parallel(out, specs, fmts, jobs=jobs, drawn=drawn, draw_whole=draw_whole, on_written=on_written,
+                            progress=progress)
+    written: list[Path] = []
+    for spec in specs:
+        for path in drawn(out, spec, fmts):
+            written.append(path)
+            if on_written is not None:
+                on_written(path)
+        if progress is not None:
+            progress.update(len(spec.tasks()) if spec.tasks is not None else 1)
     return written
 
 
@@ -369,12 +391,12 @@ def _fig3(case: str, out: Path) -> list[Path]:
     return written
 
 
-@register("fig3a", "Fig. 3, left column: solutions, phase portrait and V for Table I case (a)")
+@register("fig3a", "Fig. 3, left column: solutions, phase portrait and V for Table I case (a)", cost=3.0)
 def fig3a(out: Path) -> list[Path]:
     return _fig3("a", out)
 
 
-@register("fig3b", "Fig. 3, right column: solutions, phase portrait and V for Table I case (b)")
+@register("fig3b", "Fig. 3, right column: solutions, phase portrait and V for Table I case (b)", cost=3.0)
 def fig3b(out: Path) -> list[Path]:
     return _fig3("b", out)
 

@@ -4,7 +4,7 @@ independent 50-digit reference (:mod:`._reference`) of the inclusion
 
 For one gain set and a few initial states, every method runs across its
 accuracy knob (:attr:`~._simulation.SimulationMethod.knob`: the Moreau step
-``h``, the regularisation width ``ε`` for both laws, the ``solve_ivp``
+``h``, one curve per weight ``θ`` of its θ-method, the regularisation width ``ε`` for both laws, the ``solve_ivp``
 tolerance ``rtol``; the exact ``event`` method has none).  Each
 configuration gets
 
@@ -48,6 +48,8 @@ __all__ = [
     "Tradeoff",
     "CostPoint",
     "default_sweeps",
+    "DEFAULT_THETAS",
+    "moreau_label",
     "measure_tradeoff",
     "measure_cost",
     "tradeoff_figures",
@@ -59,18 +61,33 @@ FIGURE_FORMATS = ("png", "pdf", "svg")
 
 @dataclass(frozen=True)
 class Sweep:
-    """One method's curve: a label and the configured methods along its knob (coarse to fine)."""
+    """One method's curve: a label and the configured methods along its knob (coarse to fine).
+
+    ``declared_order`` is the order the curve is compared with (default: the
+    method's :attr:`~._simulation.SimulationMethod.order`).
+    """
 
     label: str
     methods: tuple[Any, ...]
+    declared_order: float | None = None
 
 
-def default_sweeps(scale: float = 1.0, *, quick: bool = False) -> list[Sweep]:
+DEFAULT_THETAS = (1.0, 0.5)
+
+
+def moreau_label(theta: float) -> str:
+    """The curve name of the Moreau θ-method: ``moreau`` for ``θ = 1`` (implicit Euler), else with its θ."""
+    return "moreau" if theta == 1.0 else f"moreau theta={theta:g}"
+
+
+def default_sweeps(scale: float = 1.0, *, quick: bool = False, thetas: Sequence[float] = DEFAULT_THETAS) -> list[Sweep]:
     """The knobs swept by ``symbolic-friction tradeoff``.
 
     ``scale`` (the size of the initial states) sets the absolute tolerances,
     so that the relative tolerance decides.  The regularised ODE is solved
-    with tight tolerances so that ``ε`` alone sets its error.
+    with tight tolerances so that ``ε`` alone sets its error.  ``thetas``
+    gives one Moreau curve per weight ``θ ∈ [½, 1]`` (each is validated by
+    :class:`~._simulation.Moreau`).
     """
     from .._simulation import EventDriven, IvpEvents, Moreau, Regularized
 
@@ -78,9 +95,13 @@ def default_sweeps(scale: float = 1.0, *, quick: bool = False) -> list[Sweep]:
     eps = (1e-1, 1e-2, 1e-3) if quick else (1e-1, 1e-2, 1e-3, 1e-4, 1e-5)
     rtols = (1e-4, 1e-7, 1e-10) if quick else (1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12)
     atol = 1e-12 * scale
+    moreau = []
+    for theta in dict.fromkeys(float(t) for t in thetas):
+        methods = tuple(Moreau(h=h, theta=theta) for h in hs)
+        moreau.append(Sweep(moreau_label(theta), methods, methods[0].accuracy_order))
     return [
         Sweep("event", (EventDriven(),)),
-        Sweep("moreau", tuple(Moreau(h=h) for h in hs)),
+        *moreau,
         Sweep("regularized tanh", tuple(Regularized(epsilon=e, law="tanh", rtol=1e-10, atol=atol) for e in eps)),
         Sweep("regularized sat", tuple(Regularized(epsilon=e, law="sat", rtol=1e-10, atol=atol) for e in eps)),
         Sweep("ivp-events", tuple(IvpEvents(rtol=r, atol=r * 1e-3 * scale) for r in rtols)),
@@ -149,6 +170,7 @@ def measure_tradeoff(
     sweeps: Sequence[Sweep] | None = None,
     budget: float = 2.0,
     quick: bool = False,
+    thetas: Sequence[float] = DEFAULT_THETAS,
 ) -> Tradeoff:
     """Measure every configuration of ``sweeps`` (default :func:`default_sweeps`) from each of ``z0s``.
 
@@ -166,6 +188,9 @@ def measure_tradeoff(
     budget : float, keyword-only
     quick : bool, keyword-only
         Three knob values per method (for tests).
+    thetas : sequence of float, keyword-only
+        The weights of the Moreau θ-method, one curve each (default ``1`` and ``½``);
+        used only when ``sweeps`` is not given.
 
     Examples
     --------
@@ -186,13 +211,13 @@ def measure_tradeoff(
     for z in z0s:
         if len(z) != 3 or not all(map(math.isfinite, z)):
             raise UsageError(f"an initial state is three finite numbers (e_i, s, v); got {z}")
+    scale = max(max(abs(c) for c in z) for z in z0s) or 1.0
+    if sweeps is None:  # before the reference: a bad θ is refused at once
+        sweeps = default_sweeps(scale, quick=quick, thetas=thetas)
     times = np.linspace(0.0, float(t_end), int(samples))
     t0 = time.perf_counter()
     refs = [_reference(params, z, t_end, times) for z in z0s]
     ref_seconds = time.perf_counter() - t0
-    scale = max(max(abs(c) for c in z) for z in z0s) or 1.0
-    if sweeps is None:
-        sweeps = default_sweeps(scale, quick=quick)
     # Steady state: the compiled event kernel when numba is there and allowed (the automatic
     # choice would run calls this small in plain Python until 3 s were spent there, mid-measurement).
     from .._simulation import _jit
@@ -212,7 +237,8 @@ def measure_tradeoff(
             pts.append(_measure_point(params, z0s, t_end, times, refs, sweep.label, method, repeats, budget))
         knob = type(sweep.methods[0]).knob
         order, n = fit_order([p.value for p in pts if p.ok], [p.error_state for p in pts if p.ok])
-        curves.append(Curve(sweep.label, knob, type(sweep.methods[0]).order, tuple(pts), order, n))
+        declared = type(sweep.methods[0]).order if sweep.declared_order is None else sweep.declared_order
+        curves.append(Curve(sweep.label, knob, declared, tuple(pts), order, n))
     return Tradeoff(
         kernel=_jit.variant(),
         params=params,
@@ -271,6 +297,8 @@ def _config(method: Any) -> str:
     if knob is None:
         return name
     extra = f", {method.law}" if name == "regularized" else ""
+    if name == "moreau" and method.theta != 1.0:
+        extra = f", theta={method.theta:g}"
     return f"{name}({knob}={getattr(method, knob):g}{extra})"
 
 
@@ -351,6 +379,7 @@ def check_formats(formats: Sequence[str]) -> tuple[str, ...]:
 _STYLE = {
     "event": ("black", "*"),
     "moreau": ("tab:blue", "o"),
+    "moreau theta=0.5": ("tab:purple", "v"),
     "regularized tanh": ("tab:orange", "s"),
     "regularized sat": ("tab:red", "D"),
     "ivp-events": ("tab:green", "^"),

@@ -141,3 +141,100 @@ def test_other_formats_on_request(tmp_path, capsys):
     assert (tmp_path / "again" / "fig2_region_R.svg").read_bytes() == (tmp_path / "fig2_region_R.svg").read_bytes()
     assert main(["figures", "--out", str(tmp_path), "--only", "fig2", "--format", "gif"]) == 2
     assert "unknown figure format" in capsys.readouterr().err
+
+
+# -- split figures and the parallel run (module-level task functions: the pool pickles them by name)
+def _square(x):
+    return x * x
+
+
+def _slow(x):
+    import time
+
+    time.sleep(2.6)
+    return x
+
+
+def _fail(x):
+    from symbolic_friction._infra.errors import SimulationError
+
+    raise SimulationError(f"task {x} failed on purpose")
+
+
+def _draw_numbers(out, results):
+    path = out / "numbers.txt"
+    path.write_text(" ".join(map(str, results)))
+    return [path]
+
+
+@pytest.fixture
+def split_figure():
+    from symbolic_friction._studies.figures import Task, register_split
+
+    made = []
+
+    def add(name, function, args, cost=1.0):
+        register_split(name, "a split figure for the tests",
+                       tasks=lambda: [Task(f"{name} {a}", function, (a,), cost=cost) for a in args], draw=_draw_numbers)
+        made.append(name)
+
+    yield add
+    for name in made:
+        FIGURES.pop(name, None)
+
+
+class _Notes:
+    """A stand-in for the progress bar: counts updates and keeps every note."""
+
+    def __init__(self):
+        self.count, self.notes = 0, []
+
+    def update(self, n=1):
+        self.count += n
+
+    def note(self, text):
+        self.notes.append(text)
+
+
+def test_parallel_run_writes_the_files_of_the_sequential_run(tmp_path, split_figure):
+    split_figure("test-split", _square, (1, 2, 3))
+    names = ["fig4", "test-split", "fig2"]
+    seq = make_figures(tmp_path / "1", names, jobs=1)
+    bar = _Notes()
+    par = make_figures(tmp_path / "2", names, jobs=2, progress=bar)
+    assert [p.name for p in seq] == [p.name for p in par] == ["fig4_stribeck.png", "numbers.txt", "fig2_region_R.png"]
+    for a, b in zip(seq, par):
+        assert a.read_bytes() == b.read_bytes()
+    assert (tmp_path / "2" / "numbers.txt").read_text() == "1 4 9"  # results in task order, whatever finished first
+    assert bar.count == 2 + 3  # one per unit: two whole figures, three tasks
+
+
+def test_a_long_task_is_seen_running(tmp_path, split_figure):
+    split_figure("test-slow", _slow, (7,))
+    bar = _Notes()
+    make_figures(tmp_path, ["test-slow"], jobs=2, progress=bar)
+    running = [n for n in bar.notes if "running test-slow 7" in n]
+    assert len(running) >= 2  # redrawn about every second while it runs: no silent gap
+
+
+def test_a_failing_task_fails_the_run(tmp_path, split_figure):
+    from symbolic_friction._infra.errors import SimulationError
+
+    split_figure("test-fail", _fail, (5,))
+    with pytest.raises(SimulationError, match="task 5 failed on purpose"):
+        make_figures(tmp_path, ["test-fail", "fig2"], jobs=2)
+
+
+def test_units_start_longest_first():
+    from symbolic_friction._studies.figures_run import units
+
+    specs = available_figures()
+    order = [u.label for u in units([specs[n] for n in ("fig2", "crosscheck_iss", "extremes", "fig3a")])]
+    assert order[0] == "extremes" and order[1].startswith("crosscheck_iss search") and order[-1] == "fig2"
+
+
+@pytest.mark.parametrize("jobs", ["0", "65"])
+def test_bad_jobs(tmp_path, capsys, jobs):
+    assert main(["figures", "--out", str(tmp_path), "--only", "fig2", "--jobs", jobs]) == 2
+    err = capsys.readouterr().err
+    assert "--jobs" in err and err.count("\n") == 1

@@ -88,3 +88,33 @@ def test_missing_and_unknown_scene(capsys):
     assert "no scene given; pass a .toml path or one of: " in capsys.readouterr().err
     assert main(["simulate", "paper-z"]) == 2
     assert "scene 'paper-z': no such file and no built-in scene of that name" in capsys.readouterr().err
+
+
+def test_theta_option(tmp_path, capsys):
+    scene = tmp_path / "m.toml"
+    scene.write_text(
+        't_end = 3\ninitial_states = [[0, 1, 0]]\n[gains]\nk_p = 3\nk_i = 4\nk_v = "6.4"\nf_c = 1\n'
+        '[method]\nname = "moreau"\nh = 0.01\n'
+    )
+    assert main(["simulate", str(scene), "--out", str(tmp_path / "one")]) == 0
+    assert main(["simulate", str(scene), "--out", str(tmp_path / "half"), "--theta", "1/2"]) == 0
+    capsys.readouterr()
+    from symbolic_friction import Parameters
+    from symbolic_friction._simulation import simulate
+
+    half = np.loadtxt(tmp_path / "half" / "m.csv", delimiter=",", skiprows=1, usecols=(3, 4, 5))
+    one = np.loadtxt(tmp_path / "one" / "m.csv", delimiter=",", skiprows=1, usecols=(3, 4, 5))
+    direct = simulate(Parameters(k_p=3, k_i=4, k_v="6.4", f_c=1), (0, 1, 0), 3.0, method="moreau", h=0.01, theta=0.5)
+    assert np.allclose(half, direct.z, rtol=1e-12, atol=1e-14) and not np.allclose(one, half, rtol=1e-6)
+
+
+@pytest.mark.parametrize("scene, theta, message", [
+    ("paper-a", "0.5", "--theta is a knob of method moreau; scene 'paper-a' uses method 'event'"),
+    ("paper-a", "0.2", "--theta must be in [1/2, 1]"),
+    ("paper-a", "x", "--theta"),
+    ("stribeck-hunting", "0.5", "takes Coulomb friction only"),
+])
+def test_bad_theta_is_one_line_exit_2(tmp_path, capsys, scene, theta, message):
+    assert main(["simulate", scene, "--out", str(tmp_path), "--theta", theta]) == 2
+    err = capsys.readouterr().err
+    assert message in err and err.count("\n") == 1 and "Traceback" not in err

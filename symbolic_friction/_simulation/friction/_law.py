@@ -109,6 +109,20 @@ class FrictionLaw(abc.ABC):
     def solve_step(self, step: Step) -> tuple[float, float]:
         """Solve ``D w + h f ∋ r``, ``f ∈ F(w)``; return ``(w, f)``."""
 
+    def stepper(self, *, k_p: float, k_i: float, k_v: float, f_c: float) -> Callable[..., float]:
+        """The step as a function ``(t, h, sigma, phi, v, D, r) -> w`` for the Moreau loop, which has ``D`` and
+        ``r`` already (computed as :class:`Step` computes them).
+
+        The default builds the :class:`Step` and calls :meth:`solve_step`; a law may return a function
+        that skips that (it must give the same ``w``, bit for bit).
+        """
+        solve = self.solve_step
+
+        def step(t: float, h: float, sigma: float, phi: float, v: float, D: float, r: float) -> float:
+            return solve(Step(t, h, sigma, phi, v, k_p, k_i, k_v, f_c))[0]
+
+        return step
+
     def check_step(self, h: float, *, k_p: float, k_i: float, k_v: float, f_c: float) -> None:
         """Raise :class:`SimulationError` if ``h`` is not usable with this law."""
 

@@ -126,8 +126,34 @@ class InflatedCoulomb(FrictionLaw):
         u, lam = _coulomb_solve(step.r - a * e + D * d, D, a)
         return u - d, step.f_c * (lam + e)
 
+    def stepper(self, *, k_p: float, k_i: float, k_v: float, f_c: float) -> Any:
+        """For a callable selection, the step of :meth:`solve_step` without building a :class:`Step` (the
+        searches over selections run millions of steps); the same operations, so the same ``w``."""
+        if not callable(self.selection):
+            return super().stepper(k_p=k_p, k_i=k_i, k_v=k_v, f_c=f_c)
+        selection, checked = self.selection, self._checked
+        limit = self._rho + 1e-12 * max(1.0, self._rho)  # as _checked allows
+
+        def step(t: float, h: float, sigma: float, phi: float, v: float, D: float, r: float) -> float:
+            out = selection(t, (sigma, phi, v))
+            try:  # the common case inline; anything unusual goes through _checked, which refuses it
+                d, e = out
+                d, e = float(d), float(e)
+                if not (abs(d) <= limit and abs(e) <= limit):
+                    raise ValueError
+            except (TypeError, ValueError):
+                d, e = checked(out, t)
+            a = h * f_c
+            u, _ = _coulomb_solve(r - a * e + D * d, D, a)
+            return u - d
+
+        return step
+
     def _call_selection(self, step: Step) -> tuple[float, float]:
-        out = self.selection(step.t, (step.sigma, step.phi, step.v))
+        return self._checked(self.selection(step.t, (step.sigma, step.phi, step.v)), step.t)
+
+    def _checked(self, out: Any, t: float) -> tuple[float, float]:
+        """The selection's value ``(d, e)`` as floats, refused unless both are within ρ."""
         try:
             d, e = (float(out[0]), float(out[1]))
             if len(out) != 2:
@@ -138,7 +164,7 @@ class InflatedCoulomb(FrictionLaw):
         slack = 1e-12 * max(1.0, rho)
         if not (abs(d) <= rho + slack and abs(e) <= rho + slack):
             raise SimulationError(
-                f"the selection returned (d, e) = ({d!r}, {e!r}) at t = {step.t:g}; both must be within rho = {rho:g}"
+                f"the selection returned (d, e) = ({d!r}, {e!r}) at t = {t:g}; both must be within rho = {rho:g}"
             )
         return d, e
 
