@@ -199,8 +199,8 @@ def test_matrices_inexact_coordinate_map_fails(matrices_runtime):
 def test_modes_wrong_boundary_fails(modes_runtime):
     ob, s = modes_runtime
 
-    def select_mode(sigma, phi, v, f_c):  # row (v) sent to k = -1 instead of 0
-        k = s.select_mode(sigma, phi, v, f_c)
+    def select_mode(sigma, phi, v, f_c, *f_s):  # row (v) sent to k = -1 instead of 0
+        k = s.select_mode(sigma, phi, v, f_c, *f_s)
         return -1 if (v == 0 and phi == f_c and sigma < 0) else k
 
     assert_fails(ob, dataclasses.replace(s, select_mode=select_mode), "select_mode gives k = -1", "row (v)")
@@ -224,8 +224,8 @@ def test_pnorm_sign_flip_fails(pnorm_runtime):
 def test_modes_at_rest_strict_boundary_fails(modes_runtime):
     ob, s = modes_runtime
 
-    def mode_at_rest(sigma, base, offset, f_c, tol):  # rows (iii)-(v) decided by the sign of the offset only
-        b, o, k = s.mode_at_rest(sigma, base, offset, f_c, tol)
+    def mode_at_rest(sigma, base, offset, f_c, tol, excess=0.0):  # rows (iii)-(v) decided by the sign of the offset only
+        b, o, k = s.mode_at_rest(sigma, base, offset, f_c, tol, excess)
         phi = base * f_c + offset
         return (b, o, 0) if phi == f_c else (b, o, k)
 
@@ -235,8 +235,8 @@ def test_modes_at_rest_strict_boundary_fails(modes_runtime):
 def test_mode_after_slip_without_the_clamp_rule_fails(modes_runtime):
     ob, s = modes_runtime
 
-    def mode_after_slip(sigma, offset, direction, f_c, tol):  # clamps the side a slip can end on
-        return s.mode_at_rest(sigma, direction, 0.0 if direction * offset < 0 else offset, f_c, tol)
+    def mode_after_slip(sigma, offset, direction, f_c, tol, excess=0.0):  # clamps the side a slip can end on
+        return s.mode_at_rest(sigma, direction, 0.0 if direction * offset < 0 else offset, f_c, tol, excess)
 
     assert_fails(ob, dataclasses.replace(s, mode_after_slip=mode_after_slip), "after a slip d = ", "mode_after_slip gives")
 
