@@ -363,11 +363,9 @@ def run(args: argparse.Namespace) -> int:
         emit(f"configuration: {where.origin} (proofs: {where.proofs})", err=as_json, level=2)
     sections = []
     makers = [obligations_section] if only else SECTIONS
-    for make in makers:
-        try:
-            section = make(args)
-        except Exception as exc:  # a crashing section fails loudly, it never passes
-            section = _crashed(make, exc)
+    from ._parallel import run_sections
+
+    for section in run_sections(list(makers), args):  # later sections run on the other core meanwhile
         sections.append(gate(section))
         if not as_json:
             if not section.streamed:
