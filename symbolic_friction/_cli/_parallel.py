@@ -10,6 +10,10 @@ its streamed rows.  Nothing is decided differently: each section is the same
 function on the same arguments.  A child that dies without answering makes
 its sections fail (never pass).
 
+The child can also take work *ahead* of its sections (``ahead``: named
+functions, e.g. the costliest obligation) so that both cores stay busy; this
+process asks for each result by name when it reaches it (:class:`Inbox`).
+
 ``SYMBOLIC_FRICTION_JOBS=1`` (or one core, or no ``fork``) runs them one
 after the other in this process.
 """
@@ -24,7 +28,7 @@ from typing import Any
 
 from ._sections import Section, _crashed
 
-__all__ = ["ENV", "parallel_allowed", "run_sections"]
+__all__ = ["ENV", "parallel_allowed", "run_sections", "Inbox"]
 
 ENV = "SYMBOLIC_FRICTION_JOBS"
 
@@ -47,20 +51,62 @@ def _safe(make: Maker, args: argparse.Namespace) -> Section:
         return _crashed(make, exc)
 
 
-def _child(makers: list[Maker], args: argparse.Namespace, send: Any) -> None:
+def _child(makers: list[Maker], args: argparse.Namespace, send: Any, ahead: dict[str, Callable[[], Any]]) -> None:
+    for key, work in ahead.items():
+        try:
+            send.send(("ahead", key, work()))
+        except Exception as exc:  # the parent reports the error where it needed the value
+            send.send(("ahead", key, exc if _picklable(exc) else RuntimeError(repr(exc))))
     for make in makers:
         section = _safe(make, args)
         try:
-            send.send(section)
+            send.send(("section", make.__name__, section))
         except Exception as exc:  # an unpicklable result: report it, do not hang the parent
-            send.send(_crashed(make, exc))
+            send.send(("section", make.__name__, _crashed(make, exc)))
     send.close()
 
 
-def run_sections(makers: list[Maker], args: argparse.Namespace, *, parallel: bool | None = None) -> Iterator[Section]:
-    """Each section of ``makers``, in order (module docstring)."""
+def _picklable(value: Any) -> bool:
+    import pickle
+
+    try:
+        pickle.dumps(value)
+    except Exception:
+        return False
+    return True
+
+
+class Inbox:
+    """The child's messages, read in order and kept until asked for by ``(kind, name)``."""
+
+    def __init__(self, recv: Any, proc: Any) -> None:
+        self.recv, self.proc = recv, proc
+        self.kept: dict[tuple[str, str], Any] = {}
+
+    def get(self, kind: str, name: str) -> Any:
+        """The value sent for ``(kind, name)``; raises :class:`RuntimeError` if the child ended without it."""
+        while (kind, name) not in self.kept:
+            try:
+                got_kind, got_name, value = self.recv.recv()
+            except (EOFError, OSError):
+                raise RuntimeError(f"the worker process ended (exit code {self.proc.exitcode}) without a result") from None
+            self.kept[got_kind, got_name] = value
+        value = self.kept.pop((kind, name))
+        if isinstance(value, BaseException):
+            raise value
+        return value
+
+
+def run_sections(makers: list[Maker], args: argparse.Namespace, *, parallel: bool | None = None,
+                 ahead: dict[str, Callable[[], Any]] | None = None) -> Iterator[Section]:
+    """Each section of ``makers``, in order (module docstring).
+
+    With the child, ``args.inbox`` is an :class:`Inbox` holding the results of
+    ``ahead`` (``None`` when everything runs here: do the work yourself).
+    """
     if parallel is None:
         parallel = parallel_allowed()
+    args.inbox = None
     if not parallel or len(makers) < 2:
         for make in makers:
             yield _safe(make, args)
@@ -71,18 +117,21 @@ def run_sections(makers: list[Maker], args: argparse.Namespace, *, parallel: boo
     recv, send = ctx.Pipe(duplex=False)
     quiet = copy.copy(args)
     quiet.json = True  # the child streams nothing: this process prints its tables, in order
-    proc = ctx.Process(target=_child, args=(makers[1:], quiet, send), daemon=True)
+    proc = ctx.Process(target=_child, args=(makers[1:], quiet, send, dict(ahead or {})), daemon=True)
     proc.start()
     send.close()
+    inbox = Inbox(recv, proc)
+    args.inbox = inbox
     try:
         yield _safe(makers[0], args)
         for make in makers[1:]:
             try:
-                section = recv.recv()
-            except (EOFError, OSError):
-                section = _crashed(make, RuntimeError(f"the worker process ended (exit code {proc.exitcode}) without a result"))
+                section = inbox.get("section", make.__name__)
+            except RuntimeError as exc:
+                section = _crashed(make, exc)
             yield section
     finally:
+        args.inbox = None
         recv.close()
         proc.join(timeout=5)
         if proc.is_alive():

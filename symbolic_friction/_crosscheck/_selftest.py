@@ -110,7 +110,7 @@ def wrong_variants(cert: Any, observed_overshoot: float) -> dict[str, Any]:
     }
 
 
-def crosscheck_self_test(certificates: dict[str, Any], *, trajectories: int = 150, seed: int = 0) -> SelfTest:
+def crosscheck_self_test(certificates: dict[str, Any], *, trajectories: int = 100, seed: int = 0) -> SelfTest:
     """Run the self-test on ``{case: proved certificate}``.
 
     Parameters
@@ -219,7 +219,7 @@ def _refusal_row(case: str, cert: Any) -> SelfTestRow:
     return SelfTestRow(case, "edited kappa", "refused", ("accepted",), False)
 
 
-def _growth_run(claims: Any, *, seed: int, starts: int = 16) -> tuple[int, list[Any]]:
+def _growth_run(claims: Any, *, seed: int, starts: int = 8) -> tuple[int, list[Any]]:
     """Short dense runs from the maximisers of ``V̂°/V̂`` on ``R̂`` (the model's eq. hatVdot), as the full cross-check does."""
     from ._initial import rate_maximisers
     from ._run import GroupRun as _GroupRun

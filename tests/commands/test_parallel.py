@@ -54,3 +54,48 @@ def test_one_job_runs_everything_here(monkeypatch):
     assert not _parallel.parallel_allowed()
     got = list(_parallel.run_sections([_maker("one"), _maker("two")], argparse.Namespace(json=False)))
     assert {s.rows[0][0] for s in got} == {str(os.getpid())}
+
+
+def _small_check(monkeypatch, tmp_path, later):
+    """``check.run`` on two obligations (claim1.cases decided by the worker) and one cheap later section."""
+    from symbolic_friction import _obligations
+    from symbolic_friction._cli import check
+    from symbolic_friction._obligations.claim1 import Claim1Cases
+    from symbolic_friction._obligations.coordinates import Coordinates
+
+    monkeypatch.delenv(_parallel.ENV, raising=False)
+    monkeypatch.setattr(_obligations, "all_obligations", lambda: [Coordinates(), Claim1Cases()])
+    monkeypatch.setattr(check, "SECTIONS", [check.obligations_section, later])
+    monkeypatch.chdir(tmp_path)
+    args = argparse.Namespace(json=True, write=False, proofs=str(tmp_path), config=None, no_certificates=True,
+                              only=None, junit_xml=None)
+    return check.run(args)
+
+
+def test_an_offloaded_obligation_is_decided_by_the_worker_and_reported(monkeypatch, tmp_path, capsys):
+    from symbolic_friction._obligations._base import Outcome
+    from symbolic_friction._obligations.claim1 import Claim1Cases
+
+    parent = os.getpid()
+    monkeypatch.setattr(Claim1Cases, "verify", lambda self, s: Outcome.fail(f"decided in {os.getpid()}"))
+    code = _small_check(monkeypatch, tmp_path, _maker("later"))
+    out = capsys.readouterr().out
+    assert code == 1
+    import json
+
+    row = next(o for o in json.loads(out)["obligations"] if o["id"] == "claim1.cases")
+    assert row["status"] != "holds" and "decided in" in row["reason"] and str(parent) not in row["reason"]
+
+
+def test_a_worker_that_dies_before_an_offloaded_obligation_fails_it(monkeypatch, tmp_path, capsys):
+    from symbolic_friction._cli import check
+
+    monkeypatch.setattr(check, "_decide_offloaded", lambda: {"claim1.cases": lambda: os._exit(5)})
+    code = _small_check(monkeypatch, tmp_path, _maker("later"))
+    captured = capsys.readouterr()
+    assert code == 1
+    import json
+
+    payload = json.loads(captured.out)
+    row = next(o for o in payload["obligations"] if o["id"] == "claim1.cases")
+    assert row["status"] != "holds" and "without a result" in row["reason"]
