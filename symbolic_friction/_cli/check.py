@@ -179,7 +179,7 @@ def obligations_section(args: argparse.Namespace) -> Section:
     )
 
 
-OFFLOADED = ("claim1.cases",)
+OFFLOADED = ("model.V_runtime", "claim1.cases")
 """Obligations the second core decides first, while this process decides the others in order (costliest)."""
 
 
