@@ -52,6 +52,9 @@ def _safe(make: Maker, args: argparse.Namespace) -> Section:
 
 
 def _child(makers: list[Maker], args: argparse.Namespace, send: Any, ahead: dict[str, Callable[[], Any]]) -> None:
+    from .._infra.output import set_verbosity
+
+    set_verbosity(0)  # no progress bar or note from here: this process's output is the parent's to print
     for key, work in ahead.items():
         try:
             send.send(("ahead", key, work()))

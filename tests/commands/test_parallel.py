@@ -99,3 +99,13 @@ def test_a_worker_that_dies_before_an_offloaded_obligation_fails_it(monkeypatch,
     payload = json.loads(captured.out)
     row = next(o for o in payload["obligations"] if o["id"] == "claim1.cases")
     assert row["status"] != "holds" and "without a result" in row["reason"]
+
+
+def test_the_worker_draws_no_progress_bar():
+    from symbolic_friction._infra.output import verbosity
+
+    def seen(args):
+        return Section("seen", ("verbosity",), [(str(verbosity()),)], {}, True, [], summary="seen")
+
+    got = list(_parallel.run_sections([_maker("one"), seen], argparse.Namespace(json=False), parallel=True))
+    assert got[1].rows == [("0",)] and verbosity() == 1
