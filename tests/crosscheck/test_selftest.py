@@ -122,3 +122,33 @@ def test_a_kernel_that_drifts_from_the_reference_fails_check(monkeypatch):
     assert not section.ok
     assert "23 of 24 kernel runs match the reference" in section.summary
     assert any(n.startswith("FAILED cross-check self-test (kernel) f_c=2") for n in section.notes)
+
+
+def test_case_b_runs_at_f_c_2_and_still_verifies(certs):
+    from symbolic_friction._certify import verify_certificate
+    from symbolic_friction._crosscheck._selftest import F_C_OF_CASE, _at_coulomb_level
+
+    assert F_C_OF_CASE == {"b": 2}
+    scaled = _at_coulomb_level(certs["b"], 2)
+    assert scaled.f_c == 2 and verify_certificate(scaled).proved and "at f_c = 2" in scaled.provenance.label
+
+
+def test_a_mode_table_check_without_f_c_fails_the_self_test(certs, monkeypatch):
+    """|φ| ≤ 1 instead of |φ| ≤ f_c on a stick: invisible at f_c = 1, caught on case (b) at f_c = 2."""
+    import importlib.util
+    import sys
+
+    from symbolic_friction._crosscheck import mode_table
+
+    path = Path(mode_table.__file__)
+    source = path.read_text(encoding="utf-8").replace("np.abs(xs[..., 1]) - f_c", "np.abs(xs[..., 1]) - 1.0")
+    spec = importlib.util.spec_from_loader("symbolic_friction._crosscheck._mode_table_mut", loader=None)
+    mutant = importlib.util.module_from_spec(spec)
+    mutant.__package__ = "symbolic_friction._crosscheck"
+    monkeypatch.setitem(sys.modules, spec.name, mutant)
+    exec(compile(source, str(path), "exec"), mutant.__dict__)
+    monkeypatch.setattr(mode_table.Modes, "check", mutant.Modes.check)
+    result = crosscheck_self_test(certs)
+    assert not result.ok
+    bad = [(r.case, r.variant) for r in result.rows if not r.ok]
+    assert ("b", "proved") in bad and ("a", "proved") not in bad
