@@ -14,7 +14,8 @@ The child can also take work *ahead* of its sections (``ahead``: named
 functions, e.g. the costliest obligation) so that both cores stay busy; this
 process asks for each result by name when it reaches it (:class:`Inbox`).
 
-``SYMBOLIC_FRICTION_JOBS=1`` (or one core, or no ``fork``) runs them one
+``SYMBOLIC_FRICTION_JOBS=1`` (or one core, or a platform other than Linux,
+where ``fork`` is unavailable or unsafe with system libraries) runs them one
 after the other in this process.
 """
 
@@ -36,10 +37,11 @@ Maker = Callable[[argparse.Namespace], Section]
 
 
 def parallel_allowed() -> bool:
-    """Two cores, ``fork`` available, and not switched off by ``SYMBOLIC_FRICTION_JOBS=1``."""
+    """Two cores, Linux (``fork``), and not switched off by ``SYMBOLIC_FRICTION_JOBS=1``."""
     import multiprocessing
+    import sys
 
-    if os.environ.get(ENV, "").strip() == "1":
+    if os.environ.get(ENV, "").strip() == "1" or not sys.platform.startswith("linux"):
         return False
     return (os.cpu_count() or 1) >= 2 and "fork" in multiprocessing.get_all_start_methods()
 

@@ -109,3 +109,11 @@ def test_the_worker_draws_no_progress_bar():
 
     got = list(_parallel.run_sections([_maker("one"), seen], argparse.Namespace(json=False), parallel=True))
     assert got[1].rows == [("0",)] and verbosity() == 1
+
+
+def test_only_linux_forks(monkeypatch):
+    import sys
+
+    monkeypatch.delenv(_parallel.ENV, raising=False)
+    monkeypatch.setattr(sys, "platform", "darwin")
+    assert not _parallel.parallel_allowed()
