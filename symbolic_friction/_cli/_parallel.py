@@ -15,8 +15,9 @@ functions, e.g. the costliest obligation) so that both cores stay busy; this
 process asks for each result by name when it reaches it (:class:`Inbox`).
 
 ``SYMBOLIC_FRICTION_JOBS=1`` (or one core, or a platform other than Linux,
-where ``fork`` is unavailable or unsafe with system libraries) runs them one
-after the other in this process.
+where ``fork`` is unavailable or unsafe with system libraries, or a process
+that already runs other threads, whose locks a forked child would inherit
+held) runs them one after the other in this process.
 """
 
 from __future__ import annotations
@@ -37,11 +38,14 @@ Maker = Callable[[argparse.Namespace], Section]
 
 
 def parallel_allowed() -> bool:
-    """Two cores, Linux (``fork``), and not switched off by ``SYMBOLIC_FRICTION_JOBS=1``."""
+    """Two cores, Linux (``fork``), one thread, and not switched off by ``SYMBOLIC_FRICTION_JOBS=1``."""
     import multiprocessing
     import sys
+    import threading
 
     if os.environ.get(ENV, "").strip() == "1" or not sys.platform.startswith("linux"):
+        return False
+    if threading.active_count() > 1:
         return False
     return (os.cpu_count() or 1) >= 2 and "fork" in multiprocessing.get_all_start_methods()
 

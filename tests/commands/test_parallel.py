@@ -4,13 +4,14 @@ from __future__ import annotations
 
 import argparse
 import os
+import sys
 
 import pytest
 
 from symbolic_friction._cli import _parallel
 from symbolic_friction._cli._sections import Section
 
-pytestmark = pytest.mark.skipif(not _parallel.parallel_allowed() and os.environ.get(_parallel.ENV) != "1",
+pytestmark = pytest.mark.skipif(not sys.platform.startswith("linux") or (os.cpu_count() or 1) < 2,
                                 reason="needs fork and two cores")
 
 
@@ -64,6 +65,7 @@ def _small_check(monkeypatch, tmp_path, later):
     from symbolic_friction._obligations.coordinates import Coordinates
 
     monkeypatch.delenv(_parallel.ENV, raising=False)
+    monkeypatch.setattr(_parallel, "parallel_allowed", lambda: True)  # also under pytest-xdist's threads
     monkeypatch.setattr(_obligations, "all_obligations", lambda: [Coordinates(), Claim1Cases()])
     monkeypatch.setattr(check, "SECTIONS", [check.obligations_section, later])
     monkeypatch.chdir(tmp_path)
@@ -112,8 +114,14 @@ def test_the_worker_draws_no_progress_bar():
 
 
 def test_only_linux_forks(monkeypatch):
-    import sys
-
     monkeypatch.delenv(_parallel.ENV, raising=False)
     monkeypatch.setattr(sys, "platform", "darwin")
+    assert not _parallel.parallel_allowed()
+
+
+def test_a_process_with_other_threads_does_not_fork(monkeypatch):
+    import threading
+
+    monkeypatch.delenv(_parallel.ENV, raising=False)
+    monkeypatch.setattr(threading, "active_count", lambda: 2)
     assert not _parallel.parallel_allowed()
