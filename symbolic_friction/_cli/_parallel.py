@@ -7,8 +7,9 @@ arguments, the configuration and any test's patches) while this process
 decides and streams the obligations; their results come back through a pipe,
 in order, and are printed exactly as a sequential run would print them after
 its streamed rows.  Nothing is decided differently: each section is the same
-function on the same arguments.  A child that dies without answering makes
-its sections fail (never pass).
+function on the same arguments.  If the child dies without answering, this
+process decides what it left undone itself (so a section is never lost, and
+never passes unless decided).
 
 The child can also take work *ahead* of its sections (``ahead``: named
 functions, e.g. the costliest obligation) so that both cores stay busy; this
@@ -17,7 +18,8 @@ process asks for each result by name when it reaches it (:class:`Inbox`).
 ``SYMBOLIC_FRICTION_JOBS=1`` (or one core, or a platform other than Linux,
 where ``fork`` is unavailable or unsafe with system libraries, or a process
 that already runs other threads, whose locks a forked child would inherit
-held) runs them one after the other in this process.
+held, or that has loaded numba, whose threading layers do not survive a fork)
+runs them one after the other in this process.
 """
 
 from __future__ import annotations
@@ -45,7 +47,7 @@ def parallel_allowed() -> bool:
 
     if os.environ.get(ENV, "").strip() == "1" or not sys.platform.startswith("linux"):
         return False
-    if threading.active_count() > 1:
+    if threading.active_count() > 1 or "numba" in sys.modules:
         return False
     return (os.cpu_count() or 1) >= 2 and "fork" in multiprocessing.get_all_start_methods()
 
@@ -136,8 +138,9 @@ def run_sections(makers: list[Maker], args: argparse.Namespace, *, parallel: boo
         for make in makers[1:]:
             try:
                 section = inbox.get("section", make.__name__)
-            except RuntimeError as exc:
-                section = _crashed(make, exc)
+            except RuntimeError as exc:  # the worker is gone: decide it here
+                section = _safe(make, args)
+                section.notes.append(f"note: decided in the main process ({exc})")
             yield section
     finally:
         args.inbox = None

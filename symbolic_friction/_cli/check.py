@@ -194,7 +194,10 @@ class _Decided:
         self.id, self.paper, self.statement, self.method = ob.id, ob.paper, ob.statement, ob.method
 
     def run(self) -> Any:
-        return self.inbox.get("ahead", self.id)
+        try:
+            return self.inbox.get("ahead", self.id)
+        except RuntimeError:  # the worker is gone: decide it here
+            return self.ob.run()
 
 
 def _decide_offloaded() -> dict[str, Callable[[], Any]]:

@@ -41,13 +41,19 @@ def test_a_section_that_raises_in_the_worker_fails():
     assert not got[1].ok and "boom crashed: ValueError: no luck" in got[1].summary and got[2].ok
 
 
-def test_a_worker_that_dies_fails_its_sections():
-    def die(args):
-        os._exit(3)
+def test_a_worker_that_dies_leaves_its_sections_to_this_process():
+    parent = os.getpid()
 
-    got = list(_parallel.run_sections([_maker("one"), die, _maker("three")], argparse.Namespace(json=False), parallel=True))
-    assert got[0].ok and not got[1].ok and not got[2].ok
-    assert "without a result" in got[1].summary
+    def die_in_worker(args):
+        if os.getpid() != parent:
+            os._exit(3)
+        return Section("here", ("pid",), [(str(os.getpid()),)], {}, True, [], summary="here")
+
+    got = list(_parallel.run_sections([_maker("one"), die_in_worker, _maker("three")], argparse.Namespace(json=False),
+                                      parallel=True))
+    assert [s.ok for s in got] == [True, True, True]
+    assert got[1].rows == [(str(parent),)] and got[2].rows == [(str(parent),)]
+    assert "decided in the main process" in got[1].notes[-1] and "without a result" in got[1].notes[-1]
 
 
 def test_one_job_runs_everything_here(monkeypatch):
@@ -89,18 +95,25 @@ def test_an_offloaded_obligation_is_decided_by_the_worker_and_reported(monkeypat
     assert row["status"] != "holds" and "decided in" in row["reason"] and str(parent) not in row["reason"]
 
 
-def test_a_worker_that_dies_before_an_offloaded_obligation_fails_it(monkeypatch, tmp_path, capsys):
+def test_a_worker_that_dies_before_an_offloaded_obligation_leaves_it_to_this_process(monkeypatch, tmp_path, capsys):
     from symbolic_friction._cli import check
+    from symbolic_friction._obligations._base import Outcome
+    from symbolic_friction._obligations.claim1 import Claim1Cases
 
+    parent = os.getpid()
     monkeypatch.setattr(check, "_decide_offloaded", lambda: {"claim1.cases": lambda: os._exit(5)})
-    code = _small_check(monkeypatch, tmp_path, _maker("later"))
-    captured = capsys.readouterr()
-    assert code == 1
+    monkeypatch.setattr(Claim1Cases, "verify", lambda self, s: Outcome.fail(f"decided in {os.getpid()}"))
+    _small_check(monkeypatch, tmp_path, _maker("later"))
     import json
 
-    payload = json.loads(captured.out)
-    row = next(o for o in payload["obligations"] if o["id"] == "claim1.cases")
-    assert row["status"] != "holds" and "without a result" in row["reason"]
+    row = next(o for o in json.loads(capsys.readouterr().out)["obligations"] if o["id"] == "claim1.cases")
+    assert row["status"] != "holds" and row["reason"] == f"decided in {parent}"
+
+
+def test_a_process_that_loaded_numba_does_not_fork(monkeypatch):
+    monkeypatch.delenv(_parallel.ENV, raising=False)
+    monkeypatch.setitem(sys.modules, "numba", object())
+    assert not _parallel.parallel_allowed()
 
 
 def test_the_worker_draws_no_progress_bar():
