@@ -58,6 +58,28 @@ def _wall(cwd: str | None = None, pythonpath: str | None = None) -> tuple[float,
     return wall, (after.children_user - before.children_user) + (after.children_system - before.children_system)
 
 
+_SIDES = """
+import argparse, contextlib, io, os, resource, sys, time
+start = time.perf_counter()
+from symbolic_friction._cli import check
+args = argparse.Namespace(json=True, write=False, proofs=None, config=None, no_certificates=False, only=None,
+                          junit_xml=None)
+with contextlib.redirect_stdout(io.StringIO()):
+    code = check.run(args)
+me, worker = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
+print(f"exit {code}: wall {time.perf_counter() - start:.2f} s; CPU: main process {me.ru_utime + me.ru_stime:.2f} s, "
+      f"worker {worker.ru_utime + worker.ru_stime:.2f} s; load {os.getloadavg()[0]:.2f}")
+"""
+
+
+def sides(repeat: int) -> None:
+    """CPU seconds of ``check``'s main process and of its worker (on a quiet 2-core machine the wall time is
+    about the larger of the two)."""
+    for _ in range(repeat):
+        out = subprocess.run([sys.executable, "-c", _SIDES], capture_output=True, text=True, check=True)
+        print(out.stdout.strip())
+
+
 def compare(other: str, repeat: int) -> None:
     """This checkout and ``other``, interleaved (module docstring)."""
     print(f"load average before: {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
@@ -77,7 +99,12 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=3, help="repetitions (default 3)")
     parser.add_argument("--against", metavar="DIR", default=None,
                         help="also time `check` from the checkout in DIR, interleaved with this one")
+    parser.add_argument("--sides", action="store_true",
+                        help="CPU seconds of check's main process and of its worker, per run")
     args = parser.parse_args()
+    if args.sides:
+        sides(args.repeat)
+        return
     if args.against:
         compare(args.against, args.repeat)
         return
