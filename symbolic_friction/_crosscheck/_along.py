@@ -24,6 +24,7 @@ computations.
 
 from __future__ import annotations
 
+import functools
 import math
 import weakref
 from dataclasses import dataclass
@@ -39,8 +40,12 @@ from .._model.parameters import Parameters
 __all__ = ["Along", "along", "Chain", "build_chain", "observability_gramian"]
 
 
+@functools.lru_cache(maxsize=64)
 def observability_gramian(params: Parameters) -> np.ndarray:
-    """``W`` with ``AᵀW + WA = -e₃e₃ᵀ``: ``∫_0^∞ v² dt = yᵀWy`` for ``y' = Ay``, ``v = e₃ᵀy``."""
+    """``W`` with ``AᵀW + WA = -e₃e₃ᵀ``: ``∫_0^∞ v² dt = yᵀWy`` for ``y' = Ay``, ``v = e₃ᵀy``.
+
+    Solved once per gain set (every batch of a run shares it); read-only.
+    """
     from scipy.linalg import solve_continuous_lyapunov
 
     from .._model.coordinates import system_matrix
@@ -49,7 +54,9 @@ def observability_gramian(params: Parameters) -> np.ndarray:
     Q = np.zeros((3, 3))
     Q[2, 2] = -1.0
     W = solve_continuous_lyapunov(A.T, Q)
-    return 0.5 * (W + W.T)
+    W = 0.5 * (W + W.T)
+    W.setflags(write=False)
+    return W
 
 
 @dataclass(frozen=True, eq=False)

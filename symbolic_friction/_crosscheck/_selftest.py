@@ -15,8 +15,20 @@ cases (a) and (b):
   ``kappa``  κ below the observed overshoot              ``prop1.stability``
   ``c``      c = 10 · 2(k_v k_p − k_i)                   ``lemma2.decrease``
   ``c1``     c₁ = 1.01 λ_min(P)                          ``lemma2.lower_bound``
+  ``c2``     c₂ = c₂/4                                   ``lemma3.V_upper``
+  ``c1_hat`` ĉ₁ = 4ĉ₁                                    ``lemma3.hatV_lower``
+  ``c2_hat`` ĉ₂ = ĉ₂/4                                   ``lemma3.hatV_upper``
+  ``NaN c``  c = NaN (a NaN slack is a failure)          ``lemma2.decrease``
   ``k4``     k₄ = k_p k₂/2 (breaks a derived condition)  ``lemma3.hatV_nonincreasing``
+  ``stalled`` trajectories frozen at their start         ``prop1.attractivity``
+  ``mode``   one slip sample labelled with the other k   ``model.modes``
   ========== ========================================== ============================
+
+The last two are wrong *solutions* rather than wrong certificates: the
+properties of the solutions alone must catch them too.  Before all of them,
+the kernel whose trajectories the cross-check trusts is compared with the
+independent reference at ``f_c ≠ 1`` and with static friction
+(:mod:`._kernel_check`).
 
 It also checks the two refusals that keep the cross-check from passing
 vacuously: a certificate whose overshoot bound was edited below
@@ -37,15 +49,39 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["EXPECTED", "SelfTestRow", "SelfTest", "wrong_variants", "crosscheck_self_test", "table_i_certificates"]
+__all__ = ["EXPECTED", "F_C_OF_CASE", "SelfTestRow", "SelfTest", "wrong_variants", "crosscheck_self_test", "table_i_certificates"]
 
 EXPECTED: dict[str, str] = {
     "kappa": "prop1.stability",
     "c": "lemma2.decrease",
     "c1": "lemma2.lower_bound",
+    "c2": "lemma3.V_upper",
+    "c1_hat": "lemma3.hatV_lower",
+    "c2_hat": "lemma3.hatV_upper",
+    "NaN c": "lemma2.decrease",
     "k4": "lemma3.hatV_nonincreasing",
+    "stalled": "prop1.attractivity",
+    "mode": "model.modes",
 }
 """Wrong variant → the property that must catch it."""
+
+
+F_C_OF_CASE: dict[str, int] = {"b": 2}
+"""Case (b) runs at ``f_c = 2``: the constants of eqs. (lyapLike), (Vhat) do not depend on ``f_c`` (the
+inclusion is homogeneous in ``(x, f_c)``), so the certificate still verifies, and a factor ``f_c`` lost
+anywhere in the cross-check shows."""
+
+
+def _at_coulomb_level(cert: Any, f_c: int) -> Any:
+    """``cert`` at Coulomb level ``f_c`` (its label says so; the exact verifier decides it again)."""
+    if f_c == 1 or Fraction(cert.f_c) != 1:
+        return cert
+    prov = getattr(cert, "provenance", None)
+    label = f"{getattr(prov, 'label', '')} at f_c = {f_c}".strip()
+    changes: dict[str, Any] = {"f_c": Fraction(f_c)}
+    if prov is not None:
+        changes["provenance"] = dataclasses.replace(prov, label=label)
+    return dataclasses.replace(cert, **changes)
 
 
 @dataclass(frozen=True)
@@ -85,11 +121,14 @@ def wrong_variants(cert: Any, observed_overshoot: float) -> dict[str, Any]:
         "kappa": dataclasses.replace(cert, overshoot_bound=f"{kappa:.6f}"),
         "c": dataclasses.replace(cert, c=10 * 2 * (cert.k_v * cert.k_p - cert.k_i)),
         "c1": dataclasses.replace(cert, c1=Fraction(_lambda_min_P(cert) * 1.01).limit_denominator(10**9)),
+        "c2": dataclasses.replace(cert, c2=Fraction(cert.c2) / 4),
+        "c1_hat": dataclasses.replace(cert, c1_hat=Fraction(cert.c1_hat) * 4),
+        "c2_hat": dataclasses.replace(cert, c2_hat=Fraction(cert.c2_hat) / 4),
         "k4": dataclasses.replace(cert, k4=cert.k_p * cert.k2 / 2),
     }
 
 
-def crosscheck_self_test(certificates: dict[str, Any], *, trajectories: int = 150, seed: int = 0) -> SelfTest:
+def crosscheck_self_test(certificates: dict[str, Any], *, trajectories: int = 100, seed: int = 0) -> SelfTest:
     """Run the self-test on ``{case: proved certificate}``.
 
     Parameters
@@ -109,7 +148,13 @@ def crosscheck_self_test(certificates: dict[str, Any], *, trajectories: int = 15
     options = dict(trajectories=trajectories, seed=seed, adversarial=False, samples=101, progress=False)
     rows: list[SelfTestRow] = []
     total = 0
+    from ._kernel_check import kernel_rows
+
+    for k in kernel_rows():
+        total += 1
+        rows.append(SelfTestRow("kernel", k.scenario, "matches the reference", (k.detail,) if k.detail else (), k.ok))
     for case, cert in certificates.items():
+        cert = _at_coulomb_level(cert, F_C_OF_CASE.get(case, 1))
         rows.append(_refusal_row(case, cert))
         try:
             limited = crosscheck([cert], **{**options, "trajectories": 10, "max_events": 2})
@@ -126,18 +171,58 @@ def crosscheck_self_test(certificates: dict[str, Any], *, trajectories: int = 15
         rows.append(SelfTestRow(case, "proved", "passes, complete", failing, check.passed))
         observed = max(check.max_overshoot.values()) if check.max_overshoot else 1.0
         wrong = wrong_variants(cert, observed)
-        claims = [Claims.from_certificate(c, label=name) for name, c in wrong.items()]
-        bad = crosscheck(claims[:3], require_proved=False, **options)
+        claims = {name: Claims.from_certificate(c, label=name) for name, c in wrong.items()}
+        k4 = claims.pop("k4")
+        claims["NaN c"] = dataclasses.replace(claims["c"], label="NaN c", c=float("nan"))
+        bad = crosscheck(list(claims.values()), require_proved=False, **options)
         total += bad.checks[0].trajectories
         results = [(wc.label, wc.results) for wc in bad.checks]
         # V̂ grows only from a thin set of R̂: start short runs where the model's V̂°/V̂ is largest
-        n, k4_results = _growth_run(claims[3], seed=seed)
+        n, k4_results = _growth_run(k4, seed=seed)
         total += n
-        results.append((claims[3].label, k4_results))
+        results.append((k4.label, k4_results))
+        results += _wrong_solutions(Claims.from_certificate(cert, label="proved"), seed=seed)
         for label, res in results:
             caught = tuple(r.id for r in res if not r.passed and r.counterexample is not None)
             rows.append(SelfTestRow(case, label, EXPECTED[label], caught, EXPECTED[label] in caught))
     return SelfTest(rows=tuple(rows), trajectories=total, seconds=time.perf_counter() - start)
+
+
+def _wrong_solutions(claims: Any, *, seed: int) -> list[tuple[str, list[Any]]]:
+    """Two wrong claims about the solutions, checked with the proved certificate: each must be caught.
+
+    ``stalled``: from ``x = (σ, 0, 0)`` with ``|σ|`` tiny the mass sticks for
+    about ``f_c/|σ|``, so ``|x|_𝒜 ≤ θ|x(0)|_𝒜`` by twice the horizon is
+    false there (Proposition 1 promises it only eventually): attractivity,
+    followed for one more window only, must fail.  ``mode``: the first slip
+    sample of each trajectory carries the opposite slip's ``k`` (a solution
+    labelled against its states): the mode table must fail.
+    """
+    from .._model.coordinates import x_to_z
+    from .._simulation.batch import simulate_batch
+    from ._checker import BatchChecker
+    from ._outcome import default_horizon
+
+    params = claims.params
+    T = default_horizon(params)
+    t = np.linspace(0.0, T, 21)
+    rng = np.random.default_rng(seed)
+    sigma = np.array([1e-7, -1e-7, 1e-6, -1e-6])
+    near = x_to_z(params, np.stack([sigma, np.zeros(4), np.zeros(4)], axis=1))
+    out = []
+    for name, Z0 in (("stalled", near), ("mode", rng.normal(size=(4, 3)) * 4.0)):
+        batch = simulate_batch(params, Z0, T, t_eval=t)
+        if name == "mode":
+            mode = batch.mode.copy()
+            rows, cols = np.nonzero(mode != 0)
+            for r, c in {int(r): int(c) for r, c in zip(rows[::-1], cols[::-1])}.items():
+                mode[r, c] = -mode[r, c]
+            batch = dataclasses.replace(batch, mode=mode)
+        checker = BatchChecker(params, [claims])
+        checker.add(batch)
+        checker.resolve_attractivity(doublings=1, samples=8)
+        out.append((name, checker.results()[0]))
+    return out
 
 
 def _refusal_row(case: str, cert: Any) -> SelfTestRow:
@@ -153,7 +238,7 @@ def _refusal_row(case: str, cert: Any) -> SelfTestRow:
     return SelfTestRow(case, "edited kappa", "refused", ("accepted",), False)
 
 
-def _growth_run(claims: Any, *, seed: int, starts: int = 16) -> tuple[int, list[Any]]:
+def _growth_run(claims: Any, *, seed: int, starts: int = 8) -> tuple[int, list[Any]]:
     """Short dense runs from the maximisers of ``V̂°/V̂`` on ``R̂`` (the model's eq. hatVdot), as the full cross-check does."""
     from ._initial import rate_maximisers
     from ._run import GroupRun as _GroupRun

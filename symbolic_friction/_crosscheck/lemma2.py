@@ -43,7 +43,9 @@ def _pair_evaluation(prop: str, a: Any, c: float, scale: np.ndarray) -> Evaluati
     def witness(idx: tuple[int, int]) -> Any:
         i, p = idx  # the pair (a*, p+1) with a* = argmin S over [0, p]
         b = p + 1
-        j = int(np.nanargmin(np.where(a.valid[i, :b], S[i, :b], np.inf)))
+        before = np.where(a.valid[i, :b], S[i, :b], np.inf)
+        # a NaN S (a NaN constant or state) is a failure: name the first point rather than crash on it
+        j = int(np.nanargmin(before)) if not np.all(np.isnan(before)) else 0
         integral = float(a.cumI[i, b] - a.cumI[i, j])
         values = {"V_t1": a.V[i, j], "V_t2": a.V[i, b], "integral_v2": integral, "c": c,
                   "lhs": a.V[i, b] - a.V[i, j], "rhs": -c * integral, "scale": float(scale[i, 0])}

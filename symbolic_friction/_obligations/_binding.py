@@ -119,6 +119,13 @@ class BindingSubject:
     points: tuple[tuple[Fraction, Fraction, Fraction], ...]
     state: tuple[sp.Symbol, sp.Symbol, sp.Symbol]
     relation: bool = False
+    degree: int = 2
+    scales: tuple[Fraction, ...] = ()
+
+
+SCALES = (Fraction(1, 2), Fraction(1, 2**21), Fraction(2**19))
+"""``f_c`` and the states scaled from the instance's ``f_c = 2`` to 1, about 1e-6 and about 1e6 (powers of two: the
+float arithmetic stays exact)."""
 
 
 def _verify_binding(s: BindingSubject) -> Outcome:
@@ -137,6 +144,7 @@ def _verify_binding(s: BindingSubject) -> Outcome:
             return Outcome.fail(f"{case.label}: {exc}")
     floats = s.floats(s.params, np.array([[float(c) for c in p] for p in s.points]))
     floats = np.broadcast_to(np.asarray(floats), (len(s.points),))
+    wants: list[Any] = []
     for i, point in enumerate(s.points):
         where = "(" + ", ".join(str(c) for c in point) + ")"
         at = dict(s.constants)
@@ -152,13 +160,28 @@ def _verify_binding(s: BindingSubject) -> Outcome:
         f = floats[i]
         if (bool(f) != want) if s.relation else (float(f) != float(want)):
             return Outcome.fail(f"at {where}: the float {s.name} is {f!r}, the exact one {want}")
+        wants.append(want)
+    for lam in s.scales:
+        # the objects are homogeneous in (state, f_c): value(λx; λf_c) = λ^degree · value(x; f_c)
+        params = Parameters(k_p=s.params.k_p, k_i=s.params.k_i, k_v=s.params.k_v, f_c=s.params.f_c * lam)
+        pts = [[c * lam for c in p] for p in s.points]
+        floats = np.broadcast_to(np.asarray(s.floats(params, np.array(pts, dtype=float))), (len(pts),))
+        for i, (point, want) in enumerate(zip(pts, wants)):
+            want = want if s.relation else want * lam**s.degree
+            where = f"f_c = {params.f_c}, (" + ", ".join(str(c) for c in point) + ")"
+            got = s.exact(params, list(point))
+            if got != want:
+                return Outcome.fail(f"at {where}: the exact {s.name} is {got!r}; scaled from f_c = {s.params.f_c}: {want}")
+            if (bool(floats[i]) != want) if s.relation else (float(floats[i]) != float(want)):
+                return Outcome.fail(f"at {where}: the float {s.name} is {floats[i]!r}; scaled from f_c = {s.params.f_c}: {want}")
     details = (
         (f"{s.name}\\ \\text{{(package, sympy kind)}}", latex(s.symbolic)),
         ("\\text{classes, exact points}", f"{len(s.cases)},\\ {len(s.points)}"),
     )
+    scaled = f"; and at f_c·{{{', '.join(str(q) for q in s.scales)}}} by homogeneity" if s.scales else ""
     return Outcome(
         True,
-        f"equal to the paper on {len(s.cases)} classes; exact, float and sympy agree at {len(s.points)} points",
+        f"equal to the paper on {len(s.cases)} classes; exact, float and sympy agree at {len(s.points)} points{scaled}",
         details,
     )
 
@@ -191,6 +214,7 @@ def _x_subject(name: str, function: Callable[[Any, Any], Any], paper: Callable[[
     defaults = dict(
         symbolic=function(g, state), exact=function, floats=function, params=INSTANCE,
         constants=_gain_values(g, INSTANCE), cases=tuple(_state_cases(g)), points=instance_points(), state=tuple(state),
+        scales=SCALES,
     )
     defaults.update(fields)
     return BindingSubject(name=name, paper=paper, **defaults)

@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
+import contextlib
+import dataclasses
 import itertools
+from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import Any
 
@@ -111,7 +114,38 @@ def _leading_witness(num: sp.Expr, coeff: sp.Expr, slacks: tuple[sp.Symbol, ...]
     return None
 
 
+_SHARED: list[dict[str, Any]] = []
+
+
+@contextlib.contextmanager
+def shared_derivations() -> Iterator[None]:
+    """Within the block, :func:`derived_k_conditions` derives once per subject (``lemma3.hatV_derivative`` and
+    ``certificate.verifier`` derive from equal subjects in one ``check`` run); outside it, every call derives."""
+    _SHARED.append({})
+    try:
+        yield
+    finally:
+        _SHARED.pop()
+
+
+def _subject_key(subject: HatVDerivativeSubject) -> str:
+    # srepr names every symbol's assumptions: subjects differing in any of them never share a derivation
+    return "|".join(sp.srepr(getattr(subject, f.name)) if isinstance(getattr(subject, f.name), sp.Basic)
+                    else repr(getattr(subject, f.name)) for f in dataclasses.fields(subject))
+
+
 def derived_k_conditions(subject: HatVDerivativeSubject) -> tuple[list[_Derived], list[str], dict[str, Any]]:
+    """The derivation below, shared within :func:`shared_derivations`."""
+    if not _SHARED:
+        return _derive_k_conditions(subject)
+    key = _subject_key(subject)
+    memo = _SHARED[-1]
+    if key not in memo:
+        memo[key] = _derive_k_conditions(subject)
+    return memo[key]
+
+
+def _derive_k_conditions(subject: HatVDerivativeSubject) -> tuple[list[_Derived], list[str], dict[str, Any]]:
     """Derive, from ``V̂`` and ``F``, the conditions on ``k`` for ``V̂° ≤ 0`` on ``R̂``.
 
     For each piece of ``R̂`` (``v ≠ 0``, so ``F`` is single valued) and each

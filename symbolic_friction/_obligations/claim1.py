@@ -169,7 +169,11 @@ class Claim1Cases(Obligation):
         """``V`` of eq. (lyapLikeV) at ``point`` whose ``v`` has sign ``v_sign``: exact min over f ∈ f_c SGN(v)."""
         sigma, phi, v = point
         at = S.form.subs({S.state[0]: sigma, S.state[2]: v}, simultaneous=True)
-        return at.subs(S.y, 0) + friction_minimum(at, S.y, phi, S.f_c, S.sgn[v_sign])
+        memo = getattr(self, "_minima", {})
+        key = (at, phi, v_sign)
+        if key not in memo:
+            memo[key] = at.subs(S.y, 0) + friction_minimum(at, S.y, phi, S.f_c, S.sgn[v_sign])
+        return memo[key]
 
     def _Vk(self, S: Claim1Subject, k: int, point) -> sp.Expr:
         return S.V[k].subs(dict(zip(S.state, point)), simultaneous=True)
@@ -197,6 +201,7 @@ class Claim1Cases(Obligation):
             hits = [r.label for r in S.rows if _matches(r.v, cv) and _matches(r.phi, cp) and _matches(r.sigma, cs)]
             if len(hits) != 1:
                 return Outcome.fail(f"the initial conditions v̄ {cv}, {cp}, σ̄ {cs} fall in {len(hits)} rows {hits}, not exactly one")
+        self._minima: dict = {}  # V at a point, within this verification only (rows share points)
         c_pos = sign_of(under_assumption1(S.c))
         if c_pos != 1:
             return Outcome.fail(f"c = {S.c} is not shown positive under Assumption 1")

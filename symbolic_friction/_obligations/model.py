@@ -324,9 +324,17 @@ def _classes(point: tuple[Fraction, Fraction, Fraction], f_c: Fraction) -> tuple
 
 class ModesRuntime(Obligation):
     id = "model.modes_runtime"
-    paper = "Claim 1; Appendix (table of cases (i)-(xi))"
-    statement = "the simulators' mode selection (table_row/select_mode, mode_at_rest at tolerance 0 from every boundary base, and mode_after_slip at the end of a slip in either direction) gives the row and k of the table that claim1.cases proves, in every class"
-    method = "a dyadic point in each of the 45 sign/φ classes (every boundary included), compared with =="
+    paper = "Claim 1; Appendix (table of cases (i)-(xi)); eq. (basic) with a static level f_s"
+    statement = (
+        "the simulators' mode selection (table_row/select_mode exactly; mode_at_rest from every base and "
+        "mode_after_slip in both slip directions, with their named snapping band) gives the row and k of the table "
+        "that claim1.cases proves, in every class, for f_c ∈ {1, 2, 1e-6, 1e6} and f_s = f_c or f_s > f_c"
+    )
+    method = (
+        "exact points in each of the 45 sign/φ classes (table_row, select_mode, ==); offsets on ±f_c and ±f_s, "
+        "at the adjacent floats and inside/outside the band tol + 4ε(|base∓1|f_c + f_s − f_c), judged against "
+        "the exact rational table (points within rounding of the band's edge are not judged)"
+    )
 
     def derive(self) -> ModesSubject:
         f_c = INSTANCE.f_c
@@ -341,85 +349,96 @@ class ModesRuntime(Obligation):
         )
 
     def verify(self, subject: ModesSubject) -> Outcome:
+        from ._modes_binding import EXCESS, F_CS, verify_modes
+
         seen: set[str] = set()
-        for point in subject.points:
-            v_class, phi_class, sigma_class = _classes(point, subject.f_c)
-            rows = [
-                r for r in subject.rows
-                if r.v == v_class and r.phi in (None, phi_class) and r.sigma in (None, sigma_class)
-            ]
-            where = "(σ, φ, v) = (" + ", ".join(str(c) for c in point) + ")"
-            if len(rows) != 1:
-                return Outcome.fail(f"{where}: {len(rows)} rows of the proved table apply; expected exactly one")
-            row = rows[0]
-            seen.add(row.label)
-            label = subject.table_row(*point, subject.f_c)
-            if label != row.label:
-                return Outcome.fail(f"{where}: table_row gives row ({label}), the proved table row ({row.label})")
-            k = subject.select_mode(*point, subject.f_c)
-            if k != row.k:
-                return Outcome.fail(f"{where}: select_mode gives k = {k}, row ({row.label}) has k = {row.k}")
-            if point[2] != 0:
-                continue
-            # at rest the simulators keep φ = base·f_c + offset; with tol = 0 every base must give the row's k
-            for base in (-1, 0, 1):
-                offset = float(point[1] - base * subject.f_c)
-                _, _, k_rest = subject.mode_at_rest(float(point[0]), base, offset, float(subject.f_c), 0.0)
-                if int(k_rest) != row.k:
-                    return Outcome.fail(
-                        f"{where}, φ = {base}·f_c + {offset}: mode_at_rest gives k = {int(k_rest)}, row ({row.label}) has k = {row.k}"
-                    )
-            # where a slip in direction d can end (d·(φ - d f_c) ≤ 0), the kernel's rule gives the row's k
-            for d in (1, -1):
-                offset = float(point[1] - d * subject.f_c)
-                if d * offset > 0:
-                    continue
-                _, _, k_slip = subject.mode_after_slip(float(point[0]), offset, d, float(subject.f_c), 0.0)
-                if int(k_slip) != row.k:
-                    return Outcome.fail(
-                        f"{where}, after a slip d = {d}: mode_after_slip gives k = {int(k_slip)}, row ({row.label}) has k = {row.k}"
-                    )
+        for scale in F_CS:
+            for ratio in EXCESS:
+                f_c = subject.f_c * Fraction(scale)
+                f_s = f_c * (1 + Fraction(ratio)) if ratio else None
+                stick = f_c if f_s is None else f_s
+                for point in subject.points:  # the instance's points, scaled to this f_c and stick boundary
+                    point = (point[0] * Fraction(scale), point[1] * stick / subject.f_c, point[2] * Fraction(scale))
+                    v_class, phi_class, sigma_class = _classes(point, stick)
+                    rows = [
+                        r for r in subject.rows
+                        if r.v == v_class and r.phi in (None, phi_class) and r.sigma in (None, sigma_class)
+                    ]
+                    where = f"f_c = {f_c}, f_s = {stick}: (σ, φ, v) = (" + ", ".join(str(c) for c in point) + ")"
+                    if len(rows) != 1:
+                        return Outcome.fail(f"{where}: {len(rows)} rows of the proved table apply; expected exactly one")
+                    row = rows[0]
+                    if scale == 1 and not ratio:
+                        seen.add(row.label)
+                    extra = () if f_s is None else (f_s,)
+                    label = subject.table_row(*point, f_c, *extra)
+                    if label != row.label:
+                        return Outcome.fail(f"{where}: table_row gives row ({label}), the proved table row ({row.label})")
+                    k = subject.select_mode(*point, f_c, *extra)
+                    if k != row.k:
+                        return Outcome.fail(f"{where}: select_mode gives k = {k}, row ({row.label}) has k = {row.k}")
         missing = [r.label for r in subject.rows if r.label not in seen]
         if missing:
             return Outcome.fail(f"rows {missing} were never reached by a point: the check would be vacuous for them")
-        return Outcome(True, f"all {len(subject.rows)} rows agree at {len(subject.points)} points")
+        rest = verify_modes(subject.rows, subject.mode_at_rest, subject.mode_after_slip)
+        if not rest.holds:
+            return rest
+        return Outcome(True, f"all {len(subject.rows)} rows agree exactly at the class points; " + rest.reason)
 
 
 @dataclass(frozen=True)
 class PNormSubject:
-    """The simulation kernel's written-out ``|y|_P`` and the package's quadratic form."""
+    """The simulation kernel's written-out ``|y|_P`` and the package's quadratic form, per gain set."""
 
     p_norm: Callable[..., float]
-    weights: tuple[float, float]
-    params: Parameters
+    weights: tuple[tuple[float, float], ...]
+    params: tuple[Parameters, ...]
     points: tuple[tuple[Fraction, Fraction, Fraction], ...]
+    scales: tuple[float, ...] = (1.0, 2.0, 1e-6, 1e6)
+
+
+P_NORM_TOLERANCE = Fraction(8, 2**52)
+"""The relative error ``model.P_norm_runtime`` allows on ``p_norm²``: the rounding of its few products and sums."""
 
 
 class PNormRuntime(Obligation):
     id = "model.P_norm_runtime"
     paper = "eq. (lyapLikeP); eq. (dVdt) (|y|_P is nonincreasing along a slip)"
     statement = "the certified root search's written-out |y|_P squares to the package's (σ, φ, v)P(σ, φ, v)ᵀ"
-    method = "evaluate at a dyadic point of every class (63 points, gains dyadic) against the exact form; a float square root is compared to within 4 ulps"
+    method = (
+        "a point of every class (63), scaled by 1, 2, 1e-6 and 1e6, at two dyadic gain sets, against the exact form "
+        "at the float inputs; p_norm² may differ by 8·2⁻⁵² relative"
+    )
 
     def derive(self) -> PNormSubject:
         from .._simulation.affine import MatrixExponential
         from .._simulation.search import p_norm, p_weights
 
+        params = (INSTANCE, Parameters(k_p=Fraction(1, 2), k_i=Fraction(1, 4), k_v=8, f_c=Fraction(1, 8)))
         return PNormSubject(
             p_norm=p_norm,
-            weights=p_weights(MatrixExponential.from_params(INSTANCE)),
-            params=INSTANCE,
+            weights=tuple(p_weights(MatrixExponential.from_params(p)) for p in params),
+            params=params,
             points=instance_points(),
         )
 
     def verify(self, subject: PNormSubject) -> Outcome:
-        for point in subject.points:
-            want = quadratic_form(subject.params, *point)
-            where = "(" + ", ".join(str(c) for c in point) + ")"
-            got2 = Fraction(float(subject.p_norm(*(float(c) for c in point), *subject.weights))) ** 2
-            if abs(got2 - want) > 8 * Fraction(2) ** -52 * want:
-                return Outcome.fail(f"at {where}: p_norm² = {float(got2)!r}, the package's |y|²_P = {want}")
-        return Outcome(True, f"the kernel's |y|_P agrees with the package's P at {len(subject.points)} points")
+        n = 0
+        for params, weights in zip(subject.params, subject.weights):
+            for scale in subject.scales:
+                for point in subject.points:
+                    x = [float(c) * scale for c in point]
+                    want = quadratic_form(params, *(Fraction(c) for c in x))
+                    got2 = Fraction(float(subject.p_norm(*x, *weights))) ** 2
+                    n += 1
+                    if abs(got2 - want) > P_NORM_TOLERANCE * want:
+                        return Outcome.fail(
+                            f"at {tuple(x)} ({params.gains_text() if hasattr(params, 'gains_text') else params}): "
+                            f"p_norm² = {float(got2)!r}, the package's |y|²_P = {float(want)!r} "
+                            f"(allowed: {float(P_NORM_TOLERANCE):.3g} relative)"
+                        )
+        return Outcome(True, f"the kernel's |y|_P agrees with the package's P at {n} points "
+                             f"(within {float(P_NORM_TOLERANCE):.3g} relative on the square)")
 
 
 @dataclass(frozen=True)

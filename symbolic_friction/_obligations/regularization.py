@@ -83,10 +83,12 @@ class Regularization(Obligation):
         w = sp.Symbol("w", real=True)
         details = [("u", latex(S.u_of_z))]
         for br in S.branches:
-            sols = sp.solve(sp.Eq(S.u - f * w, br.vdot), w)
-            if len(sols) != 1:
+            # u - f_c w = v' is affine in w: its one solution when the slope is nonzero (no general solver needed)
+            eq = sp.expand(S.u - f * w - br.vdot)
+            slope = sp.expand(sp.diff(eq, w))
+            if sp.diff(slope, w) != 0 or sign_of(slope) not in (1, -1):
                 return Outcome.fail(f"branch '{br.label}': no unique selection w with u - f_c w = {br.vdot}")
-            w_sel = sp.simplify(sols[0])
+            w_sel = sp.cancel(-eq.subs(w, 0) / slope)
             allowed = S.sgn[br.v_sign]
             try:
                 if isinstance(allowed, sp.FiniteSet):

@@ -4,6 +4,7 @@ Run from the repository root with the package installed::
 
     python tests/benchmarks/bench_check.py             # 3 repetitions
     python tests/benchmarks/bench_check.py --repeat 1  # quicker
+    python tests/benchmarks/bench_check.py --against /path/to/old/checkout  # old and new, interleaved
 
 It prints
 
@@ -14,7 +15,11 @@ It prints
 2. in a fresh process per repetition: ``derive`` + ``verify`` seconds of each
    obligation (median and max over the repetitions) and their sum.
 
-Target: the whole command under 30 s on a 2-core machine.
+With ``--against DIR`` it also runs ``check`` from another checkout (``PYTHONPATH=DIR``, in ``DIR``), one
+run of each in turn, so that a busy machine slows both alike, and prints both with the load average
+before and after.  ``check`` uses both cores (``SYMBOLIC_FRICTION_JOBS=1`` runs it on one).
+
+Target: the whole command within 3 s on a quiet 2-core machine.
 """
 
 from __future__ import annotations
@@ -36,10 +41,73 @@ print(json.dumps({"rows": rows, "total": time.perf_counter() - start}))
 """
 
 
+def _wall(cwd: str | None = None, pythonpath: str | None = None) -> tuple[float, float]:
+    """Wall and CPU seconds (this process's children: the command and its worker) of one ``check``."""
+    env = dict(os.environ)
+    if pythonpath:
+        env["PYTHONPATH"] = pythonpath
+    before = os.times()
+    start = time.perf_counter()
+    proc = subprocess.run([sys.executable, "-m", "symbolic_friction", "check"], cwd=cwd, env=env, capture_output=True,
+                          text=True)
+    wall = time.perf_counter() - start
+    after = os.times()
+    if proc.returncode != 0:
+        print(proc.stdout[-2000:], proc.stderr[-2000:], sep="\n")
+        raise SystemExit(f"check in {cwd or '.'} exited with {proc.returncode}")
+    return wall, (after.children_user - before.children_user) + (after.children_system - before.children_system)
+
+
+_SIDES = """
+import argparse, contextlib, io, os, resource, sys, time
+start = time.perf_counter()
+from symbolic_friction._cli import check
+args = argparse.Namespace(json=True, write=False, proofs=None, config=None, no_certificates=False, only=None,
+                          junit_xml=None)
+with contextlib.redirect_stdout(io.StringIO()):
+    code = check.run(args)
+me, worker = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
+print(f"exit {code}: wall {time.perf_counter() - start:.2f} s; CPU: main process {me.ru_utime + me.ru_stime:.2f} s, "
+      f"worker {worker.ru_utime + worker.ru_stime:.2f} s; load {os.getloadavg()[0]:.2f}")
+"""
+
+
+def sides(repeat: int) -> None:
+    """CPU seconds of ``check``'s main process and of its worker (on a quiet 2-core machine the wall time is
+    about the larger of the two)."""
+    for _ in range(repeat):
+        out = subprocess.run([sys.executable, "-c", _SIDES], capture_output=True, text=True, check=True)
+        print(out.stdout.strip())
+
+
+def compare(other: str, repeat: int) -> None:
+    """This checkout and ``other``, interleaved (module docstring)."""
+    print(f"load average before: {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
+    new, old = [], []
+    for _ in range(repeat):
+        old.append(_wall(other, other))
+        new.append(_wall())
+    for name, runs in (("old (" + other + ")", old), ("new (this checkout)", new)):
+        walls, cpus = [w for w, _ in runs], [c for _, c in runs]
+        print(f"{name}: wall min {min(walls):.2f} s, median {statistics.median(walls):.2f} s; "
+              f"CPU median {statistics.median(cpus):.2f} s")
+    print(f"load average after: {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=3, help="repetitions (default 3)")
+    parser.add_argument("--against", metavar="DIR", default=None,
+                        help="also time `check` from the checkout in DIR, interleaved with this one")
+    parser.add_argument("--sides", action="store_true",
+                        help="CPU seconds of check's main process and of its worker, per run")
     args = parser.parse_args()
+    if args.sides:
+        sides(args.repeat)
+        return
+    if args.against:
+        compare(args.against, args.repeat)
+        return
 
     walls, firsts = [], []
     for _ in range(args.repeat):

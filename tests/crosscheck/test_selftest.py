@@ -24,7 +24,12 @@ def certs():
 def test_self_test_passes_and_names_what_caught_each_variant(certs):
     result = crosscheck_self_test(certs)
     assert result.ok
-    assert [r.variant for r in result.rows] == ["edited kappa", "event limit", "proved", *EXPECTED] * 2
+    kernel = [r for r in result.rows if r.case == "kernel"]
+    assert len(kernel) == 24 and all(r.expected == "matches the reference" for r in kernel)
+    rest = [r.variant for r in result.rows if r.case != "kernel"]
+    assert rest == ["edited kappa", "event limit", "proved", *EXPECTED] * 2
+    for variant in ("c2", "c1_hat", "c2_hat", "NaN c", "stalled", "mode"):
+        assert variant in EXPECTED
     for row in result.rows:
         if row.variant in EXPECTED:
             assert EXPECTED[row.variant] in row.caught_by
@@ -40,7 +45,8 @@ def test_a_cross_check_that_cannot_fail_fails_the_self_test(certs, monkeypatch):
     monkeypatch.setattr(_results.Tally, "add", never_fails)
     result = crosscheck_self_test(certs)
     assert not result.ok
-    assert all(not r.ok for r in result.rows if r.variant in EXPECTED)
+    # a NaN slack stays a failure whatever the sign of the others (the NaN c rows, one per case)
+    assert all(not r.ok for r in result.rows if r.variant in EXPECTED and r.variant != "NaN c")
 
 
 def test_a_cross_check_that_always_fails_fails_the_self_test(certs, monkeypatch):
@@ -63,7 +69,8 @@ def test_check_section_reports_a_broken_cross_check(monkeypatch, capsys):
     args = argparse.Namespace(proofs=str(PROOFS), write=False, json=False, no_certificates=False)
     section = check.crosscheck_section(args)
     assert not section.ok
-    assert "0 of 8 wrong certificates caught" in section.summary and "4 of 4 refusals hold" in section.summary
+    assert "2 of 20 wrong certificates caught" in section.summary and "4 of 4 refusals hold" in section.summary
+    assert "24 of 24 kernel runs match the reference" in section.summary
     assert any(note.startswith("FAILED cross-check self-test (a) kappa: expected prop1.stability") for note in section.notes)
 
 
@@ -85,3 +92,63 @@ def test_a_cross_check_that_hides_the_event_limit_fails_the_self_test(certs, mon
     result = crosscheck_self_test(certs)
     assert not result.ok
     assert not next(r for r in result.rows if r.variant == "event limit").ok
+
+
+def test_a_nan_slack_hidden_as_a_pass_fails_the_self_test(certs, monkeypatch):
+    real_add = _results.Tally.add
+
+    def hides_nan(self, rel, mask, make, **kw):
+        return real_add(self, np.where(np.isnan(rel), 1.0, rel), mask, make, **kw)
+
+    monkeypatch.setattr(_results.Tally, "add", hides_nan)
+    result = crosscheck_self_test(certs)
+    assert not result.ok
+    assert [r.ok for r in result.rows if r.variant == "NaN c"] == [False, False]
+
+
+def test_a_kernel_that_drifts_from_the_reference_fails_check(monkeypatch):
+    from symbolic_friction._crosscheck import _kernel_check
+
+    real = _kernel_check.kernel_rows
+
+    def drifted():
+        rows = list(real())
+        rows[7] = _kernel_check.KernelRow(rows[7].scenario, False, "at t = 1.0 the kernel's z = …")
+        return tuple(rows)
+
+    monkeypatch.setattr(_kernel_check, "kernel_rows", drifted)
+    args = argparse.Namespace(proofs=str(PROOFS), write=False, json=False, no_certificates=False)
+    section = check.crosscheck_section(args)
+    assert not section.ok
+    assert "23 of 24 kernel runs match the reference" in section.summary
+    assert any(n.startswith("FAILED cross-check self-test (kernel) f_c=2") for n in section.notes)
+
+
+def test_case_b_runs_at_f_c_2_and_still_verifies(certs):
+    from symbolic_friction._certify import verify_certificate
+    from symbolic_friction._crosscheck._selftest import F_C_OF_CASE, _at_coulomb_level
+
+    assert F_C_OF_CASE == {"b": 2}
+    scaled = _at_coulomb_level(certs["b"], 2)
+    assert scaled.f_c == 2 and verify_certificate(scaled).proved and "at f_c = 2" in scaled.provenance.label
+
+
+def test_a_mode_table_check_without_f_c_fails_the_self_test(certs, monkeypatch):
+    """|φ| ≤ 1 instead of |φ| ≤ f_c on a stick: invisible at f_c = 1, caught on case (b) at f_c = 2."""
+    import importlib.util
+    import sys
+
+    from symbolic_friction._crosscheck import mode_table
+
+    path = Path(mode_table.__file__)
+    source = path.read_text(encoding="utf-8").replace("np.abs(xs[..., 1]) - f_c", "np.abs(xs[..., 1]) - 1.0")
+    spec = importlib.util.spec_from_loader("symbolic_friction._crosscheck._mode_table_mut", loader=None)
+    mutant = importlib.util.module_from_spec(spec)
+    mutant.__package__ = "symbolic_friction._crosscheck"
+    monkeypatch.setitem(sys.modules, spec.name, mutant)
+    exec(compile(source, str(path), "exec"), mutant.__dict__)
+    monkeypatch.setattr(mode_table.Modes, "check", mutant.Modes.check)
+    result = crosscheck_self_test(certs)
+    assert not result.ok
+    bad = [(r.case, r.variant) for r in result.rows if not r.ok]
+    assert ("b", "proved") in bad and ("a", "proved") not in bad

@@ -199,8 +199,8 @@ def test_matrices_inexact_coordinate_map_fails(matrices_runtime):
 def test_modes_wrong_boundary_fails(modes_runtime):
     ob, s = modes_runtime
 
-    def select_mode(sigma, phi, v, f_c):  # row (v) sent to k = -1 instead of 0
-        k = s.select_mode(sigma, phi, v, f_c)
+    def select_mode(sigma, phi, v, f_c, *f_s):  # row (v) sent to k = -1 instead of 0
+        k = s.select_mode(sigma, phi, v, f_c, *f_s)
         return -1 if (v == 0 and phi == f_c and sigma < 0) else k
 
     assert_fails(ob, dataclasses.replace(s, select_mode=select_mode), "select_mode gives k = -1", "row (v)")
@@ -224,8 +224,8 @@ def test_pnorm_sign_flip_fails(pnorm_runtime):
 def test_modes_at_rest_strict_boundary_fails(modes_runtime):
     ob, s = modes_runtime
 
-    def mode_at_rest(sigma, base, offset, f_c, tol):  # rows (iii)-(v) decided by the sign of the offset only
-        b, o, k = s.mode_at_rest(sigma, base, offset, f_c, tol)
+    def mode_at_rest(sigma, base, offset, f_c, tol, excess=0.0):  # rows (iii)-(v) decided by the sign of the offset only
+        b, o, k = s.mode_at_rest(sigma, base, offset, f_c, tol, excess)
         phi = base * f_c + offset
         return (b, o, 0) if phi == f_c else (b, o, k)
 
@@ -235,10 +235,10 @@ def test_modes_at_rest_strict_boundary_fails(modes_runtime):
 def test_mode_after_slip_without_the_clamp_rule_fails(modes_runtime):
     ob, s = modes_runtime
 
-    def mode_after_slip(sigma, offset, direction, f_c, tol):  # clamps the side a slip can end on
-        return s.mode_at_rest(sigma, direction, 0.0 if direction * offset < 0 else offset, f_c, tol)
+    def mode_after_slip(sigma, offset, direction, f_c, tol, excess=0.0):  # clamps the side a slip can end on
+        return s.mode_at_rest(sigma, direction, 0.0 if direction * offset < 0 else offset, f_c, tol, excess)
 
-    assert_fails(ob, dataclasses.replace(s, mode_after_slip=mode_after_slip), "after a slip d = ", "mode_after_slip gives")
+    assert_fails(ob, dataclasses.replace(s, mode_after_slip=mode_after_slip), "after a slip d = ", "mode_after_slip")
 
 
 hatv_rate_runtime = obligation_fixture(HatVRateRuntime)
@@ -324,3 +324,54 @@ def test_a_missing_obligation_module_is_an_import_error(monkeypatch):
     monkeypatch.delattr(obligations, "table1", raising=False)
     with pytest.raises(ImportError):
         obligations.all_obligations()
+
+
+def test_pnorm_tolerance_is_pinned(pnorm_runtime):
+    """A p_norm off by twice the named tolerance fails (so a 2⁴⁰ looser tolerance would be caught); half of it holds."""
+    from fractions import Fraction
+
+    from symbolic_friction._obligations.model import P_NORM_TOLERANCE
+
+    ob, s = pnorm_runtime
+    assert P_NORM_TOLERANCE == Fraction(8, 2**52)
+    for factor, fails in ((2.0, True), (0.25, False)):
+        bump = 1.0 + factor * float(P_NORM_TOLERANCE) / 2  # relative error on the square ≈ factor·tolerance
+
+        def off(sv, p, v, kv_ki, k_p, bump=bump):
+            return s.p_norm(sv, p, v, kv_ki, k_p) * bump
+
+        if fails:
+            assert_fails(ob, dataclasses.replace(s, p_norm=off), "p_norm²", "allowed")
+        else:
+            assert_holds(ob, dataclasses.replace(s, p_norm=off))
+
+
+def test_pnorm_at_a_scaled_state_only_fails(pnorm_runtime):
+    """A p_norm right at unit scale but wrong at 1e6 (a factor dropped for large states) fails."""
+    ob, s = pnorm_runtime
+
+    def wrong(sv, p, v, kv_ki, k_p):
+        value = s.p_norm(sv, p, v, kv_ki, k_p)
+        return value * (1.001 if max(abs(sv), abs(p), abs(v)) > 1e3 else 1.0)
+
+    assert_fails(ob, dataclasses.replace(s, p_norm=wrong), "p_norm²")
+
+
+def test_float_V_right_only_at_the_instance_f_c_fails(v_runtime):
+    """A float V that reads f_c from the instance (f_c = 2) instead of its parameters: the scaled f_c catch it."""
+    from symbolic_friction._obligations.model import INSTANCE
+
+    ob, s = v_runtime
+    assert_fails(ob, dataclasses.replace(s, floats=lambda p, X: V(INSTANCE, X)), "the float V", "scaled from f_c")
+
+
+def test_exact_R_with_f_c_dropped_fails(r_runtime):
+    """x ∈ R tested with f_c = 1 in the exact kind (a dropped factor, invisible at f_c = 1)."""
+    from symbolic_friction._model.parameters import Parameters
+
+    ob, s = r_runtime
+
+    def exact(p, x):
+        return in_R(Parameters(k_p=p.k_p, k_i=p.k_i, k_v=p.k_v, f_c=1), x) if p.f_c != 2 else in_R(p, x)
+
+    assert_fails(ob, dataclasses.replace(s, exact=exact), "the exact x ∈ R")

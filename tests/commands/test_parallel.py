@@ -1,0 +1,140 @@
+"""``check``'s sections on two cores: same sections, same order, and a dying worker fails them."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+
+import pytest
+
+from symbolic_friction._cli import _parallel
+from symbolic_friction._cli._sections import Section
+
+pytestmark = pytest.mark.skipif(not sys.platform.startswith("linux") or (os.cpu_count() or 1) < 2,
+                                reason="needs fork and two cores")
+
+
+def _maker(name: str, ok: bool = True):
+    def make(args):
+        return Section(name, ("pid",), [(str(os.getpid()),)], {name: args.json}, ok, [], summary=name)
+
+    make.__name__ = name
+    return make
+
+
+def test_sections_come_back_in_order_and_the_later_ones_ran_elsewhere(monkeypatch):
+    monkeypatch.delenv(_parallel.ENV, raising=False)
+    args = argparse.Namespace(json=False)
+    got = list(_parallel.run_sections([_maker("one"), _maker("two", ok=False), _maker("three")], args, parallel=True))
+    assert [s.title for s in got] == ["one", "two", "three"] and [s.ok for s in got] == [True, False, True]
+    assert got[0].rows[0][0] == str(os.getpid()) and got[1].rows[0][0] != str(os.getpid())
+    assert got[0].json == {"one": False} and got[1].json == {"two": True}  # the worker streams nothing
+    assert args.json is False
+
+
+def test_a_section_that_raises_in_the_worker_fails():
+    def boom(args):
+        raise ValueError("no luck")
+
+    got = list(_parallel.run_sections([_maker("one"), boom, _maker("three")], argparse.Namespace(json=False), parallel=True))
+    assert not got[1].ok and "boom crashed: ValueError: no luck" in got[1].summary and got[2].ok
+
+
+def test_a_worker_that_dies_leaves_its_sections_to_this_process():
+    parent = os.getpid()
+
+    def die_in_worker(args):
+        if os.getpid() != parent:
+            os._exit(3)
+        return Section("here", ("pid",), [(str(os.getpid()),)], {}, True, [], summary="here")
+
+    got = list(_parallel.run_sections([_maker("one"), die_in_worker, _maker("three")], argparse.Namespace(json=False),
+                                      parallel=True))
+    assert [s.ok for s in got] == [True, True, True]
+    assert got[1].rows == [(str(parent),)] and got[2].rows == [(str(parent),)]
+    assert "decided in the main process" in got[1].notes[-1] and "without a result" in got[1].notes[-1]
+
+
+def test_one_job_runs_everything_here(monkeypatch):
+    monkeypatch.setenv(_parallel.ENV, "1")
+    assert not _parallel.parallel_allowed()
+    got = list(_parallel.run_sections([_maker("one"), _maker("two")], argparse.Namespace(json=False)))
+    assert {s.rows[0][0] for s in got} == {str(os.getpid())}
+
+
+def _small_check(monkeypatch, tmp_path, later):
+    """``check.run`` on two obligations (claim1.cases decided by the worker) and one cheap later section."""
+    from symbolic_friction import _obligations
+    from symbolic_friction._cli import check
+    from symbolic_friction._obligations.claim1 import Claim1Cases
+    from symbolic_friction._obligations.coordinates import Coordinates
+
+    monkeypatch.delenv(_parallel.ENV, raising=False)
+    monkeypatch.setattr(_parallel, "parallel_allowed", lambda: True)  # also under pytest-xdist's threads
+    monkeypatch.setattr(_obligations, "all_obligations", lambda: [Coordinates(), Claim1Cases()])
+    monkeypatch.setattr(check, "SECTIONS", [check.obligations_section, later])
+    monkeypatch.chdir(tmp_path)
+    args = argparse.Namespace(json=True, write=False, proofs=str(tmp_path), config=None, no_certificates=True,
+                              only=None, junit_xml=None)
+    return check.run(args)
+
+
+def test_an_offloaded_obligation_is_decided_by_the_worker_and_reported(monkeypatch, tmp_path, capsys):
+    from symbolic_friction._obligations._base import Outcome
+    from symbolic_friction._obligations.claim1 import Claim1Cases
+
+    parent = os.getpid()
+    monkeypatch.setattr(Claim1Cases, "verify", lambda self, s: Outcome.fail(f"decided in {os.getpid()}"))
+    code = _small_check(monkeypatch, tmp_path, _maker("later"))
+    out = capsys.readouterr().out
+    assert code == 1
+    import json
+
+    row = next(o for o in json.loads(out)["obligations"] if o["id"] == "claim1.cases")
+    assert row["status"] != "holds" and "decided in" in row["reason"] and str(parent) not in row["reason"]
+
+
+def test_a_worker_that_dies_before_an_offloaded_obligation_leaves_it_to_this_process(monkeypatch, tmp_path, capsys):
+    from symbolic_friction._cli import check
+    from symbolic_friction._obligations._base import Outcome
+    from symbolic_friction._obligations.claim1 import Claim1Cases
+
+    parent = os.getpid()
+    monkeypatch.setattr(check, "_decide_offloaded", lambda: {"claim1.cases": lambda: os._exit(5)})
+    monkeypatch.setattr(Claim1Cases, "verify", lambda self, s: Outcome.fail(f"decided in {os.getpid()}"))
+    _small_check(monkeypatch, tmp_path, _maker("later"))
+    import json
+
+    row = next(o for o in json.loads(capsys.readouterr().out)["obligations"] if o["id"] == "claim1.cases")
+    assert row["status"] != "holds" and row["reason"] == f"decided in {parent}"
+
+
+def test_a_process_that_loaded_numba_does_not_fork(monkeypatch):
+    monkeypatch.delenv(_parallel.ENV, raising=False)
+    monkeypatch.setitem(sys.modules, "numba", object())
+    assert not _parallel.parallel_allowed()
+
+
+def test_the_worker_draws_no_progress_bar():
+    from symbolic_friction._infra.output import verbosity
+
+    def seen(args):
+        return Section("seen", ("verbosity",), [(str(verbosity()),)], {}, True, [], summary="seen")
+
+    got = list(_parallel.run_sections([_maker("one"), seen], argparse.Namespace(json=False), parallel=True))
+    assert got[1].rows == [("0",)] and verbosity() == 1
+
+
+def test_only_linux_forks(monkeypatch):
+    monkeypatch.delenv(_parallel.ENV, raising=False)
+    monkeypatch.setattr(sys, "platform", "darwin")
+    assert not _parallel.parallel_allowed()
+
+
+def test_a_process_with_other_threads_does_not_fork(monkeypatch):
+    import threading
+
+    monkeypatch.delenv(_parallel.ENV, raising=False)
+    monkeypatch.setattr(threading, "active_count", lambda: 2)
+    assert not _parallel.parallel_allowed()
