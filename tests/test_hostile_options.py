@@ -76,7 +76,8 @@ KINDS: dict[tuple[str, str], str] = {
                                          "--k-d-bar", "--f-c-bar", "--alpha-v")},
     # extremes
     ("extremes", "--out"): "out-dir", ("extremes", "--only"): "names", ("extremes", "--format"): "formats",
-    ("extremes", "--json"): "flag",
+    ("extremes", "--json"): "flag", ("extremes", "--theta"): "real",
+    ("simulate", "--theta"): "real", ("tradeoff", "--theta"): "real", ("figures", "--jobs"): "count",
     # map
     **{("map", f): "axis" for f in ("--k-p", "--k-i", "--k-v", "--f-c", "--f-s", "--m", "--k-p-bar", "--k-i-bar",
                                     "--k-d-bar", "--alpha-v", "--f-c-bar", "--f-s-bar")},
@@ -383,7 +384,7 @@ SAYS = {
     "path-hunting-figure-directory": "--figure",
     "number-crosscheck-samples-arabic-digits": "(ASCII digits)",
     "number-crosscheck-horizon-overflow": "--horizon must lie in (0, 1e+06]",
-    "number-tradeoff-repeats-huge": "--repeats must be an integer from 1 to 1000",
+    "number-tradeoff-repeats-float": "--repeats must be an integer from 1 to 1000",
     "number-hunting-sweep-empty": "--sweep takes 1 to 50",
     "structure-certificate-huge-array": "more than 10000 JSON values",
     "structure-certificate-duplicate-key": "duplicate key",

@@ -33,7 +33,8 @@ from ._overshoot import OvershootSearch
 from ._property import Evaluation, Property
 from ._properties import DEFAULT_RTOL, DEFAULT_THETA, PROPERTIES, Counterexample, PropertyResult
 from ._report import format_report, write_counterexamples
-from ._run import CertificateCheck, CrosscheckReport, crosscheck, default_certificate_files, default_certificate_selection, default_horizon
+from ._files import default_certificate_files, default_certificate_selection
+from ._run import CertificateCheck, CrosscheckReport, crosscheck, default_horizon
 
 __all__ = [
     "Claims",

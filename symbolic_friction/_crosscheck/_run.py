@@ -26,7 +26,7 @@ from ._claims import Claims
 from ._outcome import CertificateCheck, CrosscheckReport, default_horizon, sample_times, search_mode, SEARCH_MODES
 from ._property import DEFAULT_RTOL, DEFAULT_THETA
 
-__all__ = ["default_certificate_files", "default_certificate_selection", "CertificateCheck", "CrosscheckReport", "crosscheck", "default_horizon", "sample_times", "SEARCH_MODES", "search_mode", "GroupRun"]
+__all__ = ["CertificateCheck", "CrosscheckReport", "crosscheck", "default_horizon", "sample_times", "SEARCH_MODES", "search_mode", "GroupRun"]
 
 def _as_claims(items: Iterable[Any], *, require_proved: bool) -> list[tuple[Claims, str, bool | None]]:
     """``(claims, source, proved)`` per item; with ``require_proved`` every certificate is verified exactly first.
@@ -236,80 +236,6 @@ def crosscheck(
         decay=decay_fits,
         iss=iss_estimates,
     )
-
-
-SKIPPED = {
-    "hunting-cycle/v1": "a hunting certificate: it proves a cycle of the stiction model, not the paper's "
-                        "inequalities (verify checks it)",
-    "lyapunov-box/v1": "a box certificate: it proves a box of gain sets at its corners (verify checks it); "
-                       "cross-check a point inside it with its own certificate",
-}
-"""Why :func:`default_certificate_files` leaves a file of another template out (by template id)."""
-
-
-def default_certificate_files() -> list[str]:
-    """The certificates ``crosscheck`` checks when none is given.
-
-    The project's configured certificates (``[tool.symbolic-friction]``, as for
-    ``check``), else ``proofs/*.json``; only the paper's template is checked on
-    trajectories: hunting certificates (a cycle of the stiction model) and the
-    quadratic template's files are left out.
-
-    Raises
-    ------
-    FileNotFoundError
-        If there is none.
-    """
-    return default_certificate_selection()[0]
-
-
-def default_certificate_selection() -> tuple[list[str], list[tuple[str, str]]]:
-    """:func:`default_certificate_files`, and the files left out with the reason for each.
-
-    Raises
-    ------
-    FileNotFoundError
-        If no certificate is left.
-    """
-    from pathlib import Path
-
-    from .._certify.certificate import TEMPLATE_ID
-    from .._certify.templates import read_certificate_file
-    from .._infra.config import find_config
-    from .._infra.errors import CertificateFormatError, InputFileError
-
-    def other_template(name: str) -> str | None:
-        """The template id of a file that is not the paper's template, else None."""
-        try:
-            template = read_certificate_file(name)[0].id
-        except (CertificateFormatError, InputFileError):
-            return None  # the certificate loader says what is wrong with it
-        return None if template == TEMPLATE_ID else template
-
-    config = find_config()
-    if config is not None and config.certificates:
-        cwd = Path.cwd().resolve()
-        files = []
-        for name in config.certificates:
-            path = config.proofs / name
-            try:
-                path = path.relative_to(cwd)
-            except ValueError:
-                pass
-            files.append(str(path))
-    else:
-        files = sorted(str(p) for p in Path("proofs").glob("*.json"))
-    skipped = []
-    for f in files:
-        template = other_template(f)
-        if template is not None:
-            skipped.append((f, SKIPPED.get(template, f"a {template} certificate: the cross-check's properties "
-                                                      "instantiate the paper's template only (verify checks it)")))
-    files = [f for f in files if f not in {name for name, _ in skipped}]
-    if not files:
-        raise FileNotFoundError("no certificate given and no proofs/*.json in the current directory"
-                                + (f" (skipped {len(skipped)} of another template)" if skipped else ""))
-    return files, skipped
 
 
 class GroupRun:
