@@ -50,7 +50,13 @@ class Template:
         ``dumps(certificate) -> str``: the file's bytes, deterministic.
     stale : callable
         ``stale(certificate, path) -> str``: why the committed file ``path``
-        differs from what would be written now (empty: up to date).
+        no longer states what it should (written for a different statement,
+        or inconsistent with itself); empty when it does.  A failure.
+    drift : callable or None
+        ``drift(certificate, path) -> str``: how the file differs from what
+        would be written now although it proves the same statement (a newer
+        solver or package rounds differently); empty when it does not.
+        Reported; a failure only under ``check --strict``.
     failure : callable
         ``failure(report) -> str``: why a report that is not proved fails.
     claim : callable
@@ -73,6 +79,7 @@ class Template:
     failure: Callable[[Any], str]
     claim: Callable[[Any], str]
     default: bool = False
+    drift: Callable[[Any, Path], str] | None = None
     regenerate: Callable[[Any], Any] | None = None
 
     def write(self, certificate: Any, path: str | os.PathLike[str]) -> Path:

@@ -12,13 +12,14 @@ import dataclasses
 import hashlib
 import os
 from dataclasses import dataclass
+from fractions import Fraction
 from pathlib import Path
 from typing import Iterable
 
 from .._infra.errors import CertificateError, CertificateFormatError, InputFileError, ParameterError, SymbolicFrictionError
 from .._model.parameters import Parameters
 from ._template import Template, register
-from .certificate import MAX_FILE_BYTES, SCHEMA, TEMPLATE_ID, Certificate, atomic_write_text, dumps, from_data, load
+from .certificate import MAX_FILE_BYTES, OBLIGATIONS, SCHEMA, TEMPLATE_ID, Certificate, atomic_write_text, dumps, from_data, load
 from .report import render_markdown
 from .rounding import to_certificate
 from .search import MODES, check_margin, check_mode, find_candidate
@@ -34,6 +35,7 @@ __all__ = [
     "default_stem",
     "regenerate",
     "stability_staleness",
+    "stability_drift",
     "STABILITY",
     "write_listed_certificates",
 ]
@@ -223,32 +225,59 @@ def regenerate(certificate: Certificate) -> Certificate:
 
 
 def stability_staleness(certificate: Certificate, path: Path) -> str:
-    """Why the committed ``path`` (and its ``.md`` report) differ from what ``certify`` writes now; empty if they do not."""
+    """Why the committed ``path`` no longer states what ``certify`` proves (empty if it does).
+
+    Stale means a different statement, not different rounding: the file lists
+    other obligations than the ones a certificate instantiates now, or its
+    Markdown report is missing.  A file that proves the same statement with
+    other digits is *drift* (:func:`stability_drift`).
+    """
+    prov = certificate.provenance
+    if prov is not None and tuple(prov.obligations) != OBLIGATIONS:
+        return (f"written for a different statement: it lists the obligations {', '.join(prov.obligations)}; "
+                f"a certificate now instantiates {', '.join(OBLIGATIONS)}")
+    md_path = path.with_suffix(".md")
+    if not md_path.exists():
+        return f"its report {md_path.name} is missing"
+    return ""
+
+
+def stability_drift(certificate: Certificate, path: Path) -> str:
+    """How ``path`` (and its report) differ from what ``certify`` writes now for the same gains and provenance.
+
+    Names every constant that changed (old → new) and whether κ got better or
+    worse; empty when the files are byte-identical.
+    """
+    from .._infra.io import read_limited
+    from .._infra.rational import format_rational as fmt
+    from .certificate import CONSTANT_NAMES
+
     try:
         fresh = regenerate(certificate)
         json_text, md_text, _ = render_files(fresh, name=path.name)
     except SymbolicFrictionError as exc:
-        return f"cannot be regenerated: {exc}"
-    from .._infra.io import read_limited
-
-    md_path = path.with_suffix(".md")
-    stale = []
+        return f"cannot be regenerated here: {exc}"
+    notes = []
     if read_limited(path, limit=MAX_FILE_BYTES, what="certificate") != json_text.encode("utf-8"):
-        stale.append(path.name)
-    if not md_path.exists():
-        return f"its report {md_path.name} is missing"
+        changed = [f"{n} {fmt(getattr(certificate, n))} → {fmt(getattr(fresh, n))}"
+                   for n in CONSTANT_NAMES if getattr(certificate, n) != getattr(fresh, n)]
+        old, new = Fraction(certificate.overshoot_bound), Fraction(fresh.overshoot_bound)
+        if old != new:
+            changed.append(f"κ {certificate.overshoot_bound} → {fresh.overshoot_bound} ({'better' if new < old else 'worse'})")
+        was, now = (certificate.provenance.package_version if certificate.provenance else ""), (
+            fresh.provenance.package_version if fresh.provenance else "")
+        if was != now:
+            changed.append(f"written by symbolic-friction {was or '(unknown)'}, now {now}")
+        notes.append(f"{path.name}: " + ("; ".join(changed) if changed else "the same numbers, written differently"))
+    md_path = path.with_suffix(".md")
     try:
-        md_bytes = read_limited(md_path, limit=MAX_FILE_BYTES, what="proof report")
+        if read_limited(md_path, limit=MAX_FILE_BYTES, what="proof report") != md_text.encode("utf-8"):
+            notes.append(f"its report {md_path.name} differs from what `certify` renders now")
     except InputFileError as exc:
-        return f"its report is unreadable: {exc}"
-    if md_bytes != md_text.encode("utf-8"):
-        stale.append(md_path.name)
-    if stale:
-        return (
-            f"{' and '.join(stale)} {'differ' if len(stale) > 1 else 'differs'} from what `symbolic-friction certify` "
-            "writes now"
-        )
-    return ""
+        notes.append(f"its report is unreadable: {exc}")
+    if notes:
+        notes.append("`symbolic-friction check --write` rewrites them")
+    return "; ".join(notes)
 
 
 STABILITY = register(Template(
@@ -261,6 +290,7 @@ STABILITY = register(Template(
     failure=lambda report: "; ".join(check.message for check in report.failures),
     claim=lambda certificate: f"κ ≤ {certificate.overshoot_bound}",
     default=True,
+    drift=stability_drift,
 ))
 """The stability certificate of Proposition 1 (Lemma 2, Lemma 3): constants of ``V`` and ``V̂`` and κ."""
 

@@ -93,6 +93,10 @@ class CommittedCertificate:
         Why it is not ok (empty when ok).
     claim : str
         What the file shows when proved (its template's words: ``κ ≤ …``, ``a hunting cycle``).
+    drift : str
+        How the file differs from what would be written now although it proves
+        the same statement (empty: none); reported, and counted in ``stale``
+        only when checked strictly.
     """
 
     path: Path
@@ -100,6 +104,7 @@ class CommittedCertificate:
     stale: bool
     reason: str = ""
     claim: str = ""
+    drift: str = ""
 
     @property
     def proved(self) -> bool:
@@ -112,13 +117,15 @@ class CommittedCertificate:
 
     def describe(self) -> str:
         """One line for ``symbolic-friction check``."""
+        if self.ok and self.drift:
+            return f"ok     {self.path} (proved, {self.claim}); drift, not a failure: {self.drift}"
         if self.ok:
             return f"ok     {self.path} (proved, up to date, {self.claim})"
         state = "STALE " if self.stale and self.report is not None and self.report.proved else "FAILED"
         return f"{state} {self.path}: {self.reason}"
 
 
-def _check_one(path: Path) -> CommittedCertificate:
+def _check_one(path: Path, *, strict: bool = False, expected: dict | None = None) -> CommittedCertificate:
     try:
         template, report = verify_template_file(path)
     except CertificateFormatError as exc:
@@ -127,12 +134,41 @@ def _check_one(path: Path) -> CommittedCertificate:
         return CommittedCertificate(path, None, True, f"unreadable: {exc}")
     if not report.proved:
         return CommittedCertificate(path, report, False, template.failure(report))
-    reason = template.stale(report.certificate, path)
-    return CommittedCertificate(path, report, bool(reason), reason, template.claim(report.certificate))
+    claim = template.claim(report.certificate)
+    reason = configured_mismatch(report.certificate, expected or {}) or template.stale(report.certificate, path)
+    if reason:
+        return CommittedCertificate(path, report, True, reason, claim)
+    drift = template.drift(report.certificate, path) if template.drift is not None else ""
+    if drift and strict:
+        return CommittedCertificate(path, report, True, f"drift (strict): {drift}", claim, drift)
+    return CommittedCertificate(path, report, False, "", claim, drift)
+
+
+def configured_mismatch(certificate: Any, expected: dict) -> str:
+    """How a proved certificate disagrees with what the configuration says it proves (empty: it agrees).
+
+    ``expected`` holds ``label`` and ``gains`` (exact) for a configuration entry
+    given as a table; a file without them is not compared.
+    """
+    from .._infra.rational import format_rational
+
+    differences = []
+    gains = getattr(certificate, "parameters", None)
+    for name, want in expected.get("gains", {}).items():
+        got = gains.get(name) if isinstance(gains, dict) else getattr(certificate, name, None)
+        if got != want:
+            shown = "absent" if got is None else format_rational(got)
+            differences.append(f"{name} = {shown} in the file, {format_rational(want)} in the configuration")
+    if "label" in expected:
+        prov = getattr(certificate, "provenance", None)
+        label = getattr(prov, "label", None) if prov is not None else None
+        if label != expected["label"]:
+            differences.append(f"label {label!r} in the file, {expected['label']!r} in the configuration")
+    return "; ".join(differences)
 
 
 def check_committed_certificates(
-    directory: str | os.PathLike[str] = "proofs", *, expected: Iterable[str] = ()
+    directory: str | os.PathLike[str] = "proofs", *, expected: Iterable[str] = (), strict: bool = False
 ) -> list[CommittedCertificate]:
     """Verify every ``*.json`` certificate under ``directory`` and detect stale ones.
 
@@ -143,6 +179,8 @@ def check_committed_certificates(
     expected : iterable of str, keyword-only
         File names (relative to ``directory``) that must exist, e.g.
         :data:`TABLE_I_FILES`; a missing one is reported as stale.
+    strict : bool, keyword-only
+        Whether drift (same statement, other digits) counts as stale.
 
     Returns
     -------
@@ -150,7 +188,7 @@ def check_committed_certificates(
         One per file; the directory passes iff every entry is ``ok``.
     """
     directory = Path(directory)
-    results = [_check_one(path) for path in sorted(directory.rglob("*.json"))]
+    results = [_check_one(path, strict=strict) for path in sorted(directory.rglob("*.json"))]
     for name in expected:
         path = directory / name
         if not path.exists():
@@ -158,11 +196,15 @@ def check_committed_certificates(
     return results
 
 
-def check_listed_certificates(directory: str | os.PathLike[str], names: Iterable[str]) -> list[CommittedCertificate]:
+def check_listed_certificates(
+    directory: str | os.PathLike[str], names: Iterable[str], *, strict: bool = False, expectations: dict | None = None
+) -> list[CommittedCertificate]:
     """Verify exactly the certificates ``names`` (relative to ``directory``), in order, and detect stale ones.
 
     A listed file that does not exist is reported as missing (not ok); files
-    of ``directory`` that are not listed are not looked at.
+    of ``directory`` that are not listed are not looked at.  ``expectations``
+    (``{name: {"label": …, "gains": {…}}}``, from the configuration) must agree
+    with the file; with ``strict``, drift fails too.
     """
     directory = Path(directory)
     results = []
@@ -175,7 +217,7 @@ def check_listed_certificates(directory: str | os.PathLike[str], names: Iterable
                 f"{path.parent} --name {path.stem}` (or `check --write` for Table I's files)",
             ))
         else:
-            results.append(_check_one(path))
+            results.append(_check_one(path, strict=strict, expected=(expectations or {}).get(name)))
     return results
 
 

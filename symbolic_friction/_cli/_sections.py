@@ -33,12 +33,18 @@ class Target:
         Whether ``proofs/obligations.md`` is kept and compared.
     origin : str
         Where this came from, for the output (``"pyproject.toml"``, …).
+    strict : bool
+        Whether drift fails (``strict = true`` in the configuration, or ``--strict``).
+    expectations : dict
+        What the configuration says each listed file must prove (label, gains).
     """
 
     proofs: Path
     certificates: tuple[str, ...] | None
     report: bool
     origin: str
+    strict: bool = False
+    expectations: dict = field(default_factory=dict)
 
 
 _NO_CONFIG = (
@@ -78,10 +84,11 @@ def resolve_target(args: argparse.Namespace) -> Target:
         raise UsageError("--proofs must name a directory; got an empty string")
     if config is not None:
         proofs = Path(proofs_arg) if proofs_arg is not None else _relative(config.proofs)
-        target = Target(proofs, config.certificates, config.report, str(config.source))
+        target = Target(proofs, config.certificates, config.report, str(config.source),
+                        strict=config.strict or bool(getattr(args, "strict", False)), expectations=config.expectations)
     elif proofs_arg is not None:
         proofs = Path(proofs_arg)
-        target = Target(proofs, None, (proofs / "obligations.md").is_file(), "--proofs")
+        target = Target(proofs, None, (proofs / "obligations.md").is_file(), "--proofs", strict=bool(getattr(args, "strict", False)))
     elif getattr(args, "no_certificates", False):
         target = Target(Path("proofs"), (), False, "none")
     else:

@@ -74,6 +74,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "upwards from the working directory",
     )
     parser.add_argument(
+        "--strict",
+        action="store_true",
+        help="fail on drift too: a certificate that proves its statement but is not what `certify` writes now "
+        "(a newer solver or package rounded differently); by default drift is reported, not failed "
+        "(`strict = true` in the configuration does the same)",
+    )
+    parser.add_argument(
         "--no-certificates",
         action="store_true",
         help="check only the derivations (and obligations.md); without it, check fails when no certificate was verified",
@@ -251,7 +258,7 @@ def certificates_section(args: argparse.Namespace) -> Section:
     entries = []
     with Progress(len(names), desc="certificates") as bar:
         for name in names:
-            entry = check_listed_certificates(proofs, [name])[0]
+            entry = check_listed_certificates(proofs, [name], strict=where.strict, expectations=where.expectations)[0]
             entries.append(entry)
             bar.update()
             if stream:
@@ -263,8 +270,11 @@ def certificates_section(args: argparse.Namespace) -> Section:
     ok = bool(entries) and all(e.ok for e in entries)
     proved = sum(e.proved for e in entries)
     current = sum(e.ok for e in entries)
+    drifted = [e for e in entries if e.ok and e.drift]
     if entries:
         summary = f"{proved} of {len(entries)} certificates proved exactly, {current} of {len(entries)} up to date"
+        if drifted:
+            summary += f" ({len(drifted)} with drift, reported)"
     elif where.certificates is not None:
         summary = f"no certificates configured in {where.origin} (list them under [tool.symbolic-friction] certificates, or pass --no-certificates)"
     else:
@@ -273,6 +283,7 @@ def certificates_section(args: argparse.Namespace) -> Section:
     notes += [e.describe() + (f" (listed in {where.origin})" if e.report is None and not e.path.exists()
                               and where.certificates is not None else "")
               for e in entries if not e.ok]
+    notes += [f"drift (reported, not failed; `check --strict` fails on it): {e.path}: {e.drift}" for e in drifted]
     notes += written
     if where.certificates is not None and proofs.is_dir():
         listed = {str(proofs / n) for n in where.certificates}
@@ -281,7 +292,7 @@ def certificates_section(args: argparse.Namespace) -> Section:
             notes.append(f"note: {len(extra)} file(s) in {proofs} not listed in {where.origin} were not checked: "
                          + ", ".join(extra[:5]) + (" …" if len(extra) > 5 else ""))
     payload = [
-        {"file": str(e.path), "proved": e.proved, "stale": e.stale, "reason": e.reason,
+        {"file": str(e.path), "proved": e.proved, "stale": e.stale, "reason": e.reason, "drift": e.drift,
          **({"gains": e.report.certificate.gains_text()} if e.report is not None else {})}
         for e in entries
     ]

@@ -8,6 +8,16 @@ A project names its proofs directory and the certificates that must exist in
     proofs = "proofs"                                  # relative to the file
     certificates = ["slow_axis.json", "fast_axis.json"]
     report = false                                     # keep proofs/obligations.md?
+    strict = false                                     # fail on drift too (see below)
+
+An entry of ``certificates`` may also be a table that states what the file
+must prove, so that a hand-edited gain or label fails ``check``::
+
+    certificates = [{file = "stage.json", label = "stage", gains = {k_p = "3", k_i = "4", k_v = "32/5", f_c = "1"}}]
+
+A certificate that still proves the configured statement but differs from what
+``certify`` writes now (a newer solver or package rounded differently) is
+*drift*: reported, and a failure only with ``strict = true`` or ``check --strict``.
 
 ``check`` then verifies exactly the listed certificates (each must exist, be
 proved by the exact verifier and be what ``certify`` writes now), plus the
@@ -26,7 +36,7 @@ from __future__ import annotations
 
 import os
 import tomllib
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath
 from typing import Any
 
@@ -39,7 +49,9 @@ CONFIG_FILE = "symbolic-friction.toml"
 MAX_CONFIG_BYTES = 1_000_000
 """A configuration file larger than this is refused (it names a directory and a list of files)."""
 
-_KEYS = ("proofs", "certificates", "report")
+_KEYS = ("proofs", "certificates", "report", "strict")
+_ENTRY_KEYS = ("file", "label", "gains")
+GAIN_NAMES = ("k_p", "k_i", "k_v", "f_c")
 MAX_CERTIFICATES = 10_000
 
 
@@ -58,12 +70,20 @@ class ProjectConfig:
     report : bool
         Whether ``proofs/obligations.md`` (the derivations in LaTeX) is kept
         and compared.
+    strict : bool
+        Whether drift (a file that proves the configured statement but is not
+        what ``certify`` writes now) fails ``check``.
+    expectations : dict
+        ``{file: {"label": str, "gains": {name: Fraction}}}`` for the entries
+        that state what their file must prove.
     """
 
     source: Path
     proofs: Path
     certificates: tuple[str, ...]
     report: bool = False
+    strict: bool = False
+    expectations: dict = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         for name in self.certificates:
@@ -107,12 +127,58 @@ def parse_config(table: object, *, source: Path) -> ProjectConfig:
     report = table.get("report", False)
     if not isinstance(report, bool):
         raise ConfigError(f"{source}: 'report' must be true or false; got {report!r}")
+    strict = table.get("strict", False)
+    if not isinstance(strict, bool):
+        raise ConfigError(f"{source}: 'strict' must be true or false; got {strict!r}")
+    expectations: dict[str, dict] = {}
+    names = []
+    for entry in certificates:
+        if isinstance(entry, dict):
+            name, expected = _parse_entry(entry, source)
+            expectations[name] = expected
+            names.append(name)
+        else:
+            names.append(entry)
+    certificates = names
     for name in certificates:
         _check_certificate_name(name, source)
     if len(set(certificates)) != len(certificates):
         dupes = sorted({c for c in certificates if certificates.count(c) > 1})
         raise ConfigError(f"{source}: 'certificates' lists {', '.join(map(repr, dupes))} more than once")
-    return ProjectConfig(source=source, proofs=source.parent / proofs, certificates=tuple(certificates), report=report)
+    return ProjectConfig(source=source, proofs=source.parent / proofs, certificates=tuple(certificates), report=report,
+                         strict=strict, expectations=expectations)
+
+
+def _parse_entry(entry: dict, source: Path) -> tuple[object, dict]:
+    """``(file, {"label": …, "gains": {…}})`` from a table entry of ``certificates``."""
+    from .rational import to_rational
+    from .errors import SymbolicFrictionError
+
+    unknown = sorted(set(entry) - set(_ENTRY_KEYS))
+    if unknown:
+        raise ConfigError(f"{source}: a certificates entry has unknown key(s) {', '.join(map(repr, unknown))} "
+                          f"(allowed: {', '.join(_ENTRY_KEYS)})")
+    if "file" not in entry:
+        raise ConfigError(f"{source}: a certificates entry given as a table needs 'file'; got {sorted(entry)}")
+    expected: dict = {}
+    if "label" in entry:
+        if not isinstance(entry["label"], str) or len(entry["label"]) > 10_000:
+            raise ConfigError(f"{source}: 'label' of {entry['file']!r} must be a string; got {entry['label']!r:.60}")
+        expected["label"] = entry["label"]
+    if "gains" in entry:
+        gains = entry["gains"]
+        if not isinstance(gains, dict) or not gains or set(gains) - set(GAIN_NAMES):
+            raise ConfigError(f"{source}: 'gains' of {entry['file']!r} must be a table of {', '.join(GAIN_NAMES)}; got {gains!r:.80}")
+        parsed = {}
+        for key, value in gains.items():
+            if isinstance(value, bool) or not isinstance(value, (str, int, float)):
+                raise ConfigError(f"{source}: gains.{key} of {entry['file']!r} must be a number or a string such as '32/5'")
+            try:
+                parsed[key] = to_rational(value, name=f"gains.{key}")
+            except SymbolicFrictionError as exc:
+                raise ConfigError(f"{source}: {entry['file']!r}: {exc}") from None
+        expected["gains"] = parsed
+    return entry["file"], expected
 
 
 def _read_toml(path: Path) -> dict[str, Any]:

@@ -156,4 +156,6 @@ def test_a_changed_file_is_stale(committed, tmp_path):
     path = tmp_path / "box.json"
     path.write_text(dumps_box(committed["box_case_a_10pct.json"]).replace("\n", "\n "), encoding="utf-8")  # same claim
     (entry,) = check_listed_certificates(tmp_path, ["box.json"])
+    assert entry.ok and "differs from what `symbolic-friction certify` writes now" in entry.drift
+    (entry,) = check_listed_certificates(tmp_path, ["box.json"], strict=True)
     assert entry.proved and entry.stale and "differs from what `symbolic-friction certify` writes now" in entry.reason

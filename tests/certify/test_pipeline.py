@@ -66,8 +66,11 @@ def test_check_detects_a_stale_markdown_report(table_dir, tmp_path):
     md.write_text(md.read_text(encoding="utf-8") + "edited\n", encoding="utf-8")
     results = {r.path.name: r for r in check_committed_certificates(work)}
     bad = results["case_a_tightest.json"]
+    assert bad.ok and "its report case_a_tightest.md differs from what `certify` renders now" in bad.drift
+    results = {r.path.name: r for r in check_committed_certificates(work, strict=True)}
+    bad = results["case_a_tightest.json"]
     assert bad.proved and bad.stale and not bad.ok
-    assert bad.reason == "case_a_tightest.md differs from what `symbolic-friction certify` writes now"
+    assert bad.reason.startswith("drift (strict): its report case_a_tightest.md differs")
     assert bad.describe().startswith("STALE ")
     assert all(r.ok for name, r in results.items() if name != "case_a_tightest.json")
 
@@ -81,8 +84,9 @@ def test_check_detects_a_valid_but_stale_certificate(table_dir, tmp_path):
     data["overshoot_bound"] = "100.000"
     path.write_text(json.dumps(data, indent=2, sort_keys=True) + "\n", encoding="utf-8")
     result = {r.path.name: r for r in check_committed_certificates(work)}["case_b_feasible.json"]
-    assert result.proved and result.stale
-    assert result.reason == "case_b_feasible.json differs from what `symbolic-friction certify` writes now"
+    assert result.ok and "c2 100 → " in result.drift and "κ 100.000 → 8.01425 (better)" in result.drift
+    result = {r.path.name: r for r in check_committed_certificates(work, strict=True)}["case_b_feasible.json"]
+    assert result.proved and result.stale and "c2 100 → " in result.reason
 
 
 def test_check_reports_missing_malformed_failing_and_unregenerable_files(table_dir, tmp_path):
@@ -97,15 +101,18 @@ def test_check_reports_missing_malformed_failing_and_unregenerable_files(table_d
     data = json.loads((work / "case_b_feasible.json").read_text(encoding="utf-8"))
     del data["provenance"]
     (work / "anonymous.json").write_text(json.dumps(data), encoding="utf-8")
+    shutil.copy(work / "case_b_feasible.md", work / "anonymous.md")
     results = {r.path.name: r for r in check_committed_certificates(work, expected=TABLE_I_FILES)}
     assert results["case_a_feasible.json"].reason == "missing; run `symbolic-friction certify`"
     assert results["case_b_tightest.json"].reason == "its report case_b_tightest.md is missing"
     assert results["junk.json"].reason.startswith("malformed: ") and "not valid JSON" in results["junk.json"].reason
     assert results["junk.json"].describe().startswith("FAILED ")
     assert not results["failing.json"].proved and "k3 > k2: 1 > 2 is false" in results["failing.json"].reason
-    assert results["anonymous.json"].proved and results["anonymous.json"].stale
-    assert "no provenance" in results["anonymous.json"].reason
-    assert sorted(name for name, r in results.items() if r.ok) == ["case_a_tightest.json", "case_b_feasible.json"]
+    # proved, but without provenance it cannot be regenerated: drift, a failure only when strict
+    assert results["anonymous.json"].ok and "no provenance" in results["anonymous.json"].drift
+    assert sorted(name for name, r in results.items() if r.ok) == ["anonymous.json", "case_a_tightest.json", "case_b_feasible.json"]
+    strict = {r.path.name: r for r in check_committed_certificates(work, expected=TABLE_I_FILES, strict=True)}
+    assert strict["anonymous.json"].stale and "no provenance" in strict["anonymous.json"].reason
 
 
 def test_write_refuses_an_unproved_certificate(tmp_path):

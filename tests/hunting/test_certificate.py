@@ -149,13 +149,15 @@ def test_every_number_of_cycle_is_decided_and_an_edited_one_fails_naming_it(cert
         assert out.startswith("NOT PROVED ") and f"cycle.{field}" in out
 
 
-def test_a_looser_but_true_cycle_verifies_and_is_stale(cert_file, tmp_path):
-    """A wider interval is still proved (it holds the enclosure); it is not what `hunting` writes, so `check` says stale."""
+def test_a_looser_but_true_cycle_verifies_and_drifts(cert_file, tmp_path):
+    """A wider interval is still proved (it holds the enclosure); it is not what `hunting` writes: drift, stale when strict."""
     from symbolic_friction._certify import check_listed_certificates
 
     path = edited(tmp_path, cert_file, lambda d: d["cycle"].update(period=["46", "47"]))
     assert verify_hunting_file(path).proved
     (entry,) = check_listed_certificates(tmp_path, [path.name])
+    assert entry.ok and "differs from what `symbolic-friction hunting` writes" in entry.drift
+    (entry,) = check_listed_certificates(tmp_path, [path.name], strict=True)
     assert entry.proved and entry.stale and "differs from what `symbolic-friction hunting` writes" in entry.reason
 
 
@@ -187,8 +189,8 @@ def test_check_write_regenerates_a_stale_hunting_file(cert_file, tmp_path):
     from symbolic_friction._certify import check_listed_certificates, write_listed_certificates
 
     path = edited(tmp_path, cert_file, lambda d: d["cycle"].update(period=["46", "47"]))
-    assert check_listed_certificates(tmp_path, [path.name])[0].stale
+    assert check_listed_certificates(tmp_path, [path.name], strict=True)[0].stale
     assert write_listed_certificates(tmp_path, [path.name]) == [path]
     assert path.read_bytes() == Path(cert_file).read_bytes()
-    (entry,) = check_listed_certificates(tmp_path, [path.name])
-    assert entry.ok
+    (entry,) = check_listed_certificates(tmp_path, [path.name], strict=True)
+    assert entry.ok and not entry.drift
