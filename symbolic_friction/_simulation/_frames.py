@@ -74,6 +74,20 @@ def state_axes(t: np.ndarray, z: np.ndarray, *, ax: Any = None, states: Any = ("
     return ax
 
 
+def frame_on_time(columns: dict[str, np.ndarray], time: np.ndarray, attrs: dict[str, str]) -> Any:
+    """A ``pandas.DataFrame`` of ``columns`` indexed by ``time`` (one trace), with ``attrs``."""
+    pd = optional("pandas", "pandas")
+    frame = pd.DataFrame(columns, index=pd.Index(time, name="time"))
+    frame.attrs.update(attrs)
+    return frame
+
+
+def dataset_on_time(columns: dict[str, np.ndarray], time: np.ndarray, attrs: dict[str, str]) -> Any:
+    """An ``xarray.Dataset`` of ``columns`` on a ``time`` dimension (one trace), with ``attrs``."""
+    xr = optional("xarray", "xarray")
+    return xr.Dataset({k: ("time", v) for k, v in columns.items()}, coords={"time": time}, attrs=attrs)
+
+
 class SolutionFrames:
     """``states``, ``to_pandas``, ``to_xarray`` and ``plot`` of one solution (``t``, ``z``, ``x``, ``mode``)."""
 
@@ -95,10 +109,7 @@ class SolutionFrames:
         ImportError
             Without pandas (``pip install 'symbolic-friction[pandas]'``).
         """
-        pd = optional("pandas", "pandas")
-        frame = pd.DataFrame(solution_columns(self.z, self.x, self.mode), index=pd.Index(self.t, name="time"))
-        frame.attrs.update(self._frame_attrs())
-        return frame
+        return frame_on_time(solution_columns(self.z, self.x, self.mode), self.t, self._frame_attrs())
 
     def to_xarray(self) -> Any:
         """An ``xarray.Dataset`` on a ``time`` dimension: ``e_i, s, v, sigma, phi, mode``.
@@ -108,9 +119,7 @@ class SolutionFrames:
         ImportError
             Without xarray (``pip install 'symbolic-friction[xarray]'``).
         """
-        xr = optional("xarray", "xarray")
-        cols = solution_columns(self.z, self.x, self.mode)
-        return xr.Dataset({k: ("time", v) for k, v in cols.items()}, coords={"time": self.t}, attrs=self._frame_attrs())
+        return dataset_on_time(solution_columns(self.z, self.x, self.mode), self.t, self._frame_attrs())
 
     def plot(self, states: Any = ("e_i", "s", "v"), *, ax: Any = None, **kwargs: Any) -> Any:
         """Plot ``states`` (names among ``e_i, s, v``) against time; return the matplotlib Axes.

@@ -35,7 +35,7 @@ import numpy as np
 from .._infra.errors import SimulationError
 from .._infra.rational import format_rational, to_rational
 from .._model.parameters import Parameters
-from ._frames import STATE_NAMES, optional
+from ._frames import STATE_NAMES, dataset_on_time, frame_on_time
 
 __all__ = ["Response", "step_response", "initial_response", "default_time"]
 
@@ -123,10 +123,7 @@ class Response:
         ImportError
             Without pandas (``pip install 'symbolic-friction[pandas]'``).
         """
-        pd = optional("pandas", "pandas")
-        frame = pd.DataFrame(self._columns(), index=pd.Index(self.time, name="time"))
-        frame.attrs.update(self._attrs())
-        return frame
+        return frame_on_time(self._columns(), self.time, self._attrs())
 
     def to_xarray(self) -> Any:
         """An ``xarray.Dataset`` on a ``time`` dimension: ``input, output, e_i, s, v, mode``.
@@ -136,9 +133,7 @@ class Response:
         ImportError
             Without xarray (``pip install 'symbolic-friction[xarray]'``).
         """
-        xr = optional("xarray", "xarray")
-        data = {k: ("time", v) for k, v in self._columns().items()}
-        return xr.Dataset(data, coords={"time": self.time}, attrs=self._attrs())
+        return dataset_on_time(self._columns(), self.time, self._attrs())
 
     def plot(self, *, ax: Any = None, **kwargs: Any) -> Any:
         """The position against time, with the reference dashed; returns the matplotlib Axes.
