@@ -28,7 +28,6 @@ Format (``schema`` ``symbolic-friction/quadratic-certificate/v1``, ``template``
 from __future__ import annotations
 
 import json
-import os
 from dataclasses import dataclass, field
 from fractions import Fraction
 from pathlib import Path
@@ -37,7 +36,6 @@ from typing import Any
 from .._infra.errors import CertificateFormatError
 from .._infra.rational import format_rational as _f
 from .._model import quadratic as model
-from .._model.coordinates import system_matrix_entries
 from ._template import Template, register
 from .copositive import decide_copositive
 from .verify import Check, Inequality, Semidefinite, decide

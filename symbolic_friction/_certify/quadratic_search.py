@@ -11,12 +11,15 @@ keep every strict inequality.  Its numbers are rounded to decimals of
 
 from __future__ import annotations
 
-import dataclasses
 from fractions import Fraction
+from typing import TYPE_CHECKING
 
 from .._infra.errors import CertificateError, ParameterError
 from .._model import quadratic as model
 from .._model.parameters import Parameters
+
+if TYPE_CHECKING:
+    from .quadratic import QuadraticCertificate
 
 __all__ = ["certify_quadratic", "MARGINS", "DIGITS"]
 
