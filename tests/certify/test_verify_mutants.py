@@ -86,6 +86,7 @@ def _forged_cases() -> dict[str, list[str]]:
         "a.label_free_text": replace(a, provenance=replace(prov, label="compared with Table I, case (b)")),
         "a.label_upper": replace(a, provenance=replace(prov, label="Table I, case (A)")),
         "a.claims_unknown": replace(a, provenance=replace(prov, obligations=("lemma2.P", "cor1.iss"))),
+        "a.claims_two_unknown": replace(a, provenance=replace(prov, obligations=("cor1.iss", "lemma2.P", "hunting"))),
         "a.claims_nothing": replace(a, provenance=replace(prov, obligations=())),
         "a.no_provenance": replace(a, provenance=None),
         "a.physical_ok": replace(a, physical=_physical(a)),
@@ -237,3 +238,37 @@ def test_provenance_is_checked_without_a_label_match():
     report = verify_certificate(replace(a, provenance=prov))
     assert [(c.name, c.holds) for c in report.checks if c.obligation == "provenance"] == [
         ("provenance.obligations ⊆ obligations instantiated", True)]
+
+
+def test_verdicts_are_booleans():
+    """``verify --json`` prints ``holds``: a verdict is ``True`` or ``False``, never a falsy stand-in."""
+    eye = ((F(1), F(0), F(0)), (F(0), F(1), F(0)), (F(0), F(0), F(1)))
+    assert decide(Semidefinite("o", "I", eye)).holds is True
+    assert decide(Semidefinite("o", "-I", tuple(tuple(-x for x in row) for row in eye))).holds is False
+    assert decide(Inequality("o", "n", F(1), ">", F(2))).holds is False
+    assert decide(Inequality("o", "n", F(3), ">", F(2))).holds is True
+
+
+def test_a_float_anywhere_in_a_premise_is_refused_by_the_premise_name():
+    with pytest.raises(CertificateError, match=r"^c1 ≤ c2: .*got float 0\.25$"):
+        decide(Inequality("o", "c1 ≤ c2", F(1), "<=", 0.25))
+    with pytest.raises(CertificateError, match=r"^c = 2\(k_v·k_p − k_i\): .*got float 1\.5$"):
+        decide(Inequality("o", "c = 2(k_v·k_p − k_i)", F(1), "==", F(1), "2·({} − {})", (1.5, F(1))))
+
+
+def test_a_non_strict_k_condition_is_decided_as_non_strict(monkeypatch):
+    """All of the paper's k-conditions are strict; a non-strict one (the form on R̂) must become a ≥ premise."""
+    from symbolic_friction._certify import verify as V
+    from symbolic_friction._model.kconditions import k_conditions
+
+    def lax(*args):
+        return tuple(replace(c, strict=False) if c.name == "k3 > k2" else c for c in k_conditions(*args))
+
+    monkeypatch.setattr(V, "k_conditions", lax)
+    a = _cert("case_a_tightest")
+    ns = SimpleNamespace(**{n: getattr(a, n) for n in ("k_p", "k_i", "k_v", "f_c", "k1", "k2", "k3", "k4", "c", "c1", "c2",
+                                                      "c1_hat", "c2_hat")}, kappa=F(a.overshoot_bound))
+    ns.k3 = ns.k2
+    (k3k2,) = [p for p in premises(ns) if p.name == "k3 > k2"]
+    assert k3k2.op == ">="
+    assert decide(k3k2).holds is True and str(decide(k3k2)) == "✓ k3 > k2: 2 ≥ 2"

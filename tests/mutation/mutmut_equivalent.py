@@ -20,5 +20,14 @@ SCOPE: tuple[str, ...] = (
     "symbolic_friction._cli._sections.x__is_verdict__mutmut_*",
 )
 
+_V = "symbolic_friction._certify.verify."
 EQUIVALENT: dict[str, str] = {
+    _V + "x_decide__mutmut_10": "minors of the entries themselves instead of their Fraction copies: _exact has refused every "
+    "entry that is not an int or a Fraction, and Fraction(x) == x for those, so every minor has the same value",
+    _V + "x_decide__mutmut_64": "the Inequality rebuilt for margin() gets obligation None: margin() reads only op, lhs and rhs",
+    _V + "x_decide__mutmut_65": "the Inequality rebuilt for margin() gets name None: margin() reads only op, lhs and rhs",
+    _V + "x_premises__mutmut_137": "the identity gets a 4th column: only identity[i][j] with i, j < 3 is read",
+    _V + "x_premises__mutmut_139": "the identity gets a 4th row: only identity[i][j] with i, j < 3 is read",
+    _V + "x_premises__mutmut_283": "k + zero → k − zero with zero = k_i − k_i, which is 0 for Fractions and for sympy symbols",
+    _V + "xǁSemidefiniteǁminors__mutmut_9": "sizes up to n + 1: combinations(range(n), n + 1) is empty, so no minor is added",
 }
