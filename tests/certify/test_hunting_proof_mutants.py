@@ -64,6 +64,8 @@ def _cases(monkeypatch) -> dict[str, list[str]]:
         "monotone_at_box": dataclasses.replace(box, monotone_from=t_lo),
         "monotone_zero": dataclasses.replace(box, monotone_from=F(0)),
         "monotone_early": dataclasses.replace(box, monotone_from=F(1, 10)),
+        "sigma_point": dataclasses.replace(box, sigma=(s_lo, s_lo)),
+        "tau_point": dataclasses.replace(box, tau=(t_hi, t_hi)),
     }
     for name, b in forged.items():
         out[name] = _lines(H.prove_cycle(p, b))
@@ -100,7 +102,7 @@ def _cases(monkeypatch) -> dict[str, list[str]]:
         m.setattr(H._Arb, "state", no_start)
         out["v_never_rises"] = _lines(H.prove_cycle(p, box))
     out["box_around"] = [repr(H.box_around(0.1, 2.5)), repr(H.box_around(-0.25, 0.05, relative=1e-6)),
-                         repr(H.box_around(3.0, 1000.0))]
+                         repr(H.box_around(3.0, 1000.0)), repr(H.box_around(0.5, 1.0))]
     return out
 
 
@@ -168,3 +170,88 @@ def test_the_precision_is_set_for_the_proof_and_restored(monkeypatch):
         monkeypatch.setattr(H, "_prove", lambda params, box: (_ for _ in ()).throw(RuntimeError("x")))
         H.prove_cycle(c.params, c.box, precision=300)
     assert ctx.prec == before
+
+
+class _Linear:
+    """A fake closed form with ``F(σ, τ) = (τ - τ*, σ - σ*)`` exactly (``J = [[0, 1], [1, 0]]``, ``E = 0``).
+
+    With dyadic corners every ball is exact, ``C = J⁻¹`` and ``I - CJ = 0``, so
+    ``K(X) = (σ*, τ*)`` exactly: the Krawczyk inclusion is decided on a point
+    that can sit exactly on a corner of the box.
+    """
+
+    def __init__(self, s_star, t_star, dv0=None):
+        self.s_star, self.t_star, self.dv0 = F(s_star), F(t_star), dv0
+
+    def __call__(self, M, sigma, tau):
+        from flint import arb_mat
+
+        E = arb_mat(3, 3)
+        y = [-M.q(self.s_star) + 0 * sigma, M.arb(0), tau - M.q(self.t_star)]
+        dy = [M.arb(0), M.arb(0), M.arb(1) if self.dv0 is None else self.dv0(M)]
+        return E, y, dy
+
+
+BOX = H.Box(sigma=(F(1, 8), F(3, 8)), tau=(F(2), F(3)), monotone_from=F(1))
+P12 = Parameters(k_p=3, k_i=4, k_v="6.4", f_s="1.2")
+
+
+def _krawczyk(monkeypatch, fake):
+    monkeypatch.setattr(H._Arb, "state", lambda self, sigma, tau: fake(self, sigma, tau))
+    (check,) = [c for c in H.prove_cycle(P12, BOX).checks if c.name == "krawczyk"]
+    return check
+
+
+@pytest.mark.parametrize("s_star, t_star, inside", [
+    (F(1, 4), F(5, 2), True), (F(1, 8), F(5, 2), False), (F(3, 8), F(5, 2), False),
+    (F(1, 4), F(2), False), (F(1, 4), F(3), False), (F(1, 2), F(5, 2), False),
+])
+def test_the_krawczyk_inclusion_is_strict_at_both_ends(monkeypatch, s_star, t_star, inside):
+    """``K(X)`` on a corner of ``X`` is not in its interior: ``>`` on both ends, never ``≥``."""
+    check = _krawczyk(monkeypatch, _Linear(s_star, t_star))
+    assert check.holds is inside, check
+
+
+def test_a_singular_jacobian_is_refused(monkeypatch):
+    monkeypatch.setattr(H, "_exact_mid", lambda x: F(0))
+    c = _cert("case_a_fs1.2")
+    proof = H.prove_cycle(c.params, c.box)
+    assert isinstance(proof.checks, tuple) and [(ch.name, ch.holds) for ch in proof.checks] == [("box", True), ("krawczyk", False)]
+    assert str(proof.checks[-1]) == "FAILS  krawczyk: the Jacobian at the box centre is singular"
+    assert proof.proved is False and proof.stable is None
+    assert len(proof.multiplier) == 2 and all(math.isnan(m) for m in proof.multiplier)
+
+
+def test_a_malformed_box_has_no_multiplier():
+    c = _cert("case_a_fs1.2")
+    proof = H.prove_cycle(c.params, dataclasses.replace(c.box, sigma=(c.box.sigma[1], c.box.sigma[0])))
+    assert proof.proved is False and proof.stable is None and isinstance(proof.checks, tuple)
+    assert len(proof.multiplier) == 2 and all(math.isnan(m) for m in proof.multiplier)
+    assert [(ch.name, ch.holds) for ch in proof.checks] == [("box", False)]
+
+
+def test_the_start_check_uses_the_box_sigma_and_a_strict_sign(monkeypatch):
+    c = _cert("case_a_fs1.2")
+    real = H._Arb.state
+    seen = []
+
+    def spy(self, sigma, tau):
+        seen.append((sigma, tau))
+        return real(self, sigma, tau)
+
+    monkeypatch.setattr(H._Arb, "state", spy)
+    H.prove_cycle(c.params, c.box)
+    S = H._Arb(c.params).ball(*c.box.sigma)
+    starts = [s for s, t in seen if t.contains(0)]
+    assert starts and all(s is not None and s.overlaps(S) and s.rad() > 0 for s in starts)
+
+    def zero_slope(self, sigma, tau):
+        E, y, dy = real(self, sigma, tau)
+        return (E, y, [dy[0], dy[1], self.arb(0)]) if tau.contains(0) else (E, y, dy)
+
+    monkeypatch.setattr(H._Arb, "state", zero_slope)
+    proof = H.prove_cycle(c.params, c.box)
+    (start,) = [ch for ch in proof.checks if ch.name == "first_zero.start"]
+    (positive,) = [ch for ch in proof.checks if ch.name == "first_zero.positive"]
+    assert start.holds is False and positive.holds is False
+    assert str(start) == "FAILS  first_zero.start: v' > 0 near τ = 0 could not be shown"

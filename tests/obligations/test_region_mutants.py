@@ -46,7 +46,7 @@ def test_pieces_of_sorts_records_and_never_guesses():
     outside = Case("v > 0, |φ| < f_c", ((g.v, p), (g.phi, g.f_c - q)))
     on = Case("v = 0", ((g.v, sp.Integer(0)),))
     undecided = Case("v > 0, φ free", ((g.v, p),))
-    cases = (inside, outside, on, undecided)
+    cases = (undecided, inside, outside, on)
     failures: list[str] = []
     assert list(R.pieces_of(cases, region, inside=True, failures=failures)) == [inside, on]
     assert failures == ["cannot decide whether the piece v > 0, φ free lies in R"]
@@ -69,3 +69,4 @@ def test_fmt_failures_keeps_six():
     six = [str(i) for i in range(6)]
     assert R._fmt_failures(six) == "0; 1; 2; 3; 4; 5"
     assert R._fmt_failures(six + ["6", "7"]) == "0; 1; 2; 3; 4; 5 (and 2 more)"
+    assert R._fmt_failures(six + ["6"]) == "0; 1; 2; 3; 4; 5 (and 1 more)"
