@@ -148,7 +148,7 @@ def test_the_helpers_round_outward_and_exactly():
     assert H._lower(arb(2)) == math.nextafter(2.0, 0) and H._upper(arb(2)) == math.nextafter(2.0, 3)
     assert H._exact_mid(arb(1) / 4) == F(1, 4) and H._exact_mid(arb(3) * 8) == 24 and H._exact_mid(arb(-5) / 2) == F(-5, 2)
     assert H._short(F(0)) == 0 and H._short(F(1, 3)) == F("0.33333333333333331")
-    assert H._short(F(-2)) == -2
+    assert H._short(F(-2)) == -2 and H._short(F(1)) == 1
 
 
 def test_the_precision_is_set_for_the_proof_and_restored(monkeypatch):
@@ -255,3 +255,14 @@ def test_the_start_check_uses_the_box_sigma_and_a_strict_sign(monkeypatch):
     (positive,) = [ch for ch in proof.checks if ch.name == "first_zero.positive"]
     assert start.holds is False and positive.holds is False
     assert str(start) == "FAILS  first_zero.start: v' > 0 near τ = 0 could not be shown"
+
+
+def test_the_decreasing_check_needs_a_negative_slope(monkeypatch):
+    """``∂v/∂τ`` in ``(0, 1)`` on ``[τ_a, τ_hi]`` is not ``< 0``."""
+    from flint import arb
+
+    fake = _Linear(F(1, 4), F(5, 2), dv0=lambda M: arb(1) / 2)
+    monkeypatch.setattr(H._Arb, "state", lambda self, sigma, tau: fake(self, sigma, tau))
+    checks = {c.name: c for c in H.prove_cycle(P12, BOX).checks}
+    assert checks["first_zero.decreasing"].holds is False
+    assert checks["first_zero.positive"].holds is False  # v = τ - τ* < 0 before τ*: giving up is not proved

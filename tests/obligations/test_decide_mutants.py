@@ -49,6 +49,7 @@ def test_rational_function_recognition():
 
 def test_is_zero_every_branch():
     assert is_zero(0) and is_zero(sp.Integer(0))
+    assert not is_zero(1) and not is_zero(sp.Rational(1, 3))
     assert is_zero(1 / (a + b) - (a - b) / (a**2 - b**2))  # zero only after together()
     assert is_zero(sp.expand((a + b) ** 2) - (a + b) ** 2)
     assert not is_zero(a - b)
