@@ -189,6 +189,10 @@ def run_one(mutant: Mutant | None, files: list[str], root: Path = ROOT) -> Outco
         except subprocess.TimeoutExpired:
             return Outcome(mutant, None, None, "-", time.perf_counter() - start, "timeout")
         caught_by = _what_failed(check, verify)
+        if tests is not None and tests.returncode not in (0, 1):
+            # 2-5: interrupted, internal error, usage error, nothing collected: never a catch
+            return Outcome(mutant, check.returncode, verify.returncode, "-", time.perf_counter() - start,
+                           f"tests could not run (pytest exit {tests.returncode})")
         if tests is not None and tests.returncode:
             failed = _failed_tests(tests.stdout) or [f"exit {tests.returncode}"]
             caught_by = "tests: " + ", ".join(failed)
