@@ -9,7 +9,7 @@ It reads ``mutmut results --all true`` and counts, per module of the
 trusted base, the mutants and how each ended (killed, survived, timeout,
 no tests, …).  Every survivor must be listed in :data:`EQUIVALENT` with a
 one-line argument that it cannot change a result, or the report says
-``UNEXPLAINED`` and the exit status is 1.  ``--scope`` restricts the count to
+``OPEN`` and the exit status is 1.  ``--scope`` restricts the count to
 the functions that decide (the rest of a module, e.g. its table layout, is
 reported separately as out of scope).
 """
@@ -63,7 +63,8 @@ def render(found: dict[str, str]) -> tuple[str, bool]:
     for name, status in sorted(found.items()):
         target = per if in_scope(name) else out_of_scope
         target[module_of(name)][status] += 1
-        if in_scope(name) and status not in ("killed",):
+        # a timeout is a mutant whose tests did not finish: it did not pass them
+        if in_scope(name) and status not in ("killed", "timeout"):
             survivors.append((name, status))
     statuses = ["killed", "survived", "timeout", "no tests", "suspicious", "segfault", "skipped"]
     rows = ["| module | mutants | " + " | ".join(statuses) + " |", "|---|---:|" + "---:|" * len(statuses)]
@@ -82,7 +83,7 @@ def render(found: dict[str, str]) -> tuple[str, bool]:
         why = EQUIVALENT.get(name)
         if why is None:
             ok = False
-            why = "UNEXPLAINED"
+            why = "OPEN (neither killed nor argued equivalent yet)"
         lines.append(f"- `{name}` ({status}): {why}")
     oos = ["", "## Out of scope (counted, not required to be killed)", ""]
     for mod in sorted(out_of_scope):
