@@ -26,6 +26,13 @@ def test_every_mutant_applies_to_the_current_tree(mutant):
     assert apply(text, mutant) != text
 
 
+def test_every_test_a_mutant_names_exists():
+    """A missing test file makes pytest fail with a usage error, which must never count as a catch."""
+    for m in MUTANTS:
+        for test in m.tests:
+            assert (ROOT / test.split("::")[0]).is_file(), (m.id, test)
+
+
 def test_every_equivalent_mutant_says_why():
     for m in MUTANTS:
         assert m.equivalent is None or len(m.equivalent) > 20

@@ -20,7 +20,10 @@ as working directory and ``PYTHONPATH``:
 3. ``python -m symbolic_friction verify proofs/*.json``: its ``FAILED`` lines
    are recorded.
 
-A mutant is *caught* when step 2 or 3 exits non-zero.  The unmutated
+A mutant is *caught* when step 2 or 3 exits non-zero.  A mutant that both
+miss and that names tests (``Mutant.tests``) is then caught by the test
+suite if those tests fail on the mutated copy (``tests/`` is copied too and
+``python -m pytest -n 0`` runs them there); the table says which.  The unmutated
 baseline is run the same way first and must pass both (otherwise every
 "caught" would be vacuous).  A mutant whose snippet does not occur exactly
 once is an error, never skipped.  The table is printed (and written
@@ -50,6 +53,7 @@ from tests.mutation.mutants import FAST, MUTANTS, Mutant  # noqa: E402
 
 TIMEOUT = 300.0
 SOURCES = ("symbolic_friction", "proofs", "pyproject.toml")
+TESTS = ("tests",)
 
 
 class DoesNotApply(ValueError):
@@ -66,10 +70,11 @@ class Outcome:
     caught_by: str
     seconds: float
     error: str = ""
+    tests_rc: int | None = None
 
     @property
     def caught(self) -> bool:
-        return not self.error and ((self.check_rc or 0) != 0 or (self.verify_rc or 0) != 0)
+        return not self.error and ((self.check_rc or 0) != 0 or (self.verify_rc or 0) != 0 or (self.tests_rc or 0) != 0)
 
     @property
     def verdict(self) -> str:
@@ -84,10 +89,10 @@ class Outcome:
         return not self.error and (self.caught or bool(self.mutant and self.mutant.equivalent))
 
 
-def source_files(root: Path = ROOT) -> list[str]:
-    """The files to copy: tracked and untracked-but-not-ignored, under :data:`SOURCES`."""
+def source_files(root: Path = ROOT, *, under: tuple[str, ...] = SOURCES) -> list[str]:
+    """The files to copy: tracked and untracked-but-not-ignored, under :data:`SOURCES` (or ``under``)."""
     listed = subprocess.run(
-        ["git", "ls-files", "--cached", "--others", "--exclude-standard", "--", *SOURCES],
+        ["git", "ls-files", "--cached", "--others", "--exclude-standard", "--", *under],
         cwd=root, capture_output=True, text=True, check=True,
     ).stdout.splitlines()
     return sorted({f for f in listed if (root / f).is_file()})
@@ -123,6 +128,16 @@ def _run(args: list[str], cwd: Path) -> subprocess.CompletedProcess:
     env = dict(os.environ, PYTHONPATH=str(cwd), PYTHONDONTWRITEBYTECODE="1")
     return subprocess.run([sys.executable, "-m", "symbolic_friction", *args], cwd=cwd, env=env,
                           capture_output=True, text=True, timeout=TIMEOUT)
+
+
+def _run_tests(tests: tuple[str, ...], cwd: Path) -> subprocess.CompletedProcess:
+    env = dict(os.environ, PYTHONPATH=str(cwd), PYTHONDONTWRITEBYTECODE="1")
+    return subprocess.run([sys.executable, "-m", "pytest", "-q", "-x", "-n", "0", "-p", "no:cacheprovider", *tests],
+                          cwd=cwd, env=env, capture_output=True, text=True, timeout=TIMEOUT)
+
+
+def _failed_tests(output: str) -> list[str]:
+    return [line.split(" ")[1] for line in output.splitlines() if line.startswith(("FAILED ", "ERROR "))]
 
 
 def _what_failed(check: subprocess.CompletedProcess, verify: subprocess.CompletedProcess) -> str:
@@ -167,9 +182,22 @@ def run_one(mutant: Mutant | None, files: list[str], root: Path = ROOT) -> Outco
             check = _run(["check", "--json"], dest)
             certs = sorted(str(p.relative_to(dest)) for p in (dest / "proofs").glob("*.json"))
             verify = _run(["verify", *certs], dest)
+            tests = None
+            if mutant is not None and mutant.tests and not (check.returncode or verify.returncode):
+                _copy_tree(dest, source_files(root, under=TESTS), root)
+                tests = _run_tests(mutant.tests, dest)
         except subprocess.TimeoutExpired:
             return Outcome(mutant, None, None, "-", time.perf_counter() - start, "timeout")
-        return Outcome(mutant, check.returncode, verify.returncode, _what_failed(check, verify), time.perf_counter() - start)
+        caught_by = _what_failed(check, verify)
+        if tests is not None and tests.returncode not in (0, 1):
+            # 2-5: interrupted, internal error, usage error, nothing collected: never a catch
+            return Outcome(mutant, check.returncode, verify.returncode, "-", time.perf_counter() - start,
+                           f"tests could not run (pytest exit {tests.returncode})")
+        if tests is not None and tests.returncode:
+            failed = _failed_tests(tests.stdout) or [f"exit {tests.returncode}"]
+            caught_by = "tests: " + ", ".join(failed)
+        return Outcome(mutant, check.returncode, verify.returncode, caught_by, time.perf_counter() - start,
+                       tests_rc=None if tests is None else tests.returncode)
 
 
 def table(outcomes: list[Outcome], root: Path = ROOT) -> str:

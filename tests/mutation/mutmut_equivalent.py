@@ -1,0 +1,44 @@
+"""What mutmut's report counts (:data:`SCOPE`) and the survivors argued equivalent (:data:`EQUIVALENT`).
+
+The scope is the trusted base: the exact verifier, the decision procedures
+and the case split on ``R``, the Krawczyk proof of hunting cycles, and the
+part of ``check`` that turns section results into the exit code.  Printing
+helpers of ``check`` (table layout, wrapping, locating the configuration)
+are mutated too but reported as out of scope.
+"""
+
+from __future__ import annotations
+
+SCOPE: tuple[str, ...] = (
+    "symbolic_friction._certify.verify.*",
+    "symbolic_friction._obligations._decide.x_[!l]*",  # every function but latex(), which only renders
+    "symbolic_friction._obligations._region.*",
+    "symbolic_friction._certify.hunting_proof.*",
+    "symbolic_friction._cli.check.x_run__mutmut_*",
+    "symbolic_friction._cli._sections.x_closing_line__mutmut_*",
+    "symbolic_friction._cli._sections.x__crashed__mutmut_*",
+    "symbolic_friction._cli._sections.x__is_verdict__mutmut_*",
+)
+
+_V = "symbolic_friction._certify.verify."
+_H = "symbolic_friction._certify.hunting_proof."
+EQUIVALENT: dict[str, str] = {
+    _V + "x_decide__mutmut_10": "minors of the entries themselves instead of their Fraction copies: _exact has refused every "
+    "entry that is not an int or a Fraction, and Fraction(x) == x for those, so every minor has the same value",
+    _V + "x_decide__mutmut_64": "the Inequality rebuilt for margin() gets obligation None: margin() reads only op, lhs and rhs",
+    _V + "x_decide__mutmut_65": "the Inequality rebuilt for margin() gets name None: margin() reads only op, lhs and rhs",
+    _V + "x_premises__mutmut_137": "the identity gets a 4th column: only identity[i][j] with i, j < 3 is read",
+    _V + "x_premises__mutmut_139": "the identity gets a 4th row: only identity[i][j] with i, j < 3 is read",
+    _V + "x_premises__mutmut_283": "k + zero → k − zero with zero = k_i − k_i, which is 0 for Fractions and for sympy symbols",
+    _V + "xǁSemidefiniteǁminors__mutmut_9": "sizes up to n + 1: combinations(range(n), n + 1) is empty, so no minor is added",
+    _H + "xǁ_Arbǁball__mutmut_4": "mid − arb(0, r) is the same ball as mid + arb(0, r): arb(0, r) is symmetric about 0",
+    _H + "xǁ_Arbǁball__mutmut_9": "python-flint reads arb(None, r) as arb(0, r): the same ball",
+    _H + "xǁ_Arbǁstate__mutmut_5": "python-flint reads arb(None) as arb(0): the same exact zero",
+    _H + "x__prove__mutmut_40": "float('NAN') is the same NaN as float('nan')",
+    _H + "x__prove__mutmut_43": "float('NAN') is the same NaN as float('nan')",
+    _H + "x__prove__mutmut_141": "float('NAN') is the same NaN as float('nan')",
+    _H + "x__prove__mutmut_144": "float('NAN') is the same NaN as float('nan')",
+    _H + "x__prove__mutmut_190": "dx = X − x̃ is a ball with midpoint exactly 0, so −row·dx is the same ball as +row·dx",
+    _H + "x__prove__mutmut_191": "dx = X − x̃ is a ball with midpoint exactly 0, so −row·dx is the same ball as +row·dx",
+    _H + "x__short__mutmut_2": "x = 0 then also gives Fraction(f'{0.0:.17g}') = Fraction(0): the same value",
+}

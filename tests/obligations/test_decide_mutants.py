@@ -1,0 +1,236 @@
+"""Every branch of the exact decision procedures, with the answer a wrong branch would give refused.
+
+Each test reaches one branch of :mod:`symbolic_friction._obligations._decide`
+with an input on which a mutated procedure (a flipped comparison, a dropped
+case, a wrong table entry) would answer differently, and pins the message of
+every ``Undecided`` so that a refusal says what could not be decided.
+"""
+
+from __future__ import annotations
+
+import pytest
+import sympy as sp
+
+from symbolic_friction._obligations import _decide as D
+from symbolic_friction._obligations._decide import (
+    Undecided,
+    affine_image,
+    decide,
+    interval_partitions_reals,
+    is_zero,
+    minimum_on,
+    phi_classes,
+    pos,
+    resolve_piecewise,
+    sign_classes,
+    sign_of,
+    vertices,
+)
+
+a, b, c = pos("a"), pos("b"), pos("c")
+x = sp.Symbol("x", real=True)
+n = sp.Symbol("n", nonnegative=True)
+
+
+def test_pos_and_G():
+    s = pos("q")
+    assert s.name == "q" and s.is_positive is True
+    assert D.G() is D.G()
+
+
+def test_rational_function_recognition():
+    assert D._is_rational_function(a / b + 3 * c**2 - sp.Rational(1, 2))
+    assert D._is_rational_function((a + b) ** -2)
+    assert not D._is_rational_function(sp.sqrt(a) + 1)
+    assert not D._is_rational_function(a ** sp.Rational(1, 3))
+    assert not D._is_rational_function(sp.exp(a))
+    assert not D._is_rational_function(sp.Float(0.5) * a)
+
+
+def test_is_zero_every_branch():
+    assert is_zero(0) and is_zero(sp.Integer(0))
+    assert not is_zero(1) and not is_zero(sp.Rational(1, 3))
+    assert is_zero(1 / (a + b) - (a - b) / (a**2 - b**2))  # zero only after together()
+    assert is_zero(sp.expand((a + b) ** 2) - (a + b) ** 2)
+    assert not is_zero(a - b)
+    assert not is_zero(1 / (a + b) - 1 / (a + 2 * b))
+    assert is_zero(sp.sin(a) ** 2 + sp.cos(a) ** 2 - 1)  # simplify decides a non-rational identity
+    assert not is_zero(sp.Abs(x) - x)  # Abs: not simplified, never called zero
+    assert not is_zero(sp.Max(x, 0) - x)
+    assert not is_zero(sp.sqrt(a) - 1)
+
+
+def test_number_sign():
+    assert sign_of(sp.Integer(0)) == 0
+    assert sign_of(sp.Rational(-1, 2)) == -1 and sign_of(sp.Rational(1, 2)) == 1
+    assert sign_of(sp.pi - 3) == 1 and sign_of(3 - sp.pi) == -1
+    assert sign_of(sp.nan) is None
+    assert D._number_sign(sp.Integer(0)) == 0
+
+
+def test_poly_sign_every_branch():
+    assert D._poly_sign(sp.Integer(0)) == 0
+    assert D._poly_sign(sp.Integer(-3)) == -1
+    assert D._poly_sign(a**2 + a * b + 1) == 1
+    assert D._poly_sign(-(a**2) - 2 * b) == -1
+    assert D._poly_sign(a - b) is None
+    assert D._poly_sign(a - 1) is None
+    assert D._poly_sign(sp.pi * a) is None  # an irrational coefficient is not decided
+    assert D._poly_sign(sp.sqrt(a) + 1) is None  # not a polynomial
+    assert D._poly_sign(a * b - a * b + 2 * c) == 1
+
+
+def test_sign_of_every_branch():
+    assert sign_of(n + 1) is None  # a nonnegative symbol is not positive
+    assert sign_of(x**2 + 1) is None
+    assert sign_of(a + n) is None
+    for f in (sp.Abs(a - b) + 1, sp.Max(a, b), sp.Min(a, b), sp.sign(a - b) + 2):
+        assert sign_of(f) is None
+    assert sign_of(sp.Piecewise((a, a > b), (b, True))) is None
+    assert sign_of(a * b + 1) == 1 and sign_of(-a - b) == -1
+    assert sign_of(a / (b + 1)) == 1
+    assert sign_of(a / (-b - 1)) == -1
+    assert sign_of(-a / (b + 1)) == -1
+    assert sign_of(-a / (-b - 1)) == 1
+    assert sign_of((a - b) / (a + b)) is None  # numerator undecided
+    assert sign_of(a / (a - b)) is None  # denominator undecided
+    assert sign_of((a**2 - a**2 * (1 + b) + a**2 * b) / (a + 1)) == 0
+    assert sign_of(1 / a + 1 / b) == 1
+
+
+def _rel(kind, lhs, rhs):
+    return kind(lhs, rhs, evaluate=False)
+
+
+@pytest.mark.parametrize(
+    "kind, want",
+    [
+        (sp.StrictGreaterThan, {1: True, 0: False, -1: False}),
+        (sp.GreaterThan, {1: True, 0: True, -1: False}),
+        (sp.StrictLessThan, {1: False, 0: False, -1: True}),
+        (sp.LessThan, {1: False, 0: True, -1: True}),
+        (sp.Equality, {1: False, 0: True, -1: False}),
+        (sp.Unequality, {1: True, 0: False, -1: True}),
+    ],
+)
+def test_decide_every_relation_and_sign(kind, want):
+    lhs = {1: a * b + 1, 0: a * b, -1: a * b - a * b - c}
+    for sg, expected in want.items():
+        assert decide(_rel(kind, lhs[sg], a * b if sg == 0 else 0)) is expected, (kind, sg)
+    assert decide(_rel(kind, a, b)) is None
+
+
+def test_decide_connectives():
+    t, f, u = _rel(sp.Gt, a + 1, 0), _rel(sp.Lt, a + 1, 0), _rel(sp.Gt, a, b)
+    assert decide(True) is True and decide(sp.true) is True
+    assert decide(False) is False and decide(sp.false) is False
+    assert decide(sp.And(t, t, evaluate=False)) is True
+    assert decide(sp.And(t, u, evaluate=False)) is None  # an undecided conjunct
+    assert decide(sp.And(u, f, evaluate=False)) is False  # a false conjunct decides
+    assert decide(sp.Or(f, f, evaluate=False)) is False
+    assert decide(sp.Or(f, u, evaluate=False)) is None
+    assert decide(sp.Or(u, t, evaluate=False)) is True
+    assert decide(sp.Not(t, evaluate=False)) is False
+    assert decide(sp.Not(f, evaluate=False)) is True
+    assert decide(sp.Not(u, evaluate=False)) is None
+    assert decide(a) is None  # not a relation
+
+
+def test_resolve_piecewise():
+    pw = sp.Piecewise((a, _rel(sp.Lt, a + 1, 0)), (b, _rel(sp.Gt, a + 1, 0)), (c, True))
+    assert resolve_piecewise(pw) == b
+    assert resolve_piecewise(pw + sp.Piecewise((c, _rel(sp.Ge, a, 0)), (a, True))) == b + c
+    with pytest.raises(Undecided, match=r"^cannot decide the branch condition a > b$"):
+        resolve_piecewise(sp.Piecewise((a, _rel(sp.Gt, a, b)), (b, True)))
+    with pytest.raises(Undecided, match=r"^no branch of a Piecewise applies$"):
+        resolve_piecewise(sp.Piecewise((a, _rel(sp.Lt, a + 1, 0)), (b, _rel(sp.Lt, b + 1, 0)), evaluate=False))
+    assert resolve_piecewise(a + b) == a + b
+    assert resolve_piecewise(3) == 3
+
+
+def test_vertices():
+    assert vertices(sp.FiniteSet(1, 3)) == [1, 3]
+    assert vertices(sp.Interval(0, a)) == [0, a]
+    for bad in (sp.Interval.open(0, 1), sp.Interval.Lopen(0, 1), sp.Interval.Ropen(0, 1), sp.Interval(0, sp.oo),
+                sp.Interval(-sp.oo, 0)):
+        with pytest.raises(Undecided, match="is neither finite nor a closed bounded interval"):
+            vertices(bad)
+
+
+def test_stationary_points():
+    assert D._stationary_points(a + 0 * x, x) == []
+    assert D._stationary_points(3 * x + 1, x) == []
+    assert D._stationary_points(x**2 - 2 * x, x) == [1]
+    assert D._stationary_points(a * x**2 - 2 * b * x, x) == [b / a]
+    assert sorted(D._stationary_points(x**3 - 3 * x, x)) == [-1, 1]
+    assert D._stationary_points(x**3 + 3 * x, x) == []  # complex roots only
+    assert D._stationary_points(x + 1 / x, x) in ([-1, 1], [1, -1])  # a rational function: solve()
+
+
+def test_minimum_on():
+    f = (x - 1) ** 2
+    assert minimum_on(f, x, sp.Interval(0, 3)) == 0  # interior stationary point
+    assert minimum_on(f, x, sp.Interval(2, 3)) == 1  # at an end, the stationary point outside
+    assert minimum_on(-f, x, sp.Interval(0, 3)) == -4
+    assert minimum_on(x**2, x, sp.FiniteSet(-2, 1, 3)) == 1
+    assert minimum_on((x - a) ** 2, x, sp.Interval(0, a + b)) == 0
+    with pytest.raises(Undecided, match=r"^cannot decide whether the stationary point a lies in Interval\(0, b\)$"):
+        minimum_on((x - a) ** 2, x, sp.Interval(0, b))
+    with pytest.raises(Undecided, match=r"^cannot order the candidate values \[a, b\] of the minimum over \{a, b\}$"):
+        minimum_on(x, x, sp.FiniteSet(a, b))
+
+
+def test_affine_image():
+    assert affine_image(2 * x + 1, x, sp.Interval(0, 1)) == sp.Interval(1, 3)
+    assert affine_image(-2 * x + 1, x, sp.Interval(0, 1)) == sp.Interval(-1, 1)
+    assert affine_image(2 * x, x, sp.Interval.Ropen(0, 1)) == sp.Interval.Ropen(0, 2)
+    assert affine_image(-2 * x, x, sp.Interval.Ropen(0, 1)) == sp.Interval.Lopen(-2, 0)
+    assert affine_image(-2 * x, x, sp.Interval.Lopen(0, 1)) == sp.Interval.Ropen(-2, 0)
+    assert affine_image(a + 0 * x, x, sp.Interval(0, 1)) == sp.FiniteSet(a)
+    with pytest.raises(Undecided, match=r"^x\*\*2 is not affine in x$"):
+        affine_image(x**2, x, sp.Interval(0, 1))
+    with pytest.raises(Undecided, match=r"^cannot decide the sign of the slope a - b$"):
+        affine_image((a - b) * x, x, sp.Interval(0, 1))
+
+
+def test_interval_partitions_reals():
+    I = sp.Interval
+    ok, why = interval_partitions_reals([I.open(0, sp.oo), I(-sp.oo, 0)])
+    assert ok and why == ""
+    assert interval_partitions_reals([I.open(-sp.oo, 0), I.Ropen(0, 1), I(1, sp.oo)]) == (True, "")
+    assert interval_partitions_reals([I(1, sp.oo), I.open(-sp.oo, 0), I(0, 1)]) == (
+        False, "Interval(0, 1) and Interval(1, oo) both contain the point 1")
+    assert interval_partitions_reals([I.open(-sp.oo, 0), I.open(0, sp.oo)]) == (
+        False, "Interval.open(-oo, 0) and Interval.open(0, oo) both miss the point 0")
+    assert interval_partitions_reals([I.open(0, sp.oo)]) == (False, "0 intervals start at -oo (expected exactly one)")
+    assert interval_partitions_reals([I.open(-sp.oo, 0), I(-sp.oo, 1), I.open(1, sp.oo)]) == (
+        False, "2 intervals start at -oo (expected exactly one)")
+    assert interval_partitions_reals([I.open(-sp.oo, 0), I(1, sp.oo)]) == (
+        False, "0 intervals start where Interval.open(-oo, 0) ends (expected exactly one)")
+    assert interval_partitions_reals([I.open(-sp.oo, 0), I(0, sp.oo), I(0, 1)]) == (
+        False, "2 intervals start where Interval.open(-oo, 0) ends (expected exactly one)")
+    assert interval_partitions_reals([I(-sp.oo, sp.oo), I(0, 1)]) == (False, "the intervals [Interval(0, 1)] overlap the others")
+    assert interval_partitions_reals([I(-sp.oo, sp.oo)]) == (True, "")
+
+
+def test_phi_classes_are_exact_and_cover_their_regions():
+    classes = phi_classes(c, "t")
+    assert [lab for lab, *_ in classes] == ["φ > f_c", "φ = f_c", "|φ| < f_c", "φ = -f_c", "φ < -f_c"]
+    assert [tex for _, tex, *_ in classes] == ["\\phi > f_c", "\\phi = f_c", "|\\phi| < f_c", "\\phi = -f_c", "\\phi < -f_c"]
+    p, aa, bb = pos("pt"), pos("at"), pos("bt")
+    assert classes[0][2] == c + p and classes[4][2] == -c - p
+    assert classes[1][2] == c and classes[3][2] == -c
+    assert sp.simplify(classes[2][2] - (aa * c - bb * c) / (aa + bb)) == 0
+    assert classes[0][3] == sp.Interval.open(c, sp.oo) and classes[4][3] == sp.Interval.open(-sp.oo, c * -1)
+    assert classes[1][3] == sp.FiniteSet(c) and classes[3][3] == sp.FiniteSet(-c)
+    assert classes[2][3] == sp.Interval.open(-c, c)
+    assert phi_classes(c)[0][2] == c + pos("p")
+
+
+def test_sign_classes():
+    q = pos("s")
+    assert sign_classes("s") == [("> 0", 1, q), ("= 0", 0, sp.Integer(0)), ("< 0", -1, -q)]
+
+
+def test_undecided_is_an_exception():
+    assert issubclass(Undecided, Exception)
