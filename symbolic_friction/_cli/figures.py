@@ -20,8 +20,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--list", action="store_true", help="list the available figures and exit")
     parser.add_argument("--format", nargs="+", default=["png"], metavar="FMT",
                         help="also write these formats: pdf, svg (png is always written)")
-    parser.add_argument("--jobs", type=int, default=None, metavar="N",
-                        help="processes drawing figures at once (default: the number of cores; 1: one after the other)")
+    from .._infra.options import count_option
+
+    parser.add_argument("--jobs", type=count_option("--jobs", high=MAX_JOBS), default=None, metavar="N",
+                        help="processes drawing figures at once (default: the number of cores; 1: one after the other; "
+                        f"at most {MAX_JOBS})")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -40,7 +43,7 @@ def run(args: argparse.Namespace) -> int:
         for spec in figures.values():
             emit(f"{spec.name:22s} {spec.description}", level=0)
         return 0
-    jobs = args.jobs if args.jobs is not None else (os.cpu_count() or 1)
+    jobs = args.jobs if args.jobs is not None else min(os.cpu_count() or 1, MAX_JOBS)
     if not 1 <= jobs <= MAX_JOBS:
         raise UsageError(f"--jobs must be between 1 and {MAX_JOBS}; got {jobs}")
     specs, _ = chosen_figures(args.only, args.format)  # unknown names or formats fail before any drawing

@@ -22,7 +22,7 @@ from types import SimpleNamespace
 
 import pytest
 
-from symbolic_friction import CertificateError
+from symbolic_friction.errors import CertificateError
 from symbolic_friction._certify.certificate import Provenance, load
 from symbolic_friction._certify.verify import (
     Check,
