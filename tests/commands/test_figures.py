@@ -235,6 +235,9 @@ def test_units_start_longest_first():
 
 @pytest.mark.parametrize("jobs", ["0", "65"])
 def test_bad_jobs(tmp_path, capsys, jobs):
-    assert main(["figures", "--out", str(tmp_path), "--only", "fig2", "--jobs", jobs]) == 2
+    # refused while the command line is parsed: one line, exit 2
+    with pytest.raises(SystemExit) as exc:
+        main(["figures", "--out", str(tmp_path), "--only", "fig2", "--jobs", jobs])
+    assert exc.value.code == 2
     err = capsys.readouterr().err
     assert "--jobs" in err and err.count("\n") == 1
