@@ -19,6 +19,13 @@ True
 >>> report = sf.verify_file(json_path)
 >>> isinstance(report, sf.VerificationReport), report.proved
 (True, True)
+
+The quadratic template (beyond the paper) proves a tighter bound for Table I, case (a):
+
+>>> from symbolic_friction.certificates import certify_quadratic, verify_quadratic
+>>> quadratic = certify_quadratic(sf.Parameters.table_i("a"))  # doctest: +SKIP
+>>> verify_quadratic(quadratic).proved, quadratic.overshoot_bound  # doctest: +SKIP
+(True, '1.80834')
 """
 
 from __future__ import annotations
@@ -38,6 +45,14 @@ _LAZY: dict[str, str] = {
     "check_committed_certificates": "._certify",
     "CommittedCertificate": "._certify",
     "TABLE_I_FILES": "._certify",
+    # boxes of gains (one certificate for an interval of each gain)
+    "certify_box": "._certify.box",
+    "verify_box": "._certify.box",
+    "BoxCertificate": "._certify.box",
+    # the quadratic template (beyond the paper: free P with P12 = 0, a general U = y'Ky)
+    "certify_quadratic": "._certify.quadratic_search",
+    "verify_quadratic": "._certify.quadratic",
+    "QuadraticCertificate": "._certify.quadratic",
 }
 
 __all__ = list(_LAZY)
