@@ -185,3 +185,17 @@ def test_repr_is_the_counts():
                                 Outcome(cell.label, "certify", PROVED, 0.5, 1.0, "kappa = 3.467")),
                       seconds=2.0, reference_seconds=1.0)
     assert repr(result) == "Extremes(1 cells × 2 columns: 1 ok, 1 proved; 2.0 s)"
+
+
+def test_the_figure_s_groups_combine_into_the_whole_matrix():
+    """The ``extremes`` figure runs one task per group; combined, the groups give the matrix's cells in order."""
+    from symbolic_friction._extremes import Extremes, cells, combine_extremes
+
+    order = cells()
+    groups = list(dict.fromkeys(c.group for c in order))
+    parts = [Extremes(tuple(c for c in order if c.group == g), ("m",), (), 1.0, 0.5) for g in reversed(groups)]
+    whole = combine_extremes(parts)
+    assert [c.label for c in whole.cells] == [c.label for c in order]
+    assert whole.seconds == len(groups) and whole.reference_seconds == len(groups) / 2
+    with pytest.raises(Exception, match="different methods"):
+        combine_extremes([parts[0], Extremes(parts[1].cells, ("other",), (), 1.0, 0.5)])
