@@ -5,7 +5,9 @@ which rest on sympy.  Each case below is an input whose wrong answer would
 prove something false (``x + 1 > 0`` for a real ``x``; ``xz + yz + z² ≥ 0``,
 whose Gram matrix has all leading principal minors 0 but the minor ``{1, 3}``
 negative; an ``And`` with an undecided conjunct; a case split that must keep
-its boundary points; a piece of ``R`` whose membership is undecided), with a
+its boundary points; a piece of ``R`` whose membership is undecided; a 3×3
+matrix whose 2×2 faces are all copositive but which is not, by Hadeler's
+inequality at −0.35, for the quadratic template's copositivity decision), with a
 few true statements as controls, so a broken or patched sympy that makes a
 procedure say yes too often, or no always, fails ``check``.
 """
@@ -61,4 +63,19 @@ def decision_cases() -> tuple:
     inside = [p.label for p in _region.pieces_of(pieces, v * (phi - f_c), inside=True, failures=failures)]
     out.append(("pieces_of: R holds its boundary, an undecided piece is a failure", "2 inside, 1 failure",
                 f"{len(inside)} inside, {len(failures)} failure{'s' if len(failures) != 1 else ''}"))
+    from fractions import Fraction
+
+    from .._certify.copositive import decide_copositive
+
+    def copositive(rows) -> str:
+        return show(decide_copositive([[Fraction(x) for x in row] for row in rows]).holds)
+
+    half = Fraction(1, 2)
+    out += [
+        ("copositive: faces fine, Hadeler's inequality −0.35", "False",
+         copositive([[half, -half, 0], [-half, half, -half], [0, -half, half]])),
+        ("copositive: not semidefinite, Hadeler's inequality holds", "True", copositive([[1, 1, -1], [1, 1, 1], [-1, 1, 1]])),
+        ("copositive: a zero diagonal entry with a negative row", "False", copositive([[0, -1], [-1, 5]])),
+        ("copositive: a diagonal entry < 0", "False", copositive([[-1, 2], [2, 1]])),
+    ]
     return tuple(RigourCase(name, expected, got) for name, expected, got in out)

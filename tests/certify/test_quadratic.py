@@ -116,6 +116,8 @@ def test_the_plus_sign_band_premise_can_fail():
         ([[2, -1, 0], [-1, 2, -1], [0, -1, 2]], True, "positive semidefinite"),
         ([[1, 1, -1], [1, 1, 1], [-1, 1, 1]], True, "Hadeler's 3×3 inequality holds"),  # copositive, not PSD
         ([[1, -1, 0], [-1, 1, -1], [0, -1, 1]], False, "Hadeler's 3×3 inequality fails"),  # every 2×2 face is fine
+        # the same at half scale: Hadeler's inequality is −0.35, so a slack of 1 would accept it
+        ([[F(1, 2), F(-1, 2), 0], [F(-1, 2), F(1, 2), F(-1, 2)], [0, F(-1, 2), F(1, 2)]], False, "fails: -0.35"),
     ],
 )
 def test_copositivity_branches(matrix, holds, words):

@@ -318,6 +318,33 @@ NEW = tuple(replace(m, tests=m.tests or _TESTS[m.target]) for m in NEW)
 
 MUTANTS = MUTANTS + NEW
 
+_QM = "symbolic_friction/_model/quadratic.py"
+_QV = "symbolic_friction/_certify/quadratic.py"
+_CO = "symbolic_friction/_certify/copositive.py"
+_Q_TESTS = ("tests/certify/test_quadratic.py", "tests/obligations/test_quadratic.py")
+QUADRATIC = tuple(replace(m, tests=_Q_TESTS) for m in (
+    Mutant("q.p23_sign", "model", _QM, "p23 = k_i * p11 - k_v * p22", "p23 = k_i * p11 + k_v * p22",
+           "the quadratic template's P₂₃ with a sign slip (the first row of AᵀP + PA no longer vanishes)"),
+    Mutant("q.band_off", "model", _QM, "off = k_i * s * k[0][0] + k_v * k[0][2]", "off = k_i * k[0][0] + k_v * k[0][2]",
+           "the band form ignores the sign of σ"),
+    Mutant("q.exit_cross", "model", _QM, "cross = k[0][2] - p[1][1]", "cross = k[0][2] + p[1][1]",
+           "the exit form at φ = ±f_c takes the favourable sign of σv"),
+    Mutant("q.undecided_holds", "verifier", _QV, "f\"{text}: {decision.reason}{verdict}\", decision.holds is True)",
+           "f\"{text}: {decision.reason}{verdict}\", decision.holds is not False)",
+           "an undecided copositivity premise counts as proved"),
+    Mutant("co.pair", "verifier", _CO, "return b >= 0 or b * b <= a * c", "return b * b <= a * c",
+           "a 2×2 face with a large positive off-diagonal is refused (or, with b < 0, the test is unchanged)"),
+    Mutant("co.hadeler_sign", "verifier", _CO, "            if total > 0:", "            if total > -1:",
+           "Hadeler's 3×3 inequality accepted with a slack of 1"),
+    Mutant("co.nonneg_shortcut", "verifier", _CO, "if all(m[i][j] >= 0 for i in range(n) for j in range(n)):",
+           "if all(m[i][j] >= -1 for i in range(n) for j in range(n)):", "the all-nonnegative shortcut accepts entries ≥ −1"),
+    Mutant("co.psd_shortcut", "verifier", _CO, "if all(d >= 0 for d in minors):", "if all(d >= 0 for d in minors[:3]):",
+           "the semidefinite shortcut reads only the diagonal minors"),
+    Mutant("co.diagonal", "verifier", _CO, "        if m[i][i] < 0:", "        if m[i][i] < -1:",
+           "a diagonal entry down to −1 passes"),
+))
+MUTANTS = MUTANTS + QUADRATIC
+
 PENDING: tuple[Mutant, ...] = (
     # Not caught by check, verify or a test yet (kept out of MUTANTS and of the committed table).
     Mutant("ker.event_residual", "kernel", _KER, "ev_res[n_ev] = residual", "ev_res[n_ev] = 0.0",
