@@ -14,44 +14,6 @@ Examples
 Assumption 1 needs k_v·k_p > k_i; got 2 ≤ 4 (k_v = 2, k_p = 1, k_i = 4)
 """
 
-from ._infra.errors import (
-    AssumptionError,
-    CertificateError,
-    CertificateFormatError,
-    ConfigError,
-    InaccurateSolveError,
-    InfeasibleError,
-    InputFileError,
-    InvalidNumberError,
-    NonFiniteError,
-    OutputPathError,
-    ParameterError,
-    SceneError,
-    SimulationError,
-    SolverError,
-    StaleFileError,
-    SymbolicFrictionError,
-    UnprovedCertificateError,
-    UsageError,
-)
+from ._infra.errors import *  # noqa: F401,F403  (every error, defined once in _infra.errors)
 
-__all__ = [
-    "SymbolicFrictionError",
-    "ParameterError",
-    "InvalidNumberError",
-    "NonFiniteError",
-    "AssumptionError",
-    "SceneError",
-    "CertificateError",
-    "CertificateFormatError",
-    "SolverError",
-    "InfeasibleError",
-    "InaccurateSolveError",
-    "SimulationError",
-    "StaleFileError",
-    "UnprovedCertificateError",
-    "UsageError",
-    "ConfigError",
-    "InputFileError",
-    "OutputPathError",
-]
+from ._infra.errors import __all__  # noqa: F401

@@ -27,6 +27,8 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Sequence
 
+from .verify import _det  # the verifier's cofactor determinant, in the entries' own arithmetic
+
 __all__ = ["CopositivityDecision", "decide_copositive", "PRECISIONS"]
 
 PRECISIONS: tuple[int, ...] = (128, 512, 2048)
@@ -42,15 +44,6 @@ class CopositivityDecision:
 
     holds: bool | None
     reason: str
-
-
-def _det(m: Sequence[Sequence[Fraction]]) -> Fraction:
-    n = len(m)
-    if n == 1:
-        return m[0][0]
-    if n == 2:
-        return m[0][0] * m[1][1] - m[0][1] * m[1][0]
-    return sum(((-1) ** j * m[0][j] * _det([row[:j] + row[j + 1 :] for row in m[1:]]) for j in range(n)), Fraction(0))
 
 
 def _pair(a: Fraction, b: Fraction, c: Fraction) -> bool:

@@ -141,27 +141,23 @@ class QuadraticCertificate:
 
     @classmethod
     def from_dict(cls, data: object, *, source: str = "<string>") -> "QuadraticCertificate":
-        from .certificate import _decimal_field, _signed_rational_field
+        from .certificate import _check_keys, _decimal_field, _signed_rational_field
 
         if not isinstance(data, dict):
             raise CertificateFormatError(f"{source}: a quadratic certificate is a JSON object; got {type(data).__name__}")
-        missing = [k for k in _TOP if k not in data]
-        unknown = [k for k in data if k not in _TOP + ("provenance",)]
-        if missing or unknown:
-            raise CertificateFormatError(f"{source}: missing keys {missing}, unknown keys {unknown}")
+        _check_keys(data, required=_TOP, optional=("provenance",), where="certificate")
         if data["schema"] != SCHEMA or data["template"] != TEMPLATE_ID:
             raise CertificateFormatError(f"{source}: schema {data['schema']!r} / template {data['template']!r} is not {SCHEMA} / {TEMPLATE_ID}")
         for key, names in (("parameters", PARAMETERS), ("constants", CONSTANTS)):
-            if not isinstance(data[key], dict) or sorted(data[key]) != sorted(names):
-                raise CertificateFormatError(f"{source}: {key} must have exactly the keys {', '.join(names)}")
+            if not isinstance(data[key], dict):
+                raise CertificateFormatError(f"{source}: {key} must be a JSON object; got {type(data[key]).__name__}")
+            _check_keys(data[key], required=names, optional=(), where=key)
         params = {n: _signed_rational_field(data["parameters"][n], f"parameters.{n}", positive=True) for n in PARAMETERS}
         constants = {n: _signed_rational_field(data["constants"][n], f"constants.{n}") for n in CONSTANTS}
         provenance = data.get("provenance", {})
         if not isinstance(provenance, dict):
             raise CertificateFormatError(f"{source}: provenance must be a JSON object")
-        unknown = [k for k in provenance if k not in _PROVENANCE]
-        if unknown:
-            raise CertificateFormatError(f"{source}: unknown provenance keys {unknown}")
+        _check_keys(provenance, required=(), optional=_PROVENANCE, where="provenance")
         provenance = QuadraticProvenance(**provenance)
         return cls(**params, constants=constants, overshoot_bound=_decimal_field(data["overshoot_bound"], "overshoot_bound"), provenance=provenance)
 

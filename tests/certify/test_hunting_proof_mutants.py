@@ -14,20 +14,19 @@ deterministic.  Regenerate only after checking the difference by hand::
 from __future__ import annotations
 
 import dataclasses
-import json
 import math
-import os
 from fractions import Fraction as F
 from pathlib import Path
 
 import pytest
+
+from tests.certify.golden import assert_golden
 
 from symbolic_friction import Parameters
 from symbolic_friction._certify import hunting_proof as H
 from symbolic_friction._certify.hunting import load_hunting
 
 ROOT = Path(__file__).resolve().parents[2]
-GOLDEN = Path(__file__).parent / "golden" / "hunting_proofs.json"
 NAMES = ("case_a_fs1.2", "case_b_fs1.2", "triple_root_fs1.2", "stiff_fs1.2", "high_gain_fs1.4")
 
 
@@ -113,12 +112,7 @@ def actual():
 
 
 def test_every_proof_is_the_golden_one(actual):
-    if os.environ.get("SF_REGENERATE_GOLDEN"):
-        GOLDEN.write_text(json.dumps(actual, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
-    golden = json.loads(GOLDEN.read_text(encoding="utf-8"))
-    assert sorted(actual) == sorted(golden)
-    for name in golden:
-        assert actual[name] == golden[name], name
+    assert_golden("hunting_proofs.json", actual)
 
 
 def test_the_golden_file_has_every_check_both_ways(actual):

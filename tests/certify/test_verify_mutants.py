@@ -13,14 +13,14 @@ file only after checking the difference by hand::
 
 from __future__ import annotations
 
-import json
-import os
 from dataclasses import replace
 from fractions import Fraction as F
 from pathlib import Path
 from types import SimpleNamespace
 
 import pytest
+
+from tests.certify.golden import assert_golden
 
 from symbolic_friction.errors import CertificateError
 from symbolic_friction._certify.certificate import Provenance, load
@@ -37,7 +37,6 @@ from symbolic_friction._certify.verify import (
 )
 
 ROOT = Path(__file__).resolve().parents[2]
-GOLDEN = Path(__file__).parent / "golden" / "verify_reports.json"
 
 
 def _cert(name: str):
@@ -159,12 +158,7 @@ def actual() -> dict[str, list[str]]:
 
 
 def test_every_report_is_the_golden_one(actual):
-    if os.environ.get("SF_REGENERATE_GOLDEN"):
-        GOLDEN.write_text(json.dumps(actual, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
-    golden = json.loads(GOLDEN.read_text(encoding="utf-8"))
-    assert sorted(actual) == sorted(golden)
-    for name in golden:
-        assert actual[name] == golden[name], name
+    assert_golden("verify_reports.json", actual)
 
 
 def test_the_golden_file_has_both_verdicts_for_every_obligation(actual):
