@@ -8,6 +8,8 @@ from pathlib import Path
 
 import pytest
 
+import symbolic_friction._infra.io as io_module
+
 from symbolic_friction._infra.errors import OutputPathError
 from symbolic_friction._infra.io import atomic_write, atomic_write_text
 from symbolic_friction._infra.io import atomic_write_text as _write
@@ -239,8 +241,17 @@ def test_check_output_file_refuses_early_what_atomic_write_refuses_late(tmp_path
     ]:
         with pytest.raises(OutputPathError, match=says):
             check_output_file(bad, what="--junit-xml")
-    # what may be written: a new file (its directory is not created), a regular file, a device, a FIFO
+    # a FIFO nobody reads is refused now, not after the work
     os.mkfifo(tmp_path / "fifo")
-    for good in (f"{tmp_path}/new/r.xml", f"{tmp_path}/plain", "/dev/null", f"{tmp_path}/fifo"):
-        assert str(check_output_file(good)) == good
+    with pytest.raises(OutputPathError, match="is a FIFO with no reader"):
+        check_output_file(f"{tmp_path}/fifo", what="--figure")
+    # what may be written: a new file (its directory is not created), a regular file, a device, a FIFO with a reader
+    reader = os.open(tmp_path / "fifo", os.O_RDONLY | os.O_NONBLOCK)
+    try:
+        for good in (f"{tmp_path}/new/r.xml", f"{tmp_path}/plain", "/dev/null", f"{tmp_path}/fifo"):
+            assert str(check_output_file(good)) == good
+        # the probe holds the write end open: the reader has not seen the end of the stream
+        assert io_module._FIFO_PROBES
+    finally:
+        os.close(reader)
     assert not (tmp_path / "new").exists()

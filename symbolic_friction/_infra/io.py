@@ -212,14 +212,21 @@ def _check_file_spelling(path: str | os.PathLike[str], *, what: str) -> None:
         raise OutputPathError(f"{what} {text}: a trailing / names a directory, not a file")
 
 
+_FIFO_PROBES: list[int] = []
+"""Write ends of FIFOs probed by :func:`check_output_file`, held open until the process exits."""
+
+
 def check_output_file(path: str | os.PathLike[str], *, what: str = "output file") -> Path:
     """Refuse, before any work, an output file that :func:`atomic_write` would refuse or could not create.
 
     Empty, ending in ``/``, a directory, a symbolic link (dangling or looping
     too), a socket or block device, a name too long, a path through a file or
     an unwritable directory: :class:`~symbolic_friction.OutputPathError`.  A
-    regular file, a character device (``/dev/null``) or a FIFO passes; a FIFO
-    is only checked for a reader when written.  Nothing is created.
+    regular file, a character device (``/dev/null``) or a FIFO with a reader
+    passes; a FIFO without one is refused now rather than after the work.  A
+    FIFO's probe keeps its write end open until the process ends, so that the
+    reader does not see the end of the stream before the output is written.
+    Nothing is created.
     """
     _check_file_spelling(path, what=what)
     path = Path(path)
@@ -234,6 +241,13 @@ def check_output_file(path: str | os.PathLike[str], *, what: str = "output file"
             _refuse_special(path, st.st_mode)
         except OutputPathError as exc:
             raise OutputPathError(f"{what} {exc}") from None
+        if stat.S_ISFIFO(st.st_mode):
+            try:
+                _FIFO_PROBES.append(os.open(path, os.O_WRONLY | os.O_NONBLOCK))
+            except OSError as exc:
+                if exc.errno == errno.ENXIO:
+                    raise OutputPathError(f"{what} {path}: is a FIFO with no reader; refusing to wait for one") from None
+                raise OutputPathError(f"cannot use {what} {describe_os_error(exc, path)}") from None
         return path
     check_output_directory(path.parent if str(path.parent) else Path("."), what=f"directory of {what}")
     return path
