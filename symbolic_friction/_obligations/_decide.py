@@ -89,6 +89,10 @@ def is_zero(expr: Any) -> bool:
     expr = sp.sympify(expr)
     if expr == 0:
         return True
+    if _is_rational_function(expr):
+        # in the field of rational functions over Q the element is its reduced
+        # P/Q in sparse polynomials: zero iff it is the field's zero
+        return _field_element(expr) == 0
     # together() writes a rational function as P/Q with polynomials P, Q; it is
     # identically zero iff the expanded P is (no cancellation needed).
     num = sp.expand(sp.fraction(sp.together(expr))[0])
@@ -97,6 +101,28 @@ def is_zero(expr: Any) -> bool:
     if _is_rational_function(num) or num.has(sp.Piecewise, sp.Abs, sp.sign, sp.Max, sp.Min):
         return False
     return sp.simplify(num) == 0
+
+
+def _field_element(expr: sp.Expr) -> Any:
+    """``expr`` (a rational function of its free symbols) as an element of ``Q(symbols)``.
+
+    The field's arithmetic works on sparse polynomials with cancelled
+    numerator and denominator, much faster than ``together`` on expression
+    trees; the element equals ``expr`` wherever ``expr`` is defined.
+    """
+    gens = sorted(expr.free_symbols, key=sp.default_sort_key)
+    return sp.QQ.frac_field(*gens).from_sympy(expr) if gens else sp.QQ.from_sympy(expr)
+
+
+def _coefficient_sign(coefficients: Sequence[Any]) -> int | None:
+    """1 or -1 if all the rational coefficients have that sign, 0 if there are none, else ``None``."""
+    if not coefficients:
+        return 0
+    if all(c > 0 for c in coefficients):
+        return 1
+    if all(c < 0 for c in coefficients):
+        return -1
+    return None
 
 
 def _number_sign(x: sp.Expr) -> int | None:
@@ -132,13 +158,13 @@ def sign_of(expr: Any) -> int | None:
     """Sign (1, 0 or -1) of ``expr`` on the positive orthant, or ``None`` if not decided.
 
     Every free symbol must be declared positive; otherwise ``None``.  A
-    polynomial is expanded and decided directly; a rational function by the
-    numerator and denominator of ``together``, each of which must have
-    coefficients of one sign.  No separate zero test is needed: a rational
-    function is zero iff the expanded numerator of ``together`` is.  Common
-    factors are not cancelled, so a sign they hide stays undecided (sound,
-    and cheaper: on the obligations such a cancellation never decided a
-    sign).
+    rational function is written as a reduced fraction ``P/Q`` in
+    ``Q(symbols)`` (sparse polynomials, common factors cancelled: ``P/Q``
+    equals ``expr`` wherever ``expr`` is defined); a polynomial whose
+    coefficients all share a sign has that sign on the orthant, and ``P = 0``
+    means ``expr`` is identically zero.  Other expressions (radicals) are
+    decided the same way on the numerator and denominator of ``together``,
+    without cancelling.
     """
     expr = sp.sympify(expr)
     if expr.is_number:
@@ -147,10 +173,16 @@ def sign_of(expr: Any) -> int | None:
         return None
     if expr.has(sp.Piecewise, sp.Abs, sp.sign, sp.Max, sp.Min):
         return None
-    if not _has_denominator(expr):
+    if _is_rational_function(expr):
+        # numerator and denominator of the reduced fraction in Q(symbols): a
+        # polynomial whose coefficients share a sign has that sign on the orthant
+        element = _field_element(expr)
+        sn, sd = (_coefficient_sign(list(p.values())) for p in (element.numer, element.denom))
+    elif not _has_denominator(expr):
         return _poly_sign(sp.expand(expr))
-    num, den = sp.fraction(sp.together(expr))
-    sn, sd = _poly_sign(sp.expand(num)), _poly_sign(sp.expand(den))
+    else:
+        num, den = sp.fraction(sp.together(expr))
+        sn, sd = _poly_sign(sp.expand(num)), _poly_sign(sp.expand(den))
     if sn is None or sd is None or sd == 0:
         return None
     return sn * sd
@@ -238,15 +270,48 @@ def _stationary_points(f: sp.Expr, var: sp.Symbol) -> list[sp.Expr]:
     return [r for r in sp.solve(df, var, simplify=False) if r.is_real is not False]
 
 
+def _convex_quadratic_minimum(f: sp.Expr, var: sp.Symbol, s: sp.Interval) -> sp.Expr | None:
+    """``min_{var ∈ s} f`` when ``f = α·var² + β·var + γ`` with ``α`` shown positive; ``None`` otherwise.
+
+    A convex quadratic's minimum over a closed interval is at its vertex
+    ``-β/(2α)`` clipped to the interval: one decision about where the vertex
+    lies replaces the pairwise comparison of every candidate value (the
+    costliest step of the obligations that minimise ``V`` over the friction).
+    ``None`` (the caller's general method decides) when ``f`` is not such a
+    quadratic or the vertex's position is not decided.
+    """
+    try:
+        poly = sp.Poly(f, var)
+    except sp.PolynomialError:
+        return None
+    if poly.degree() != 2:
+        return None
+    alpha, beta, _gamma = poly.all_coeffs()
+    if sign_of(alpha) != 1:
+        return None
+    vertex = sp.cancel(-beta / (2 * alpha))
+    if decide(sp.LessThan(vertex, s.start)) is True:
+        return f.subs(var, s.start)
+    if decide(sp.GreaterThan(vertex, s.end)) is True:
+        return f.subs(var, s.end)
+    if decide(sp.And(sp.StrictLessThan(s.start, vertex), sp.StrictLessThan(vertex, s.end))) is True:
+        return f.subs(var, vertex)
+    return None
+
+
 def minimum_on(f: sp.Expr, var: sp.Symbol, s: sp.Set) -> sp.Expr:
     """Exact ``min_{var ∈ s} f`` for a finite set or a closed bounded interval ``s``.
 
     A continuous function on a compact interval attains its minimum at an
     endpoint or at an interior stationary point; all candidates are compared
-    with :func:`sign_of`.
+    with :func:`sign_of` (a convex quadratic goes straight to its clipped
+    vertex, :func:`_convex_quadratic_minimum`).
     """
     candidates = list(vertices(s))
     if isinstance(s, sp.Interval):
+        shortcut = _convex_quadratic_minimum(f, var, s)
+        if shortcut is not None:
+            return shortcut
         for r in _stationary_points(f, var):
             inside = decide(sp.And(sp.StrictLessThan(s.start, r), sp.StrictLessThan(r, s.end)))
             if inside is None:

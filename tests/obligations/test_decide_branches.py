@@ -107,6 +107,28 @@ def refuses_a_piece_whose_membership_in_R_is_undecided():
     assert len(failures) == 1 and "cannot decide the branch condition" in failures[0]
 
 
+def finds_the_minimum_of_a_quadratic_wherever_its_vertex_lies():
+    w = sp.Symbol("w", real=True)
+    box = sp.Interval(-1, 1)
+    for c, at in ((-1 - a, -1), ((a - b) / (a + b), None), (1 + a, 1)):  # vertex left of, inside, right of [-1, 1]
+        got = _decide.minimum_on((w - c) ** 2 + 3, w, box)
+        want = 3 if at is None else (at - c) ** 2 + 3
+        assert _decide.is_zero(got - want), (c, got)
+    # a concave quadratic is not convex: its vertex is its maximum, the minimum is at an end
+    assert _decide.is_zero(_decide.minimum_on(-((w - a / (a + 1)) ** 2), w, box) + (1 + a / (a + 1)) ** 2)
+
+
+def refuses_a_fraction_with_coefficients_of_both_signs():
+    assert _decide.sign_of((a - b) / (a + b)) is None  # negative for a = 1, b = 2
+    assert _decide.sign_of(1 / (a - b)) is None
+    assert _decide.sign_of((a + b) / (a * b + 1)) == 1 and _decide.sign_of(-a / (b + 1)) == -1
+
+
+def refuses_a_nonzero_rational_function():
+    assert not _decide.is_zero(a / (a + b) - 1)  # b/(a + b) ≠ 0
+    assert _decide.is_zero(a / (a + b) + b / (a + b) - 1)
+
+
 CASES = [
     refuses_real_symbols,
     refuses_an_and_with_an_undecided_conjunct,
@@ -118,6 +140,9 @@ CASES = [
     refuses_a_factorisation_with_a_negative_constant,
     keeps_every_boundary_class,
     refuses_a_piece_whose_membership_in_R_is_undecided,
+    finds_the_minimum_of_a_quadratic_wherever_its_vertex_lies,
+    refuses_a_nonzero_rational_function,
+    refuses_a_fraction_with_coefficients_of_both_signs,
 ]
 
 
@@ -137,6 +162,18 @@ def _mutant(module, name, replacements):
 
 
 MUTANTS = [
+    (_decide, "_convex_quadratic_minimum", [("-beta / (2 * alpha)", "beta / (2 * alpha)")],
+     finds_the_minimum_of_a_quadratic_wherever_its_vertex_lies),
+    (_decide, "_convex_quadratic_minimum", [("sign_of(alpha) != 1", "sign_of(alpha) == 0")],
+     finds_the_minimum_of_a_quadratic_wherever_its_vertex_lies),
+    (_decide, "_convex_quadratic_minimum", [("return f.subs(var, s.start)", "return f.subs(var, s.end)")],
+     finds_the_minimum_of_a_quadratic_wherever_its_vertex_lies),
+    (_decide, "_convex_quadratic_minimum", [("sp.LessThan(vertex, s.start)", "sp.GreaterThan(vertex, s.start)")],
+     finds_the_minimum_of_a_quadratic_wherever_its_vertex_lies),
+    (_decide, "sign_of", [("(_coefficient_sign(list(p.values())) for p in (element.numer, element.denom))",
+                          "(_coefficient_sign(list(map(abs, p.values()))) for p in (element.numer, element.denom))")],
+     refuses_a_fraction_with_coefficients_of_both_signs),
+    (_decide, "is_zero", [("return _field_element(expr) == 0", "return True")], refuses_a_nonzero_rational_function),
     (_decide, "sign_of", [("s.is_positive is not True", "s.is_nonnegative is not True")], refuses_real_symbols),
     (_decide, "sign_of", [("s.is_positive is not True", "s.is_real is not True")], refuses_real_symbols),
     (_decide, "decide", [("(None if None in vals else True)", "True")], refuses_an_and_with_an_undecided_conjunct),
@@ -184,5 +221,10 @@ def test_check_runs_the_same_cases_and_a_broken_sympy_fails_them(monkeypatch):
     assert len(cases) == 21 and all(c.ok for c in cases), [(c.name, c.got) for c in cases if not c.ok]
     real = sp.Poly.coeffs
     monkeypatch.setattr(sp.Poly, "coeffs", lambda self, order=None: [abs(c) for c in real(self, order)])
+    # the procedures also read coefficients from sparse polynomials of Q(symbols)
+    from sympy.polys.rings import PolyElement
+
+    real_values = PolyElement.values
+    monkeypatch.setattr(PolyElement, "values", lambda self: [abs(c) for c in real_values(self)])
     wrong = [c.name for c in decision_cases() if not c.ok]
     assert "sign_of(1/(a − b))" in wrong
