@@ -482,6 +482,10 @@ _FIELD_VALUES = [  # as TOML/JSON strings (the files' exact-number spelling), an
 
 _FIELD_VALID = {("initial_states", "negative"), ("initial_states", "zero"), ("friction.rho", "zero")}
 """Values that are valid in that field (a state may be negative or zero; ρ = 0 is Coulomb's law)."""
+_CERT_SIGN_PREMISES = {"parameters__k_p": "k_p > 0", "parameters__f_c": "f_c > 0", "constants__c1": "c1 > 0",
+                       "constants__k4": "k4 > 0", "overshoot_bound": "overshoot_bound > 0"}
+"""A well-formed certificate number of the wrong sign is a *false* certificate, not bad input: ``verify`` reads it and
+refuses it with exit 1, naming the premise (``provenance.margin`` is no premise: its sign stays format, exit 2)."""
 
 
 def _file_cases():
@@ -497,6 +501,8 @@ def _file_cases():
            {"s.toml": _scene("").replace("[[0, 1, 0]]", "[" + ", ".join(["[0, 1, 0]"] * 200_000) + "]")})
     for turn, field in enumerate(_CERT_NUMBER_FIELDS):
         for label, value in _rotate(_FIELD_VALUES, turn, 7):
+            if field in _CERT_SIGN_PREMISES and label in ("negative", "zero"):
+                continue  # SIGN_CASES
             if value in ("nan", "inf", "true"):
                 value = {"nan": "NaN", "inf": "Infinity", "true": "true"}[value]
             text = _cert_with(**{field: json.loads(value)})
@@ -554,6 +560,20 @@ def test_hostile_file_content(case, tmp_path, server):
     name, argv, files = case
     result, _ = run_case(argv, files, {}, tmp_path, server)
     _check(result, name)
+
+
+SIGN_CASES = [(f"sign-certificate-{field.replace('__', '.')}-{label}", field, value, premise)
+              for field, premise in _CERT_SIGN_PREMISES.items() for label, value in (("negative", "-3"), ("zero", "0"))]
+
+
+@pytest.mark.parametrize("case", SIGN_CASES, ids=[c[0] for c in SIGN_CASES])
+def test_a_number_of_the_wrong_sign_in_a_certificate_is_refused_by_the_verifier(case, tmp_path, server):
+    name, field, value, premise = case
+    result, _ = run_case(["verify", "{d}/c.json"], {"c.json": _cert_with(**{field: value})}, {}, tmp_path, server)
+    out, err = result.stdout.decode("utf-8", errors="replace"), result.stderr.decode("utf-8", errors="replace")
+    assert not result.timed_out and "Traceback" not in err and err == "", err[-2000:]
+    assert result.returncode == 1 and out.startswith("FAILED ") and f"{premise}: {value} > 0 is false" in out, out[-2000:]
+    assert result.seconds < BOUND, f"{name}: {result.seconds:.1f} s"
 
 
 # --- encoding: the one line survives a stream that cannot print the input (a fresh interpreter each) -------

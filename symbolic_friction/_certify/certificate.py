@@ -12,9 +12,11 @@ and the constants that instantiate
   ``κ = √(c₂ĉ₂/(c₁ĉ₁))``, written as the decimal ``overshoot_bound ≥ κ``.
 
 This module only reads and writes the data: it checks the *form* of a file
-(JSON, schema, keys, exact rational strings, positivity) and raises
+(JSON, schema, keys, exact rational strings, plain decimals, sizes) and raises
 :class:`~symbolic_friction.CertificateFormatError` naming the offending key.
-Whether the numbers *prove* anything is decided by :mod:`._certify.verify`.
+Whether the numbers *prove* anything, signs included (``k_p > 0``, ``κ > 0``:
+premises, so a number of the wrong sign makes a *false* certificate, not a
+malformed file), is decided by :mod:`._certify.verify`.
 
 File format (keys sorted, two-space indentation, trailing newline; no
 timestamps, timings or third-party version numbers, so that regenerating a
@@ -38,7 +40,7 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
 
-from .._infra.errors import CertificateFormatError
+from .._infra.errors import CertificateError, CertificateFormatError
 from .._infra.io import atomic_write_text
 from .._infra.rational import format_rational, parse_integer
 from ._json import MAX_FILE_BYTES, parse_json, read_json
@@ -86,24 +88,15 @@ _OPTIONAL_TOP_KEYS = ("provenance", "physical", "template")
 _PROVENANCE_KEYS = ("package", "package_version", "mode", "margin", "solver", "solver_status", "obligations", "label")
 SEARCHES: tuple[str, ...] = ("closed-form", "sdp")  # the closed form of .closed_form, or the SDP of .search
 _RATIONAL_RE = re.compile(r"^[+-]?[0-9]+(/[0-9]+)?$")
-_DECIMAL_RE = re.compile(r"^[0-9]+(\.[0-9]+)?$")
+_DECIMAL_RE = re.compile(r"^-?[0-9]+(\.[0-9]+)?$")
 MAX_NUMBER_CHARS = 20_000
 """Longest exact number accepted in a certificate (a 1,500-digit denominator is fine; 10⁵ digits is not)."""
 MAX_TEXT_CHARS = 10_000
 """Longest free-text field (label, solver, …)."""
 
 
-def _rational_field(value: object, key: str) -> Fraction:
-    """Parse one exact rational string of the file format; must be positive."""
-    if isinstance(value, bool) or not isinstance(value, str):
-        kind = "float" if isinstance(value, float) else type(value).__name__
-        raise CertificateFormatError(
-            f"{key} must be a string holding an exact rational such as '32/5' or '4'; got the {kind} {value!r}"
-        )
-    return _signed_rational_field(value, key, positive=True)
-
-
 def _signed_rational_field(value: object, key: str, *, positive: bool = False, nonnegative: bool = False) -> Fraction:
+    """Parse one exact rational string of the file format (any sign unless ``positive`` or ``nonnegative``)."""
     if isinstance(value, bool) or not isinstance(value, str):
         kind = "float" if isinstance(value, float) else type(value).__name__
         raise CertificateFormatError(
@@ -128,29 +121,29 @@ def _signed_rational_field(value: object, key: str, *, positive: bool = False, n
     return q
 
 
-def _as_positive_fraction(value: object, key: str) -> Fraction:
-    """Constructor-side conversion: Fraction/int (or a file-format string) → positive Fraction."""
+def _as_fraction(value: object, key: str, *, positive: bool = False) -> Fraction:
+    """Constructor-side conversion: Fraction/int (or a file-format string) → Fraction (positive if ``positive``)."""
     if isinstance(value, bool):
         raise CertificateFormatError(f"{key} must be an exact rational; got the boolean {value!r}")
     if isinstance(value, int):
         value = Fraction(value)
     if isinstance(value, Fraction):
-        if not value > 0:
+        if positive and not value > 0:
             raise CertificateFormatError(f"{key} must be positive; got {format_rational(value)}")
         return value
-    return _rational_field(value, key)
+    return _signed_rational_field(value, key, positive=positive)
 
 
 def _decimal_field(value: object, key: str) -> str:
+    """A plain decimal string (``'3.69516'``, ``'-2.5'``); its sign is the premise ``overshoot_bound > 0``, not the format's."""
     if isinstance(value, bool) or not isinstance(value, str):
         kind = "float" if isinstance(value, float) else type(value).__name__
         raise CertificateFormatError(f"{key} must be a decimal string such as '3.69516'; got the {kind} {value!r}")
     if len(value) > MAX_NUMBER_CHARS:
         raise CertificateFormatError(f"{key} has {len(value)} characters; at most {MAX_NUMBER_CHARS} are accepted")
     if not _DECIMAL_RE.match(value):
-        raise CertificateFormatError(f"{key} must be a plain decimal string such as '3.69516'; got {value!r}")
-    if not Fraction(value) > 0:
-        raise CertificateFormatError(f"{key} must be positive; got {value!r}")
+        shown = value if len(value) <= 40 else value[:40] + "…"
+        raise CertificateFormatError(f"{key} must be a plain decimal string such as '3.69516'; got {shown!r}")
     return value
 
 
@@ -203,7 +196,7 @@ class Provenance:
                 )
             if len(getattr(self, name)) > MAX_TEXT_CHARS:
                 raise CertificateFormatError(f"provenance.{name} is longer than {MAX_TEXT_CHARS} characters")
-        object.__setattr__(self, "margin", _as_positive_fraction(self.margin, "provenance.margin"))
+        object.__setattr__(self, "margin", _as_fraction(self.margin, "provenance.margin", positive=True))
         obligations = self.obligations
         if isinstance(obligations, str) or not all(isinstance(o, str) for o in obligations):
             raise CertificateFormatError(f"provenance.obligations must be a list of strings; got {obligations!r}")
@@ -230,7 +223,7 @@ class Provenance:
             )
         return cls(
             mode=data["mode"],
-            margin=_rational_field(data["margin"], "provenance.margin"),
+            margin=_signed_rational_field(data["margin"], "provenance.margin", positive=True),
             solver=data["solver"],
             solver_status=data["solver_status"],
             package_version=data["package_version"],
@@ -245,10 +238,12 @@ class Provenance:
 class Certificate:
     """Exact constants claimed to prove Lemma 2, Lemma 3 and Proposition 1 for one gain set.
 
-    All numeric fields are positive :class:`~fractions.Fraction` values
-    (ints and exact rational strings such as ``"32/5"`` are accepted).  The
-    constructor checks the *form* only; :func:`~symbolic_friction.verify_certificate`
-    decides whether the inequalities hold.
+    All numeric fields are :class:`~fractions.Fraction` values (ints and
+    exact rational strings such as ``"32/5"`` are accepted).  The constructor
+    checks the *form* only: a certificate holds claims, and a false one must
+    be representable to be refused.  :func:`~symbolic_friction.verify_certificate`
+    decides whether the inequalities hold, the signs (``k_p > 0``, ``c₁ > 0``,
+    ``κ > 0``, …) included.
 
     Attributes
     ----------
@@ -263,8 +258,8 @@ class Certificate:
     c : Fraction
         Decrease rate of Lemma 2, item 2; must equal ``2(k_v k_p - k_i)``.
     overshoot_bound : str
-        Decimal string claimed to be ``≥ √(c₂ĉ₂/(c₁ĉ₁))`` (eq. stabState), as
-        written in the file; :attr:`kappa` is the same number as a ``Fraction``.
+        Decimal string claimed to be positive and ``≥ √(c₂ĉ₂/(c₁ĉ₁))`` (eq. stabState),
+        as written in the file; :attr:`kappa` is the same number as a ``Fraction``.
     provenance : Provenance or None
         How the certificate was found.
     physical : dict or None
@@ -275,8 +270,8 @@ class Certificate:
     Raises
     ------
     CertificateFormatError
-        If a field is not a positive exact rational (or, for
-        ``overshoot_bound``, a positive decimal string).
+        If a field is not an exact rational (or, for ``overshoot_bound``, a
+        plain decimal string).
     """
 
     k_p: Fraction
@@ -300,9 +295,9 @@ class Certificate:
         if self.physical is not None:
             object.__setattr__(self, "physical", _physical(self.physical))
         for name in PARAMETER_NAMES:
-            object.__setattr__(self, name, _as_positive_fraction(getattr(self, name), f"parameters.{name}"))
+            object.__setattr__(self, name, _as_fraction(getattr(self, name), f"parameters.{name}"))
         for name in CONSTANT_NAMES:
-            object.__setattr__(self, name, _as_positive_fraction(getattr(self, name), f"constants.{name}"))
+            object.__setattr__(self, name, _as_fraction(getattr(self, name), f"constants.{name}"))
         _decimal_field(self.overshoot_bound, "overshoot_bound")
         if self.provenance is not None and not isinstance(self.provenance, Provenance):
             raise CertificateFormatError(
@@ -321,8 +316,8 @@ class Certificate:
         Raises
         ------
         AssumptionError
-            If the certificate's gains violate Assumption 1 (such a
-            certificate also fails verification).
+            If the certificate's gains are not positive or violate
+            Assumption 1 (such a certificate also fails verification).
         """
         from .._model.parameters import Parameters
 
@@ -335,7 +330,9 @@ class Certificate:
 
     @property
     def kappa_squared(self) -> Fraction:
-        """``c₂ĉ₂/(c₁ĉ₁)``, the exact square of Proposition 1's constant."""
+        """``c₂ĉ₂/(c₁ĉ₁)``, the exact square of Proposition 1's constant (:class:`CertificateError` if ``c₁ĉ₁ = 0``)."""
+        if self.c1 * self.c1_hat == 0:  # such a certificate fails "c1 > 0" or "c1_hat > 0"
+            raise CertificateError(f"κ² = c2·c2_hat/(c1·c1_hat) is undefined: c1·c1_hat = {self.c1}·{self.c1_hat} = 0")
         return kappa_squared(self.c1, self.c2, self.c1_hat, self.c2_hat)
 
     @property
@@ -376,7 +373,8 @@ class Certificate:
         ------
         CertificateFormatError
             Naming the key: unknown schema, missing or unknown keys, a number
-            that is not an exact rational string, a non-positive value.
+            that is not an exact rational string (a number of the wrong sign
+            is read: the verifier refuses it, naming the premise).
         """
         if not isinstance(data, dict):
             raise CertificateFormatError(f"a certificate must be a JSON object; got a JSON {_json_kind(data)}")
@@ -393,8 +391,8 @@ class Certificate:
             if not isinstance(obj, dict):
                 raise CertificateFormatError(f"{where} must be a JSON object; got a JSON {_json_kind(obj)}")
             _check_keys(obj, required=names, optional=(), where=where)
-        values = {name: _rational_field(parameters[name], f"parameters.{name}") for name in PARAMETER_NAMES}
-        values.update({name: _rational_field(constants[name], f"constants.{name}") for name in CONSTANT_NAMES})
+        values = {name: _signed_rational_field(parameters[name], f"parameters.{name}") for name in PARAMETER_NAMES}
+        values.update({name: _signed_rational_field(constants[name], f"constants.{name}") for name in CONSTANT_NAMES})
         provenance = Provenance.from_dict(data["provenance"]) if "provenance" in data else None
         physical = None
         if "physical" in data:

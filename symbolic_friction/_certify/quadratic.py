@@ -85,7 +85,13 @@ class QuadraticProvenance:
 
 @dataclass(frozen=True)
 class QuadraticCertificate:
-    """Gains, the constants of ``P``, ``U`` and the bound, and how they were found (informative only)."""
+    """Gains, the constants of ``P``, ``U`` and the bound, and how they were found (informative only).
+
+    Every number is an exact rational of any sign (``overshoot_bound`` a plain
+    decimal string): the signs the proof needs are premises of
+    :func:`quadratic_premises`, so a false certificate is held and refused by
+    :func:`verify_quadratic`, not by the constructor.
+    """
 
     k_p: Fraction
     k_i: Fraction
@@ -96,10 +102,11 @@ class QuadraticCertificate:
     provenance: QuadraticProvenance = field(default_factory=QuadraticProvenance)
 
     def __post_init__(self) -> None:
+        # any sign: k_p > 0, k_i > 0, f_c > 0 are premises, refused by the verifier naming them
         for name in PARAMETERS:
             value = getattr(self, name)
-            if isinstance(value, bool) or not isinstance(value, (int, Fraction)) or not value > 0:
-                raise CertificateFormatError(f"parameters.{name} must be a positive exact rational; got {value!r}")
+            if isinstance(value, bool) or not isinstance(value, (int, Fraction)):
+                raise CertificateFormatError(f"parameters.{name} must be an exact rational; got {value!r}")
             object.__setattr__(self, name, Fraction(value))
         if sorted(self.constants) != sorted(CONSTANTS):
             raise CertificateFormatError(f"constants must be exactly {', '.join(CONSTANTS)}; got {', '.join(sorted(self.constants))}")
@@ -152,7 +159,7 @@ class QuadraticCertificate:
             if not isinstance(data[key], dict):
                 raise CertificateFormatError(f"{source}: {key} must be a JSON object; got {type(data[key]).__name__}")
             _check_keys(data[key], required=names, optional=(), where=key)
-        params = {n: _signed_rational_field(data["parameters"][n], f"parameters.{n}", positive=True) for n in PARAMETERS}
+        params = {n: _signed_rational_field(data["parameters"][n], f"parameters.{n}") for n in PARAMETERS}
         constants = {n: _signed_rational_field(data["constants"][n], f"constants.{n}") for n in CONSTANTS}
         provenance = data.get("provenance", {})
         if not isinstance(provenance, dict):

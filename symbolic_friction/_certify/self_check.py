@@ -9,11 +9,10 @@ breaks and the exact set of checks that fail:
   quadratic one per premise of :func:`.quadratic.quadratic_premises`, its
   numbers edited so that this premise fails (with the premises it implies,
   when the premises are not independent: ``c₁ ≤ c₂`` cannot fail while
-  ``P - c₁I ⪰ 0`` and ``c₂I - P ⪰ 0`` hold).  Where the file format already
-  refuses the edit (a positive field made ``≤ 0``: ``reader`` names the key),
-  the reader must refuse it naming the key, and the premise is decided on
-  the file's numbers directly (:func:`expected_failures`), so the verifier's
-  own premise is still shown to fail;
+  ``P - c₁I ⪰ 0`` and ``c₂I - P ⪰ 0`` hold).  A sign premise (``k_p > 0``,
+  ``c₁ > 0``, ``κ > 0``, …) is forged as a well-formed number of the wrong
+  sign: the file format reads it, and the verifier must refuse it like any
+  other premise;
 * hunting certificates: a box around a later zero of ``v``, a box that
   holds no zero, boxes shifted so that the zero lies just outside each end
   in ``σ`` and in ``τ`` (the Krawczyk inclusion, both ends), ``σ_lo = 0``, a
@@ -23,10 +22,12 @@ breaks and the exact set of checks that fail:
 
 :func:`refuse_false_certificates` verifies every file through the same
 route as ``symbolic-friction verify`` and holds only if each false one is
-refused naming exactly its manifest's checks, each true one is proved, and
-every premise of the stability and quadratic verifiers has a false certificate.  A
-dropped premise, a broken python-flint or sympy, or a patched install then
-fails ``check``.
+refused *by the verifier* (exit 1 of ``verify``) naming exactly its
+manifest's checks, each true one is proved, and every premise of the
+stability and quadratic verifiers has a false certificate.  A file the
+reader refuses as malformed (exit 2 of ``verify``), or one the verifier
+raises on, counts as not refused.  A dropped premise, a broken python-flint
+or sympy, or a patched install then fails ``check``.
 """
 
 from __future__ import annotations
@@ -54,7 +55,8 @@ class Refusal:
     premise : str or None
         The premise it breaks (None for a true control certificate).
     expected, named : tuple of str
-        The checks that must fail, and those that failed (``reader: KEY`` when the format refused it).
+        The checks that must fail, and those that failed (``malformed: …`` when the reader refused the
+        file, ``crashed: …`` when the verifier raised: both are failures of the self-check).
     ok : bool
     """
 
@@ -86,32 +88,9 @@ class SelfCheck:
         return bool(self.refusals) and all(r.ok for r in self.refusals) and not self.uncovered
 
 
-class _Raw:
-    """A certificate's numbers read as plain rationals, past the format's positivity checks."""
-
-    def __init__(self, data: dict) -> None:
-        for group in ("parameters", "constants"):
-            for name, value in data[group].items():
-                setattr(self, name, Fraction(value))
-        self.constants = {name: Fraction(value) for name, value in data["constants"].items()}
-        self.kappa = Fraction(data["overshoot_bound"])
-
-
-def _is_quadratic(data: dict) -> bool:
-    from .quadratic import TEMPLATE_ID
-
-    return data.get("template") == TEMPLATE_ID
-
-
 def expected_failures(data: dict) -> list[str]:
-    """The premises that fail on a stability or quadratic file's numbers, decided exactly by its verifier's own functions."""
-    if _is_quadratic(data):
-        from .quadratic import decide_premise, quadratic_premises
-
-        return [check.name for check in map(decide_premise, quadratic_premises(_Raw(data))) if not check.holds]
-    from .verify import decide, premises
-
-    return [check.name for check in map(decide, premises(_Raw(data))) if not check.holds]
+    """The premises that fail on a stability or quadratic file's parsed JSON, read and decided as ``verify`` does."""
+    return named_failures(_decide(data, "<forged>"))
 
 
 def named_failures(report: Any) -> list[str]:
@@ -136,37 +115,32 @@ def _premise_names() -> dict[str, list[str]]:
     return {"stability": [p.name for p in premises(One())], "quadratic": [p.name for p in quadratic_premises(One())]}
 
 
-def _verify(path: Path) -> Any:
-    """Read and decide a file as ``verify`` does, without the stability format's second reader (the JSON Schema: 10 ms a file)."""
-    from ._json import read_json
+def _decide(data: object, source: str) -> Any:
+    """Read a parsed file and decide it as ``verify`` does, without the stability format's second reader (the JSON Schema: 10 ms a file)."""
     from ._template import template_for
     from .certificate import Certificate
     from .templates import builtin_templates
 
     stability = builtin_templates()[0]
-    data = read_json(path)
     template = template_for(data, fallback=stability)
-    certificate = Certificate.from_dict(data) if template is stability else template.read(data, str(path))
-    return template.verify(certificate, str(path))
+    certificate = Certificate.from_dict(data) if template is stability else template.read(data, source)
+    return template.verify(certificate, source)
 
 
 def _one(path: Path, entry: dict) -> Refusal:
     from .._infra.errors import CertificateFormatError
+    from ._json import read_json
 
     premise, expected = entry["premise"], tuple(entry["fails"])
     try:
-        report = _verify(path)
-    except CertificateFormatError as exc:
-        reader = entry.get("reader")
-        if reader is None or reader not in str(exc):
-            return Refusal(path.name, premise, expected, (f"reader: {exc}",), False)
-        named = tuple(expected_failures(json.loads(path.read_text(encoding="utf-8"))))
-        return Refusal(path.name, premise, expected, (f"reader: {reader}",) + named, named == expected)
+        report = _decide(read_json(path), str(path))
+    except CertificateFormatError as exc:  # refused as malformed (exit 2), not by the verifier: not a refusal
+        return Refusal(path.name, premise, expected, (f"malformed: {exc}",), False)
+    except Exception as exc:  # a verifier that raises has refused nothing (`verify` would not exit 1)
+        return Refusal(path.name, premise, expected, (f"crashed: {type(exc).__name__}: {exc}",), False)
     named = tuple(named_failures(report))
     if premise is None:
         return Refusal(path.name, None, (), named, report.proved)
-    if "reader" in entry:  # the format let it through: the verifier must refuse it, naming the premise
-        return Refusal(path.name, premise, expected, named, not report.proved and premise in named)
     return Refusal(path.name, premise, expected, named, not report.proved and named == expected)
 
 

@@ -30,6 +30,16 @@ The inequalities checked (each one a :class:`Check` in the report):
   ``ĉ₂I - K/2 ⪰ 0`` (``lemma3.hatV_bounds``).
 * Proposition 1, eq. (stabState): ``c₁ ≤ c₂``, ``ĉ₁ ≤ ĉ₂`` (so ``κ ≥ 1``) and
   ``overshoot_bound² ≥ c₂ĉ₂/(c₁ĉ₁)`` (``prop1.stability_bound``).
+
+Signs are premises like the rest: a file may hold any exact rational, and a
+gain or constant of the wrong sign is refused here, naming the premise
+(``k1 > 0: -2 > 0 is false``).  ``k_v`` has no premise of its own:
+Assumption 1 implies ``k_v > 0`` (``k_v k_p > k_i > 0`` with ``k_p > 0``),
+so ``k_v ≤ 0`` always fails one of its three premises.  A premise whose
+instance would divide by zero (``P`` has ``k_v/k_i``, the k-conditions
+``k_i/k_v``, the bound ``c₁ĉ₁`` in a denominator) is not evaluated: it is
+reported as failing (:class:`Undefined`), beside the sign premise that the
+zero breaks, and nothing raises.
 """
 
 from __future__ import annotations
@@ -44,12 +54,12 @@ from pathlib import Path
 from typing import Any, Sequence
 
 from .._infra.errors import CertificateError
-from .._model.kconditions import k_conditions
+from .._model.kconditions import CONDITION_NAMES, k_conditions
 from .._model.lyapunov import lyapunov_matrix_entries, vhat_matrix_entries
 from .._infra.rational import format_rational as _f
 from .certificate import Certificate, kappa_squared, load
 
-__all__ = ["Check", "VerificationReport", "Inequality", "Semidefinite", "premises", "decide", "verify_certificate", "verify_file"]
+__all__ = ["Check", "VerificationReport", "Inequality", "Semidefinite", "Undefined", "premises", "decide", "verify_certificate", "verify_file"]
 
 
 @dataclass(frozen=True)
@@ -66,16 +76,22 @@ class Check:
         The same with the certificate's exact numbers, e.g. ``"1/2 > 3/5"``.
     holds : bool
         Exact verdict.
+    evaluated : bool
+        False when the instance could not be formed (a zero divisor): the
+        check then fails and ``instance`` says why.
     """
 
     obligation: str
     name: str
     instance: str
     holds: bool
+    evaluated: bool = True
 
     @property
     def message(self) -> str:
-        """``"k3 > k2: 1/2 > 3/5 is false"`` (or without ``is false`` when it holds)."""
+        """``"k3 > k2: 1/2 > 3/5 is false"`` (or without ``is false`` when it holds; ``not evaluated (…)`` when undefined)."""
+        if not self.evaluated:
+            return f"{self.name}: not evaluated ({self.instance})"
         return f"{self.name}: {self.instance}" + ("" if self.holds else " is false")
 
     def __str__(self) -> str:
@@ -101,8 +117,8 @@ class VerificationReport:
 
     @property
     def proved(self) -> bool:
-        """True iff every inequality holds exactly."""
-        return all(check.holds for check in self.checks)
+        """True iff every inequality holds exactly (a report that checked nothing proves nothing)."""
+        return bool(self.checks) and all(check.holds for check in self.checks)
 
     @property
     def failures(self) -> tuple[Check, ...]:
@@ -170,6 +186,27 @@ class Semidefinite:
         ]
 
 
+DIVIDE_BY_K_V: tuple[str, ...] = tuple(name for name in CONDITION_NAMES if "k_i/k_v" in name)
+"""The k-conditions (:data:`~symbolic_friction._model.kconditions.CONDITION_NAMES`) whose right side divides by ``k_v``."""
+
+
+@dataclass(frozen=True)
+class Undefined:
+    """A premise whose instance is undefined for these numbers (it would divide by zero): it fails, unevaluated.
+
+    Only exact numbers can be zero here; for sympy symbols the premise is built as usual.
+    """
+
+    obligation: str
+    name: str
+    reason: str
+
+
+def _is_zero(value: Any) -> bool:
+    """True for an exact zero (a sympy symbol compares structurally, so it is never zero here)."""
+    return bool(value == 0)
+
+
 def _det(m: Sequence[Sequence[Any]]) -> Any:
     """Determinant by cofactor expansion (the matrices here are at most 3×3), in the entries' own arithmetic."""
     n = len(m)
@@ -186,17 +223,19 @@ def _det(m: Sequence[Sequence[Any]]) -> Any:
     return total
 
 
-def premises(cert: Any) -> list[Inequality | Semidefinite]:
+def premises(cert: Any) -> list[Inequality | Semidefinite | Undefined]:
     """Every inequality the verifier decides, in paper order, for a certificate-like ``cert``.
 
     ``cert`` has the attributes of :class:`~.certificate.Certificate`
     (``k_p … f_c``, ``k1 … k4``, ``c``, ``c1``, ``c2``, ``c1_hat``, ``c2_hat``)
     and ``kappa``, the claimed overshoot bound as a number.  Only plain
-    arithmetic is used, so Fractions and sympy symbols both work.
+    arithmetic is used, so Fractions and sympy symbols both work.  Numbers of
+    any sign are accepted; where one is a zero divisor the premises that
+    divide by it are :class:`Undefined` (module docstring).
     """
     k_p, k_i, k_v, f_c = cert.k_p, cert.k_i, cert.k_v, cert.f_c
     zero = k_i - k_i
-    out: list[Inequality | Semidefinite] = [
+    out: list[Inequality | Semidefinite | Undefined] = [
         Inequality("lemma2.P", "k_i > 0", k_i, ">", zero),
         Inequality("lemma2.P", "k_p > 0", k_p, ">", zero),
         Inequality("lemma2.P", "k_v·k_p > k_i", k_v * k_p, ">", k_i),
@@ -205,13 +244,23 @@ def premises(cert: Any) -> list[Inequality | Semidefinite]:
         Inequality("lemma2.dVdt", "c > 0", cert.c, ">", zero),
         Inequality("lemma2.lower_bound", "c1 > 0", cert.c1, ">", zero),
     ]
-    p = lyapunov_matrix_entries(k_p, k_i, k_v)
     identity = [[int(i == j) for j in range(3)] for i in range(3)]
-    out.append(Semidefinite("lemma2.lower_bound", "P − c1·I ⪰ 0", _matrix(p[i][j] - cert.c1 * identity[i][j] for i in range(3) for j in range(3))))
-    out.append(Semidefinite("lemma3.R", "c2·I − P ⪰ 0", _matrix(cert.c2 * identity[i][j] - p[i][j] for i in range(3) for j in range(3))))
-    for cond in k_conditions(k_p, k_i, k_v, cert.k1, cert.k2, cert.k3, cert.k4):
+    if _is_zero(k_i):  # P₁₁ = k_v/k_i (eq. lyapLikeP); "k_i > 0" above fails too
+        why = f"P has the entry k_v/k_i, and k_i = {_f(k_i)}"
+        out += [Undefined("lemma2.lower_bound", "P − c1·I ⪰ 0", why), Undefined("lemma3.R", "c2·I − P ⪰ 0", why)]
+    else:
+        p = lyapunov_matrix_entries(k_p, k_i, k_v)
+        out.append(Semidefinite("lemma2.lower_bound", "P − c1·I ⪰ 0", _matrix(p[i][j] - cert.c1 * identity[i][j] for i in range(3) for j in range(3))))
+        out.append(Semidefinite("lemma3.R", "c2·I − P ⪰ 0", _matrix(cert.c2 * identity[i][j] - p[i][j] for i in range(3) for j in range(3))))
+    # k_i/k_v: with k_v = 0 Assumption 1 fails ("k_v·k_p > k_i" or "k_i > 0"); the conditions without k_v are still
+    # decided, on the model's list built with a stand-in k_v = 1 whose conditions that divide by k_v are then replaced
+    no_k_v = _is_zero(k_v)
+    for cond in k_conditions(k_p, k_i, 1 if no_k_v else k_v, cert.k1, cert.k2, cert.k3, cert.k4):
         # k1·k4 > k3² is the paper's route to K ≻ 0 (eq. hatVandHatR); the rest come from eq. (hatVdot)
         obligation = "lemma3.hatV_bounds" if cond.kind == "definiteness" else "lemma3.hatV_derivative"
+        if no_k_v and cond.name in DIVIDE_BY_K_V:
+            out.append(Undefined(obligation, cond.name, f"it has k_i/k_v, and k_v = {_f(k_v)}"))
+            continue
         out.append(Inequality(obligation, cond.name, cond.lhs, ">" if cond.strict else ">=", cond.rhs))
     k = vhat_matrix_entries(cert.k1, cert.k2, cert.k3, cert.k4)
     out.append(Inequality("lemma3.hatV_bounds", "c1_hat > 0", cert.c1_hat, ">", zero))
@@ -223,16 +272,22 @@ def premises(cert: Any) -> list[Inequality | Semidefinite]:
         Inequality("prop1.stability_bound", "c1 ≤ c2", cert.c1, "<=", cert.c2),
         Inequality("prop1.stability_bound", "c1_hat ≤ c2_hat", cert.c1_hat, "<=", cert.c2_hat),
         Inequality("prop1.stability_bound", "overshoot_bound > 0", kappa, ">", zero),
+    ]
+    bound = "overshoot_bound² ≥ c2·c2_hat/(c1·c1_hat)"
+    if _is_zero(cert.c1 * cert.c1_hat):  # "c1 > 0" or "c1_hat > 0" above fails too
+        out.append(Undefined("prop1.stability_bound", bound, f"it divides by c1·c1_hat = {_f(cert.c1)}·{_f(cert.c1_hat)} = 0"))
+        return out
+    out.append(
         Inequality(
             "prop1.stability_bound",
-            "overshoot_bound² ≥ c2·c2_hat/(c1·c1_hat)",
+            bound,
             kappa * kappa,
             ">=",
             kappa_squared(cert.c1, cert.c2, cert.c1_hat, cert.c2_hat),
             "({})/({})",
             (cert.c2 * cert.c2_hat, cert.c1 * cert.c1_hat),
-        ),
-    ]
+        )
+    )
     return out
 
 
@@ -266,8 +321,10 @@ def _matrix_text(m: Sequence[Sequence[Fraction]]) -> str:
     return "[" + "; ".join(", ".join(_text(x) for x in row) for row in m) + "]"
 
 
-def decide(premise: Inequality | Semidefinite) -> Check:
-    """Decide one premise in exact rational arithmetic (the only place a premise is judged)."""
+def decide(premise: Inequality | Semidefinite | Undefined) -> Check:
+    """Decide one premise in exact rational arithmetic (the only place a premise is judged); an undefined one fails."""
+    if isinstance(premise, Undefined):
+        return Check(premise.obligation, premise.name, premise.reason, False, evaluated=False)
     if isinstance(premise, Semidefinite):
         matrix = [[_exact(x, premise.name) for x in row] for row in premise.matrix]
         minors = dataclasses.replace(premise, matrix=tuple(map(tuple, matrix))).minors()

@@ -18,63 +18,63 @@ REPO = Path(__file__).resolve().parents[2]
 TARGET = REPO / "symbolic_friction" / "_certify" / "false_certificates"
 
 # -- stability certificates: (file stem, premise, base, edits) ----------------------------------------
-# `reader`: the file format refuses the edit first (a positive field made ≤ 0); the premise is then
-# decided on the file's numbers directly.
+# A sign premise is broken by a well-formed number of the wrong sign: the format reads it and the verifier
+# must refuse it, naming the premise (a file refused as malformed fails the self-check).
 STABILITY = [
-    ("k_i_positive", "k_i > 0", "a", {"k_i": "-4", "c": "232/5"}, "parameters.k_i"),
-    ("k_p_positive", "k_p > 0", "a", {"k_p": "-3"}, "parameters.k_p"),
-    ("assumption1", "k_v·k_p > k_i", "a", {"k_p": "5/8"}, None),
-    ("f_c_positive", "f_c > 0", "a", {"f_c": "-1"}, "parameters.f_c"),
-    ("c_equation", "c = 2(k_v·k_p − k_i)", "a", {"c": "153/5"}, None),
-    ("c_positive", "c > 0", "a", {"c": "-152/5"}, "constants.c"),
-    ("c1_positive", "c1 > 0", "a", {"c1": "-1"}, "constants.c1"),
-    ("c1_below_lambda_min", "P − c1·I ⪰ 0", "a", {"c1": "88896553/25000000"}, None),
-    ("c2_above_lambda_max", "c2·I − P ⪰ 0", "a", {"c2": "990099009/1000000000"}, None),
-    ("k1_positive", "k1 > 0", "a", {"k1": "-2"}, "constants.k1"),
-    ("k2_positive", "k2 > 0", "a", {"k2": "-2"}, "constants.k2"),
-    ("k3_positive", "k3 > 0", "a", {"k3": "-101/50"}, "constants.k3"),
-    ("k4_positive", "k4 > 0", "a", {"k4": "-303/50"}, "constants.k4"),
-    ("k3_over_k1", "k3 > (k_i/k_v)·k1", "a", {"k1": "101/25", "c2_hat": "4", "overshoot_bound": "3.8"}, None),
-    ("k3_over_k2", "k3 > k2", "a", {"k3": "2"}, None),
-    ("k4_over_k3", "k4 > (k_i/k_v)·k3", "a", {"k2": "1/10", "k4": "101/80", "c1_hat": "1/20", "overshoot_bound": "16"}, None),
-    ("k4_over_k2", "k4 > k_p·k2", "a", {"k4": "6"}, None),
-    ("k_definite", "k1·k4 > k3²", "a", {"k1": "1/2", "c1_hat": "1/4", "overshoot_bound": "7.1"}, None),
-    ("c1_hat_positive", "c1_hat > 0", "a", {"c1_hat": "-1"}, "constants.c1_hat"),
-    ("c1_hat_k1", "c1_hat ≤ k1/2", "a", {"k1": "19/10"}, None),
-    ("c1_hat_k2", "c1_hat ≤ k2/2", "a", {"k2": "19/10"}, None),
-    ("c1_hat_k4", "c1_hat ≤ k4/2", "b", {"k4": "19/10", "k1": "5/2", "c2_hat": "3", "overshoot_bound": "9.8"}, None),
-    ("c2_hat_above_K", "c2_hat·I − K/2 ⪰ 0", "a", {"c2_hat": "1"}, None),
-    ("c1_above_c2", "c1 ≤ c2", "a", {"c1": "4"}, None),
-    ("c1_hat_above_c2_hat", "c1_hat ≤ c2_hat", "a", {"c2_hat": "1/2"}, None),
-    ("kappa_positive", "overshoot_bound > 0", "a", {"overshoot_bound": "-3.51842"}, "overshoot_bound"),
-    ("kappa_too_small", "overshoot_bound² ≥ c2·c2_hat/(c1·c1_hat)", "a", {"overshoot_bound": "3.5"}, None),
+    ("k_i_positive", "k_i > 0", "a", {"k_i": "-4", "c": "232/5"}),
+    ("k_p_positive", "k_p > 0", "a", {"k_p": "-3"}),
+    ("assumption1", "k_v·k_p > k_i", "a", {"k_p": "5/8"}),
+    ("f_c_positive", "f_c > 0", "a", {"f_c": "-1"}),
+    ("c_equation", "c = 2(k_v·k_p − k_i)", "a", {"c": "153/5"}),
+    ("c_positive", "c > 0", "a", {"c": "-152/5"}),
+    ("c1_positive", "c1 > 0", "a", {"c1": "-1"}),
+    ("c1_below_lambda_min", "P − c1·I ⪰ 0", "a", {"c1": "88896553/25000000"}),
+    ("c2_above_lambda_max", "c2·I − P ⪰ 0", "a", {"c2": "990099009/1000000000"}),
+    ("k1_positive", "k1 > 0", "a", {"k1": "-2"}),
+    ("k2_positive", "k2 > 0", "a", {"k2": "-2"}),
+    ("k3_positive", "k3 > 0", "a", {"k3": "-101/50"}),
+    ("k4_positive", "k4 > 0", "a", {"k4": "-303/50"}),
+    ("k3_over_k1", "k3 > (k_i/k_v)·k1", "a", {"k1": "101/25", "c2_hat": "4", "overshoot_bound": "3.8"}),
+    ("k3_over_k2", "k3 > k2", "a", {"k3": "2"}),
+    ("k4_over_k3", "k4 > (k_i/k_v)·k3", "a", {"k2": "1/10", "k4": "101/80", "c1_hat": "1/20", "overshoot_bound": "16"}),
+    ("k4_over_k2", "k4 > k_p·k2", "a", {"k4": "6"}),
+    ("k_definite", "k1·k4 > k3²", "a", {"k1": "1/2", "c1_hat": "1/4", "overshoot_bound": "7.1"}),
+    ("c1_hat_positive", "c1_hat > 0", "a", {"c1_hat": "-1"}),
+    ("c1_hat_k1", "c1_hat ≤ k1/2", "a", {"k1": "19/10"}),
+    ("c1_hat_k2", "c1_hat ≤ k2/2", "a", {"k2": "19/10"}),
+    ("c1_hat_k4", "c1_hat ≤ k4/2", "b", {"k4": "19/10", "k1": "5/2", "c2_hat": "3", "overshoot_bound": "9.8"}),
+    ("c2_hat_above_K", "c2_hat·I − K/2 ⪰ 0", "a", {"c2_hat": "1"}),
+    ("c1_above_c2", "c1 ≤ c2", "a", {"c1": "4"}),
+    ("c1_hat_above_c2_hat", "c1_hat ≤ c2_hat", "a", {"c2_hat": "1/2"}),
+    ("kappa_positive", "overshoot_bound > 0", "a", {"overshoot_bound": "-3.51842"}),
+    ("kappa_too_small", "overshoot_bound² ≥ c2·c2_hat/(c1·c1_hat)", "a", {"overshoot_bound": "3.5"}),
 ]
 
 
 # -- quadratic certificates: (file stem, premise, edits: constant or gain -> factor, or the bound) -----------
 QUADRATIC = [
-    ("k_i_positive", "k_i > 0", {"k_i": -1}, "parameters.k_i"),
-    ("k_p_positive", "k_p > 0", {"k_p": -1}, "parameters.k_p"),
-    ("assumption1", "k_v·k_p > k_i", {"k_p": F(1, 10)}, None),
-    ("f_c_positive", "f_c > 0", {"f_c": -1}, "parameters.f_c"),
-    ("p_lower", "P − I ⪰ 0", {"p11": F(99, 100)}, None),
-    ("p_upper", "c2·I − P ⪰ 0", {"c2": 0}, None),
-    ("c_positive", "c > 0", {"c": 0}, None),
-    ("v_decrease", "−(AᵀP + PA) − c·e3e3ᵀ ⪰ 0", {"k_p": F(1, 2)}, None),
-    ("u_rate_plus", "−(K·B+ + B+ᵀ·K) copositive", {"k22": 2}, None),
-    ("band_plus", "band form (s = +1) copositive", {"k11": -100}, None),
-    ("u_rate_minus", "−(K·B− + B−ᵀ·K) copositive", {"k22": F(101, 100)}, None),
-    ("band_minus", "band form (s = −1) copositive", {"k11": F(1001, 1000)}, None),
-    ("k31", "K31 ≥ 0", {"k13": F(-999, 1000)}, None),
-    ("k32", "K32 ≥ 0", {"k23": -1}, None),
-    ("k33", "K33 ≥ 0", {"k33": F(-1, 10)}, None),
-    ("u_lower", "K − I copositive", {"k22": 0}, None),
-    ("u_upper", "gamma·I − K copositive", {"gamma": 0}, None),
-    ("exit_rest", "U − V copositive at v = 0", {"k22": F(999, 1000)}, None),
-    ("exit_edge", "U − V copositive at φ = ±f_c", {"k11": F(9, 10)}, None),
-    ("kappa_positive", "overshoot_bound > 0", {"overshoot_bound": "-1.80834"}, "overshoot_bound"),
-    ("kappa_c2", "overshoot_bound² ≥ c2", {"c2": 2}, None),
-    ("kappa_gamma", "overshoot_bound² ≥ gamma", {"gamma": 2}, None),
+    ("k_i_positive", "k_i > 0", {"k_i": -1}),
+    ("k_p_positive", "k_p > 0", {"k_p": -1}),
+    ("assumption1", "k_v·k_p > k_i", {"k_p": F(1, 10)}),
+    ("f_c_positive", "f_c > 0", {"f_c": -1}),
+    ("p_lower", "P − I ⪰ 0", {"p11": F(99, 100)}),
+    ("p_upper", "c2·I − P ⪰ 0", {"c2": 0}),
+    ("c_positive", "c > 0", {"c": 0}),
+    ("v_decrease", "−(AᵀP + PA) − c·e3e3ᵀ ⪰ 0", {"k_p": F(1, 2)}),
+    ("u_rate_plus", "−(K·B+ + B+ᵀ·K) copositive", {"k22": 2}),
+    ("band_plus", "band form (s = +1) copositive", {"k11": -100}),
+    ("u_rate_minus", "−(K·B− + B−ᵀ·K) copositive", {"k22": F(101, 100)}),
+    ("band_minus", "band form (s = −1) copositive", {"k11": F(1001, 1000)}),
+    ("k31", "K31 ≥ 0", {"k13": F(-999, 1000)}),
+    ("k32", "K32 ≥ 0", {"k23": -1}),
+    ("k33", "K33 ≥ 0", {"k33": F(-1, 10)}),
+    ("u_lower", "K − I copositive", {"k22": 0}),
+    ("u_upper", "gamma·I − K copositive", {"gamma": 0}),
+    ("exit_rest", "U − V copositive at v = 0", {"k22": F(999, 1000)}),
+    ("exit_edge", "U − V copositive at φ = ±f_c", {"k11": F(9, 10)}),
+    ("kappa_positive", "overshoot_bound > 0", {"overshoot_bound": "-1.80834"}),
+    ("kappa_c2", "overshoot_bound² ≥ c2", {"c2": 2}),
+    ("kappa_gamma", "overshoot_bound² ≥ gamma", {"gamma": 2}),
 ]
 
 
@@ -123,24 +123,18 @@ def forged() -> tuple[dict[str, str], list[dict]]:
     control = _stability_base("a")
     files["true_stability.json"] = _text(control)
     manifest.append({"file": "true_stability.json", "template": "stability", "premise": None, "fails": []})
-    for stem, premise, case, edits, reader in STABILITY:
+    for stem, premise, case, edits in STABILITY:
         data = _edit(_stability_base(case), edits)
         name = f"stability_{stem}.json"
         files[name] = _text(data)
-        entry = {"file": name, "template": "stability", "premise": premise, "fails": expected_failures(data)}
-        if reader is not None:
-            entry["reader"] = reader
-        manifest.append(entry)
+        manifest.append({"file": name, "template": "stability", "premise": premise, "fails": expected_failures(data)})
     files["true_quadratic.json"] = _text(_quadratic())
     manifest.append({"file": "true_quadratic.json", "template": "quadratic", "premise": None, "fails": []})
-    for stem, premise, edits, reader in QUADRATIC:
+    for stem, premise, edits in QUADRATIC:
         data = _quadratic(edits)
         name = f"quadratic_{stem}.json"
         files[name] = _text(data)
-        entry = {"file": name, "template": "quadratic", "premise": premise, "fails": expected_failures(data)}
-        if reader is not None:
-            entry["reader"] = reader
-        manifest.append(entry)
+        manifest.append({"file": name, "template": "quadratic", "premise": premise, "fails": expected_failures(data)})
     for name, premise, data in _hunting():
         files[name] = _text(data)
         manifest.append({"file": name, "template": "hunting", "premise": premise,

@@ -178,17 +178,25 @@ def test_zero_denominator(data):
         _loads(data)
 
 
-@pytest.mark.parametrize("text", ["0", "-1/2", "0/7"])
-def test_non_positive_values(data, text):
+@pytest.mark.parametrize("text", ["0", "-1/2", "0/7", "-0", "+0/3"])
+def test_a_non_positive_value_is_read_and_refused_by_its_premise(data, text):
+    """A sign is a premise, not format: the reader keeps the number, the verifier names ``k4 > 0``."""
+    from symbolic_friction._certify.verify import verify_certificate
+
     data["constants"]["k4"] = text
-    with pytest.raises(CertificateFormatError, match=rf"constants.k4 must be positive; got '{text}'"):
-        _loads(data)
+    cert = _loads(data)
+    assert cert.k4 == F(text.lstrip("+"))
+    report = verify_certificate(cert)
+    assert not report.proved and report.failures[0].message == f"k4 > 0: {F(text.lstrip('+'))} > 0 is false"
 
 
-def test_non_positive_parameter(data):
+def test_a_non_positive_parameter_is_read_and_refused_by_its_premise(data):
+    from symbolic_friction._certify.verify import verify_certificate
+
     data["parameters"]["f_c"] = "-1"
-    with pytest.raises(CertificateFormatError, match=r"parameters.f_c must be positive; got '-1'"):
-        _loads(data)
+    del data["provenance"]  # its Table I label would fail too
+    report = verify_certificate(_loads(data))
+    assert [c.message for c in report.failures] == ["f_c > 0: -1 > 0 is false"]
 
 
 @pytest.mark.parametrize(
@@ -197,13 +205,27 @@ def test_non_positive_parameter(data):
         (3.5, r"overshoot_bound must be a decimal string such as '3.69516'; got the float 3.5"),
         ("3.5e0", r"overshoot_bound must be a plain decimal string"),
         ("7/2", r"overshoot_bound must be a plain decimal string"),
-        ("0.000", r"overshoot_bound must be positive; got '0.000'"),
+        ("+3.5", r"overshoot_bound must be a plain decimal string"),
+        ("- 3.5", r"overshoot_bound must be a plain decimal string"),
+        ("--3.5", r"overshoot_bound must be a plain decimal string"),
+        ("1." + "5" * 20_000, r"overshoot_bound has 20002 characters; at most 20000 are accepted"),
     ],
 )
 def test_overshoot_bound_format(data, value, message):
     data["overshoot_bound"] = value
     with pytest.raises(CertificateFormatError, match=message):
         _loads(data)
+
+
+@pytest.mark.parametrize("text", ["0.000", "-3.5", "-0"])
+def test_a_non_positive_overshoot_bound_is_read_and_refused_by_its_premise(data, text):
+    from symbolic_friction._certify.verify import verify_certificate
+
+    data["overshoot_bound"] = text
+    cert = _loads(data)
+    assert cert.overshoot_bound == text and cert.kappa == F(text)
+    report = verify_certificate(cert)
+    assert [c.name for c in report.failures][0] == "overshoot_bound > 0"
 
 
 def test_provenance_is_optional_but_strict(data):
@@ -250,13 +272,22 @@ def test_constructor_accepts_ints_fractions_and_exact_strings(cert):
     assert other.k1 == F(2) and other.k2 == F(2)
 
 
-def test_constructor_rejects_booleans_and_non_positive(cert):
+def test_constructor_rejects_booleans_and_floats_but_holds_any_sign(cert):
     with pytest.raises(CertificateFormatError, match=r"constants.k1 must be an exact rational; got the boolean True"):
         replace(cert, k1=True)
-    with pytest.raises(CertificateFormatError, match=r"constants.c must be positive; got -1/2"):
-        replace(cert, c=F(-1, 2))
     with pytest.raises(CertificateFormatError, match=r"constants.c2 must be a string holding an exact rational.*float 3.5"):
         replace(cert, c2=3.5)
+    with pytest.raises(CertificateFormatError, match=r"overshoot_bound must be a plain decimal string"):
+        replace(cert, overshoot_bound="3.5e0")
+    # a false certificate must be representable to be refused: the sign is the verifier's premise
+    assert replace(cert, c=F(-1, 2)).c == F(-1, 2) and replace(cert, k_p="-3").k_p == -3
+
+
+def test_kappa_squared_of_a_zero_denominator_is_an_error_not_a_crash(cert):
+    from symbolic_friction.errors import CertificateError
+
+    with pytest.raises(CertificateError, match=r"κ² = c2·c2_hat/\(c1·c1_hat\) is undefined: c1·c1_hat = 0·1 = 0"):
+        replace(cert, c1=0, c1_hat=1).kappa_squared
 
 
 def test_constructor_rejects_a_foreign_provenance(cert):

@@ -176,10 +176,12 @@ def test_round_trip_is_byte_identical():
     [
         lambda d: d["constants"].pop("gamma"),
         lambda d: d["constants"].__setitem__("k11", 1.5),
-        lambda d: d["parameters"].__setitem__("k_p", "-3"),
+        lambda d: d["parameters"].__setitem__("k_p", "-3.0"),
+        lambda d: d["parameters"].__setitem__("k_p", "- 3"),
         lambda d: d.__setitem__("template", "quadratic/v2"),
         lambda d: d["provenance"].__setitem__("extra", "x"),
         lambda d: d.__setitem__("overshoot_bound", "1e3"),
+        lambda d: d.__setitem__("overshoot_bound", "+1.9"),
     ],
 )
 def test_malformed_files_are_refused(edit):
@@ -187,6 +189,28 @@ def test_malformed_files_are_refused(edit):
     edit(data)
     with pytest.raises(CertificateFormatError):
         QuadraticCertificate.from_dict(data)
+
+
+@pytest.mark.parametrize("group, name, text, failing", [
+    ("parameters", "k_p", "-3", "k_p > 0"),
+    ("parameters", "k_i", "0", "k_i > 0"),
+    ("parameters", "k_v", "0", "k_v·k_p > k_i"),
+    ("parameters", "k_v", "-32/5", "k_v·k_p > k_i"),
+    ("parameters", "f_c", "0", "f_c > 0"),
+    ("constants", "c", "-1", "c > 0"),
+    ("overshoot_bound", None, "-1.9", "overshoot_bound > 0"),
+    ("overshoot_bound", None, "0", "overshoot_bound > 0"),
+])
+def test_a_number_of_the_wrong_sign_is_read_and_refused_by_its_premise(group, name, text, failing):
+    """A sign is a premise of the template, decided by the verifier (exit 1 of `verify`), not a format error (exit 2)."""
+    data = json.loads((PROOFS / "case_a.json").read_text())
+    if name is None:
+        data[group] = text
+    else:
+        data[group][name] = text
+    report = verify_quadratic(QuadraticCertificate.from_dict(data))
+    assert not report.proved and failing in [c.name for c in report.failures]
+    assert next(c for c in report.failures if c.name == failing).message.endswith(" is false")
 
 
 def test_a_reformatted_file_is_stale(tmp_path):

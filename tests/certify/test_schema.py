@@ -43,9 +43,11 @@ def _set(data, path, value):
 
 
 BAD = [
-    (("parameters", "k_p"), "0"),
-    (("parameters", "k_p"), "-3"),
+    (("parameters", "k_p"), "-3.0"),
+    (("parameters", "k_p"), "--3"),
     (("parameters", "k_p"), "٣"),
+    (("overshoot_bound",), "+3.5"),
+    (("provenance", "margin"), "0"),
     (("parameters", "k_p"), 3),
     (("constants", "k1"), "1.5"),
     (("constants", "k1"), "1" * 20_001),
@@ -65,6 +67,27 @@ def test_schema_and_parser_both_refuse(path, value):
         validate_schema(data)  # the schema alone refuses it
     with pytest.raises(CertificateFormatError):
         loads(json.dumps(data))  # and so does reading it
+
+
+SIGNED = [
+    (("parameters", "k_p"), "0"),
+    (("parameters", "k_p"), "-3"),
+    (("parameters", "k_v"), "-32/5"),
+    (("constants", "k1"), "-2"),
+    (("constants", "c1_hat"), "0/7"),
+    (("overshoot_bound",), "-3.5"),
+]
+
+
+@pytest.mark.parametrize("path, value", SIGNED, ids=[".".join(p) + "=" + v for p, v in SIGNED])
+def test_schema_and_parser_both_read_a_number_of_the_wrong_sign(path, value):
+    """Signs are premises: the schema and the parser accept the number, the verifier refuses it naming the premise."""
+    from symbolic_friction._certify.verify import verify_certificate
+
+    data = _set(copy.deepcopy(_base()), path, value)
+    validate_schema(data)
+    report = verify_certificate(loads(json.dumps(data)))
+    assert not report.proved and any(c.name.endswith(" > 0") or c.name == "k_v·k_p > k_i" for c in report.failures)
 
 
 def test_physical_parameters_round_trip(tmp_path):

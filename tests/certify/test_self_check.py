@@ -4,6 +4,7 @@ verifier (a dropped premise, a wrong decision, a broken python-flint) makes the 
 from __future__ import annotations
 
 import json
+import re
 from fractions import Fraction as F
 
 import pytest
@@ -56,23 +57,40 @@ def test_the_self_check_passes_on_this_install():
     assert len(result.refusals) == len(MANIFEST) == 68
 
 
-@pytest.mark.parametrize("entry", [e for e in FALSE if "reader" not in e], ids=lambda e: e["file"])
+@pytest.mark.parametrize("entry", FALSE, ids=lambda e: e["file"])
 def test_verify_refuses_each_false_file_naming_its_premise(entry, capsys):
+    """Exit 1 (refused by the verifier), never 2 (malformed): a number of the wrong sign is a false claim, not bad input."""
+    assert set(entry) == {"file", "template", "premise", "fails"}, "the manifest has no `reader`: every file is read"
     assert main(["verify", str(DIRECTORY / entry["file"])]) == 1
-    out = capsys.readouterr().out
-    assert out.startswith(("FAILED ", "NOT PROVED ")) and (entry["premise"] in out or entry["premise"] == "verdict"), out
+    out, err = capsys.readouterr()
+    assert out.startswith(("FAILED ", "NOT PROVED ")) and not err, (out, err)
+    assert entry["premise"] in out or entry["premise"] == "verdict", out
     if entry["premise"] == "verdict":
         assert "verdict is 'not proved'" in out
+    if entry["template"] != "hunting":  # every check the manifest lists is named, as "NAME: … is false"
+        assert all(f"{name}: " in out for name in entry["fails"]), out
 
 
-@pytest.mark.parametrize("entry", [e for e in FALSE if "reader" in e], ids=lambda e: e["file"])
-def test_a_premise_the_format_guards_is_refused_by_the_reader_and_by_the_premise(entry, capsys):
-    """Positivity is checked where the file is read (exit 2 naming the key); the verifier's premise refuses the same numbers."""
-    path = DIRECTORY / entry["file"]
-    assert main(["verify", str(path)]) == 2
-    assert entry["reader"] in capsys.readouterr().err
-    data = json.loads(path.read_text(encoding="utf-8"))
-    assert self_check.expected_failures(data) == entry["fails"]
+SIGNS = [e for e in FALSE if e["template"] != "hunting" and e["premise"].endswith(" > 0")]
+"""The files that break a sign premise: the format once refused 15 of them (exit 2) before the verifier could."""
+
+
+def test_the_sign_premises_are_refused_by_the_verifier_through_the_console_script():
+    """The files whose premise is a sign, in one ``symbolic-friction verify`` process: exit 1, one FAILED line each."""
+    import subprocess
+    import sys
+
+    assert len(SIGNS) == 16
+    run = subprocess.run([sys.executable, "-m", "symbolic_friction", "verify", *(str(DIRECTORY / e["file"]) for e in SIGNS)],
+                         capture_output=True, text=True, timeout=120)
+    assert run.returncode == 1 and "MALFORMED" not in run.stdout and "error" not in run.stderr, run.stderr
+    lines = run.stdout.splitlines()
+    assert len(lines) == len(SIGNS)
+    for entry, line in zip(SIGNS, lines):
+        # "k1 > 0: -2 > 0 is false": the premise, its instance, the verdict
+        assert line.startswith(f"FAILED {DIRECTORY / entry['file']}: "), line
+        premise = re.escape(entry["premise"])
+        assert re.search(rf"(: |; ){premise}: -?[0-9]+(/[0-9]+)? > 0 is false(; | \[)", line), line
 
 
 def test_the_true_controls_are_proved(capsys):
@@ -173,6 +191,62 @@ def test_a_copositivity_decision_that_trusts_undecided_fails_the_self_check(monk
     monkeypatch.setattr(quadratic, "decide_copositive", lenient)
     failed = _failed(refuse_false_certificates())
     assert "quadratic_u_upper.json" in failed and "true_quadratic.json" not in failed
+
+
+def _run_check(monkeypatch, tmp_path, capsys) -> str:
+    from symbolic_friction._cli import check
+
+    monkeypatch.setattr(check, "SECTIONS", [check.self_check_section])
+    assert main(["check", "--proofs", str(tmp_path)]) == 1
+    return capsys.readouterr().out
+
+
+def test_check_fails_when_the_verifier_accepts_one_false_file(monkeypatch, tmp_path, capsys):
+    """A verifier that drops every failing premise of the k1 file (and only that file) proves it: `check` fails, naming it."""
+    real = verify_module.premises
+    monkeypatch.setattr(verify_module, "premises", lambda cert: [
+        p for p in real(cert) if not (cert.k1 < 0 and not verify_module.decide(p).holds)])
+    result = refuse_false_certificates()
+    assert _failed(result) == ["stability_k1_positive.json"]
+    assert main(["verify", str(DIRECTORY / "stability_k1_positive.json")]) == 0  # accepted, as the mutant should
+    capsys.readouterr()
+    out = _run_check(monkeypatch, tmp_path, capsys)
+    assert "FAILED self-check stability_k1_positive.json: breaks k1 > 0; expected k1 > 0, k1·k4 > k3², c1_hat ≤ k1/2, got proved" in out
+    assert out.strip().splitlines()[-1].startswith("check: FAILED")
+
+
+def test_check_fails_when_a_false_file_is_refused_only_as_malformed(monkeypatch, tmp_path, capsys):
+    """A reader that refuses signs (exit 2) keeps the verifier from deciding them: that is not a refusal."""
+    from symbolic_friction._certify.certificate import Certificate
+    from symbolic_friction._infra.errors import CertificateFormatError
+
+    real = Certificate.from_dict.__func__
+
+    def refuses_signs(cls, data):
+        for group in ("parameters", "constants"):
+            for key, value in data[group].items():
+                if value.startswith("-"):
+                    raise CertificateFormatError(f"{group}.{key} must be positive; got {value!r}")
+        return real(cls, data)
+
+    monkeypatch.setattr(Certificate, "from_dict", classmethod(refuses_signs))
+    result = refuse_false_certificates()
+    malformed = [r for r in result.refusals if not r.ok]
+    assert {r.file for r in malformed} == {e["file"] for e in SIGNS if e["template"] == "stability"} - {"stability_kappa_positive.json"}
+    assert all(r.named[0].startswith("malformed: ") and "must be positive" in r.named[0] for r in malformed)
+    out = _run_check(monkeypatch, tmp_path, capsys)
+    assert "FAILED self-check stability_k1_positive.json: breaks k1 > 0; expected k1 > 0, k1·k4 > k3², c1_hat ≤ k1/2, got malformed: " in out
+
+
+def test_a_verifier_that_raises_fails_the_self_check_without_raising(monkeypatch):
+    def crash(*args):
+        raise ZeroDivisionError("division by zero")
+
+    monkeypatch.setattr(verify_module, "provenance_checks", crash)
+    result = refuse_false_certificates()
+    crashed = [r for r in result.refusals if not r.ok]
+    assert not result.ok and "true_stability.json" in {r.file for r in crashed}
+    assert all(r.named == ("crashed: ZeroDivisionError: division by zero",) for r in crashed)
 
 
 def test_a_wrong_manifest_is_a_failure_not_a_pass(tmp_path):

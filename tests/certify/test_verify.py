@@ -233,3 +233,34 @@ def test_premises_are_built_once_for_fractions_and_symbols(cert_a):
     symbolic = verify_module.premises(_symbolic_certificate())
     assert [p.name for p in exact] == [p.name for p in symbolic]
     assert all(isinstance(p.margin()[0], sp.Expr) for p in symbolic if isinstance(p, Inequality))
+
+
+# -- numbers of any sign: the verifier decides the signs, and a zero divisor is not evaluated, never raised ----------
+def test_the_premises_that_divide_by_k_v_are_the_model_s():
+    assert verify_module.DIVIDE_BY_K_V == ("k3 > (k_i/k_v)·k1", "k4 > (k_i/k_v)·k3")
+
+
+@pytest.mark.parametrize("zero, undefined", [
+    ("k_i", ["P − c1·I ⪰ 0", "c2·I − P ⪰ 0"]),
+    ("k_v", ["k3 > (k_i/k_v)·k1", "k4 > (k_i/k_v)·k3"]),
+    ("c1", ["overshoot_bound² ≥ c2·c2_hat/(c1·c1_hat)"]),
+    ("c1_hat", ["overshoot_bound² ≥ c2·c2_hat/(c1·c1_hat)"]),
+])
+def test_a_zero_divisor_leaves_its_premises_unevaluated_and_failing(cert_a, zero, undefined):
+    report = verify_certificate(replace(cert_a, **{zero: 0}))
+    unevaluated = [c for c in report.checks if not c.evaluated]
+    assert [c.name for c in unevaluated] == undefined and not any(c.holds for c in unevaluated)
+    assert all(c.message.startswith(f"{c.name}: not evaluated (") and "is false" not in c.message for c in unevaluated)
+    assert [c.name for c in report.checks] == [c.name for c in verify_certificate(cert_a).checks]  # same premises, same order
+    # the zero also breaks a premise that is evaluated: the refusal never rests on "not evaluated" alone
+    assert any(c.evaluated for c in report.failures)
+
+
+def test_symbols_are_never_taken_for_a_zero_divisor():
+    from symbolic_friction._obligations.certificate import _symbolic_certificate
+
+    assert not any(isinstance(p, verify_module.Undefined) for p in verify_module.premises(_symbolic_certificate()))
+
+
+def test_an_empty_report_proves_nothing(cert_a):
+    assert not VerificationReport(cert_a, ()).proved

@@ -98,7 +98,7 @@ def _forged_cases() -> dict[str, list[str]]:
 
 
 def _namespace_cases() -> dict[str, list[str]]:
-    """Premises a Certificate cannot violate (its fields are positive), decided from plain numbers."""
+    """Premises decided from plain numbers (a stand-in, as the obligations pass symbols); zeros that divide are not evaluated."""
     a = _cert("case_a_tightest")
     base = {n: getattr(a, n) for n in ("k_p", "k_i", "k_v", "f_c", "k1", "k2", "k3", "k4", "c", "c1", "c2", "c1_hat", "c2_hat")}
     base["kappa"] = F(a.overshoot_bound)
@@ -114,6 +114,13 @@ def _namespace_cases() -> dict[str, list[str]]:
         "ns.c1_hat_negative": {"c1_hat": F(-1)},
         "ns.kappa_zero": {"kappa": F(0)},
         "ns.kappa_negative": {"kappa": -F(a.overshoot_bound)},
+        # a zero divisor: the premises that divide by it fail unevaluated, beside the sign premise it breaks
+        "ns.k_i_zero": {"k_i": F(0)},
+        "ns.k_v_zero": {"k_v": F(0)},
+        "ns.k_v_negative": {"k_v": F(-32, 5)},
+        "ns.c1_zero": {"c1": F(0)},
+        "ns.c1_hat_zero": {"c1_hat": F(0)},
+        "ns.all_zero": {n: F(0) for n in base},
     }
     out = {}
     for name, change in forged.items():

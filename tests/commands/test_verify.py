@@ -72,6 +72,49 @@ def test_c_enlarged_ten_times(tmp_path, capsys):
     assert "c = 2(k_v·k_p − k_i): 304 = 2·(96/5 − 4) = 152/5 is false" in capsys.readouterr().out
 
 
+# -- a number of the wrong sign is a false claim: exit 1, the premise named (never 2, never a traceback) ------
+@pytest.mark.parametrize(("group", "name", "text", "says"), [
+    ("parameters", "k_p", "-3", ["k_p > 0: -3 > 0 is false"]),
+    ("parameters", "f_c", "0", ["f_c > 0: 0 > 0 is false"]),
+    ("constants", "k1", "-2", ["k1 > 0: -2 > 0 is false"]),
+    ("constants", "c", "-1/2", ["c > 0: -1/2 > 0 is false"]),
+    (None, "overshoot_bound", "-3.7", ["overshoot_bound > 0: -37/10 > 0 is false"]),
+    # zero divisors: the sign premise fails, and the premises that would divide by the zero are not evaluated
+    ("parameters", "k_i", "0", ["k_i > 0: 0 > 0 is false",
+                                "P − c1·I ⪰ 0: not evaluated (P has the entry k_v/k_i, and k_i = 0)"]),
+    ("parameters", "k_v", "0", ["k_v·k_p > k_i: 0 > 4 is false",
+                                "k3 > (k_i/k_v)·k1: not evaluated (it has k_i/k_v, and k_v = 0)"]),
+    ("parameters", "k_v", "-32/5", ["k_v·k_p > k_i: -96/5 > 4 is false"]),
+    ("constants", "c1", "0", ["c1 > 0: 0 > 0 is false",
+                              "overshoot_bound² ≥ c2·c2_hat/(c1·c1_hat): not evaluated (it divides by c1·c1_hat = 0·"]),
+    ("constants", "c1_hat", "0", ["c1_hat > 0: 0 > 0 is false", "overshoot_bound² ≥ c2·c2_hat/(c1·c1_hat): not evaluated"]),
+])
+def test_a_number_of_the_wrong_sign_fails_naming_the_premise(tmp_path, capsys, group, name, text, says):
+    data = _case_a()
+    del data["provenance"]  # a Table I label would add its own failure for an edited gain
+    (data if group is None else data[group])[name] = text
+    path = _write(tmp_path, data)
+    assert main(["verify", path]) == 1
+    out, err = capsys.readouterr()
+    assert out.startswith(f"FAILED {path}: ") and err == "" and all(s in out for s in says), out
+    # every output form renders it: --json lists the failures, -v every check, JUnit one failure
+    assert main(["verify", "--json", "-v", "--junit-xml", str(tmp_path / "r.xml"), path]) == 1
+    payload = json.loads(capsys.readouterr().out)
+    assert payload["passed"] is False and payload["files"][0]["status"] == "failed"
+    assert "<failure" in (tmp_path / "r.xml").read_text(encoding="utf-8")
+
+
+def test_everything_zero_is_refused_without_a_crash(tmp_path, capsys):
+    data = _case_a()
+    del data["provenance"]
+    data["parameters"] = {k: "0" for k in data["parameters"]}
+    data["constants"] = {k: "0" for k in data["constants"]}
+    data["overshoot_bound"] = "0"
+    assert main(["verify", _write(tmp_path, data)]) == 1
+    out = capsys.readouterr().out
+    assert out.startswith("FAILED ") and out.count("not evaluated") == 5 and "Traceback" not in out
+
+
 # -- malformed files: exit 2 via the CLI's error handling --------------------------------------
 @pytest.mark.parametrize(
     ("mutate", "message"),
@@ -81,8 +124,14 @@ def test_c_enlarged_ten_times(tmp_path, capsys):
         (lambda d: d.pop("parameters"), r"missing key 'parameters' in certificate"),
         (lambda d: d.__setitem__("schema", "other/v1"), r"unknown schema 'other/v1'"),
         (lambda d: d["parameters"].__setitem__("k_v", "6.4"), r"parameters.k_v must be an exact rational string"),
+        (lambda d: d["parameters"].__setitem__("k_p", "-3.0"), r"parameters.k_p must be an exact rational string"),
+        (lambda d: d["constants"].__setitem__("k1", "−2"), r"constants.k1 must be an exact rational string"),  # U+2212
+        (lambda d: d.__setitem__("overshoot_bound", "+3.7"), r"overshoot_bound must be a plain decimal string"),
+        (lambda d: d.__setitem__("overshoot_bound", "-3.7e0"), r"overshoot_bound must be a plain decimal string"),
+        (lambda d: d["provenance"].__setitem__("margin", "-1/100"), r"provenance.margin must be positive; got '-1/100'"),
     ],
-    ids=["float", "missing-constant", "missing-parameters", "unknown-schema", "decimal"],
+    ids=["float", "missing-constant", "missing-parameters", "unknown-schema", "decimal", "signed-decimal", "unicode-minus",
+         "plus-bound", "exponent-bound", "margin"],
 )
 def test_malformed_files_exit_2(tmp_path, capsys, mutate, message):
     import re
