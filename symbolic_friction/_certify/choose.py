@@ -215,16 +215,18 @@ def certify_template(
     if paper_only:
         names = ["paper"]
         note = f"{', '.join(paper_only)} applies to the paper's template only"
-    attempts = []
+    attempts, errors = [], []
     for name in names:
         try:
             attempts.append(_try(templates[name], params, **options))
         except SymbolicFrictionError as exc:
-            if isinstance(exc, ParameterError) or len(names) == 1:
-                raise  # bad input is bad for every template
+            # gains one search cannot take (e.g. f_c beyond float range for an SDP) may suit another
+            errors.append(exc)
             attempts.append(Attempt(templates[name], reason=_reason(exc)))
     proved = [a for a in attempts if a.certificate is not None]
     if not proved:
+        if len(errors) == 1 or isinstance(errors[0], ParameterError):
+            raise errors[0]  # bad input for the paper's template is bad input: its own message
         raise CertificateError("no template gives a proved certificate: " + "; ".join(a.describe() for a in attempts))
     chosen = min(proved, key=lambda a: a.kappa)  # first (the paper's) on a tie
     return TemplateChoice(chosen, tuple(attempts), "auto", note)

@@ -62,6 +62,11 @@ def test_auto_falls_back_to_the_paper_when_the_quadratic_sdp_is_infeasible(tmp_p
     assert first == ("template paper (auto: the smallest proved κ): κ 1414.22; quadratic: no certificate "
                      "(its SDP is infeasible at every margin tried (4))")
     assert read_certificate_file(_one(tmp_path))[0].name == "paper"
+    assert main(["certify", *STIFF, "--name", "j", "--json", "--out", str(tmp_path)]) == 0
+    payload = json.loads(capsys.readouterr().out)
+    assert payload["template"] == "paper" and payload["overshoot_bound"] == "1414.22"
+    assert payload["alternatives"] == [{"template": "quadratic", "overshoot_bound": None,
+                                        "reason": "its SDP is infeasible at every margin tried (4)"}]
 
 
 def test_template_quadratic_writes_a_quadratic_file_and_json(tmp_path, capsys):
@@ -168,6 +173,15 @@ def test_a_failing_search_is_a_reason_and_no_template_at_all_is_an_error(monkeyp
     monkeypatch.setattr(pipeline, "certify", no_paper)
     with pytest.raises(CertificateError, match="no template gives a proved certificate: paper: no certificate"):
         certify_template(Parameters.table_i("a"))
+
+
+def test_gains_only_the_paper_can_take_fall_back_to_it_and_bad_gains_keep_their_message(monkeypatch):
+    """f_c = 10⁹⁹⁹ is exact input the closed form takes and the SDP (floats) cannot: the paper's, with the reason."""
+    choice = certify_template(Parameters(k_p=3, k_i=4, k_v="6.4", f_c="1e999"))
+    assert choice.template.name == "paper" and choice.certificate.overshoot_bound == "3.46703"
+    assert "outside the range of floating point" in choice.others[0].reason
+    with pytest.raises(ParameterError, match="a stability certificate is for the paper's model f_s = f_c"):
+        certify_template(Parameters(k_p=3, k_i=4, k_v="6.4", f_c=1, f_s=2))
 
 
 def test_bad_template_and_options_raise_parameter_errors():
