@@ -26,6 +26,13 @@ The quadratic template (beyond the paper) proves a tighter bound for Table I, ca
 >>> quadratic = certify_quadratic(sf.Parameters.table_i("a"))  # doctest: +SKIP
 >>> verify_quadratic(quadratic).proved, quadratic.overshoot_bound  # doctest: +SKIP
 (True, '1.80834')
+
+What ``symbolic-friction certify`` does by default: every template, the smallest proved κ kept:
+
+>>> from symbolic_friction.certificates import certify_template
+>>> choice = certify_template(sf.Parameters.table_i("a"))  # doctest: +SKIP
+>>> choice.describe()  # doctest: +SKIP
+'template quadratic (auto: the smallest proved κ): κ 1.80834; paper: κ 3.46703'
 """
 
 from __future__ import annotations
@@ -53,6 +60,9 @@ _LAZY: dict[str, str] = {
     "certify_quadratic": "._certify.quadratic_search",
     "verify_quadratic": "._certify.quadratic",
     "QuadraticCertificate": "._certify.quadratic",
+    # the choice of template (certify --template auto|paper|quadratic)
+    "certify_template": "._certify.choose",
+    "TemplateChoice": "._certify.choose",
 }
 
 __all__ = list(_LAZY)

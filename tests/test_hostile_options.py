@@ -46,6 +46,7 @@ KINDS: dict[tuple[str, str], str] = {
     ("certify", "--mode"): "choice", ("certify", "--margin"): "fraction", ("certify", "--out"): "out-dir",
     ("certify", "--name"): "stem", ("certify", "--label"): "text", ("certify", "--json"): "flag",
     ("certify", "--search"): "choice", ("certify", "--pieces"): "count", ("certify", "--kappa-tol"): "real",
+    ("certify", "--template"): "choice",
     **{("certify", f): "gain" for f in ("--k-p", "--k-i", "--k-v", "--f-c", "--m", "--k-p-bar", "--k-i-bar",
                                         "--k-d-bar", "--f-c-bar", "--alpha-v")},
     # verify

@@ -68,6 +68,10 @@ class Template:
         ``regenerate(certificate) -> certificate``: what would be written now
         (``check --write`` rewrites the file with it); None if the file is
         not regenerated.
+    name : str
+        The short name users choose the template by (``certify --template
+        paper``); default: the id without its version (``quadratic/v1`` →
+        ``quadratic``).
     """
 
     id: str
@@ -81,6 +85,13 @@ class Template:
     default: bool = False
     drift: Callable[[Any, Path], str] | None = None
     regenerate: Callable[[Any], Any] | None = None
+    name: str = ""
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.id, str) or "/" not in self.id:
+            raise ValueError(f"a template id is 'name/vN'; got {self.id!r}")
+        if not self.name:
+            object.__setattr__(self, "name", self.id.split("/", 1)[0])
 
     def write(self, certificate: Any, path: str | os.PathLike[str]) -> Path:
         """Write ``certificate`` to ``path`` atomically."""

@@ -291,6 +291,7 @@ STABILITY = register(Template(
     claim=lambda certificate: f"κ ≤ {certificate.overshoot_bound}",
     default=True,
     drift=stability_drift,
+    name="paper",
 ))
 """The stability certificate of Proposition 1 (Lemma 2, Lemma 3): constants of ``V`` and ``V̂`` and κ."""
 

@@ -1,9 +1,12 @@
 """``symbolic-friction certify``: find and exactly verify proof certificates.
 
-Without gains it regenerates ``proofs/`` for Table I's cases (a) and (b) in
-both modes; with ``--k-p --k-i --k-v --f-c`` (normalised) or the physical
+Without gains it regenerates ``proofs/`` for Table I's cases (a) and (b): the
+paper's template in both modes and the quadratic template (``proofs/quadratic/``);
+with ``--k-p --k-i --k-v --f-c`` (normalised) or the physical
 ``--m --k-p-bar --k-i-bar --k-d-bar [--alpha-v] --f-c-bar`` it certifies one
-gain set.  Nothing is written unless the exact verifier proves it.
+gain set with ``--template`` (default ``auto``: every template ``check`` covers,
+keeping the smallest proved κ; :func:`~symbolic_friction._certify.choose.certify_template`).
+Nothing is written unless the exact verifier proves it.
 """
 
 from __future__ import annotations
@@ -30,8 +33,9 @@ _HELP = {
     "alpha_v": "viscous friction coefficient α_v ≥ 0 (default 0)",
 }
 _EPILOG = """examples:
-  symbolic-friction certify                      # regenerate proofs/ (Table I, cases a and b, both modes)
-  symbolic-friction certify --k-p 3 --k-i 4 --k-v 6.4 --f-c 1 --out my_proofs
+  symbolic-friction certify                      # regenerate proofs/ (Table I, cases a and b, every template)
+  symbolic-friction certify --k-p 3 --k-i 4 --k-v 6.4 --f-c 1 --out my_proofs              # the tightest template
+  symbolic-friction certify --k-p 3 --k-i 4 --k-v 6.4 --f-c 1 --template paper --search sdp
   symbolic-friction certify --k-p 2.7:3.3 --k-i 3.6:4.4 --k-v 5.76:7.04 --f-c 1 --pieces 16   # a box of gains
   symbolic-friction certify --m 2 --k-p-bar 6 --k-i-bar 8 --k-d-bar 12.3 --alpha-v 0.5 --f-c-bar 2 --mode feasible
 """
@@ -52,24 +56,32 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.epilog = _EPILOG
     parser.formatter_class = argparse.RawDescriptionHelpFormatter
     parser.add_argument(
+        "--template",
+        choices=("auto", "paper", "quadratic"),
+        default="auto",
+        help="which proof: 'paper' (Lemmas 2 and 3, Table I's constants), 'quadratic' (a free P and U = y'Ky, "
+        "beyond the paper; an SDP), or 'auto' (default): both, keeping the proved certificate with the smallest κ",
+    )
+    parser.add_argument(
         "--mode",
         choices=("feasible", "tightest"),
         default=None,
-        help="search mode: 'tightest' minimises the overshoot bound κ, 'feasible' keeps a wider margin "
+        help="paper's template: 'tightest' minimises the overshoot bound κ, 'feasible' keeps a wider margin "
         "(default: both for Table I, tightest for given gains)",
     )
     parser.add_argument(
         "--search",
         choices=("closed-form", "sdp"),
-        default="closed-form",
-        help="how the constants are found: 'closed-form' (default) writes them down for any gains without a solver; "
-        "'sdp' solves the semidefinite program (cvxpy + Clarabel); the exact verifier decides either way",
+        default=None,
+        help="paper's template only: how its constants are found: 'closed-form' (default) writes them down for any "
+        "gains without a solver; 'sdp' solves the semidefinite program (cvxpy + Clarabel); the exact verifier decides",
     )
     parser.add_argument(
         "--margin",
         default=None,
         metavar="Q",
-        help="relative margin on the strict inequalities, e.g. 1/1000 (default 1/1000000 tightest, 1/100 feasible)",
+        help="paper's template: relative margin on the strict inequalities, e.g. 1/1000 "
+        "(default 1/1000000 tightest, 1/100 feasible)",
     )
     parser.add_argument("--pieces", type=int, default=None, metavar="N",
                         help="for a box (intervals LO:HI): cover it by N pieces, κ the largest over them (default 1)")
@@ -170,25 +182,28 @@ def _physical(args: argparse.Namespace) -> dict | None:
 
 
 def run(args: argparse.Namespace) -> int:
-    """Certify, verify, write; print one line per certificate written."""
+    """Certify (with the template asked for, or the tightest), verify, write; print one line per certificate written."""
     from pathlib import Path
 
-    from .._certify import MODES, certify, default_stem, write_certificate
-    from .._certify.pipeline import TABLE_I_LABELS, table_i_stem
+    from .._certify import MODES, default_stem
+    from .._certify.choose import certify_template, paper_only_options
+    from .._certify.pipeline import QUADRATIC_TABLE_I_FILES, TABLE_I_LABELS, table_i_stem
     from .._certify.search import check_margin
     from .._infra.io import check_stem, ensure_directory
     from .._model.parameters import Parameters
-    from .._infra.rational import format_rational
-    from .._infra.output import emit
 
     if _is_box(args):
         return _run_box(args)
     if args.pieces is not None or args.kappa_tol is not None:
         raise ParameterError("--pieces and --kappa-tol apply to a box: give at least one gain as an interval LO:HI")
+    paper_only = paper_only_options(mode=args.mode, margin=args.margin, search=args.search)
+    if args.template == "quadratic" and paper_only:
+        raise ParameterError(f"{paper_only[0]} applies to the paper's template only; the quadratic template has one "
+                             "search (its SDP) and minimises κ (drop it, or use --template paper)")
     params = _gains(args)
     physical = _physical(args) if params is not None else None
     out = Path(args.out)
-    jobs = []  # (params, mode, label, json path)
+    jobs = []  # (params, template, mode, label, json path)
     if params is None:
         if args.name is not None:
             raise ParameterError("--name applies to one gain set; Table I files are named case_<a|b>_<mode>")
@@ -196,33 +211,65 @@ def run(args: argparse.Namespace) -> int:
             raise ParameterError("--label applies to one gain set; Table I's certificates are labelled by their case")
         modes = MODES if args.mode is None else (args.mode,)
         for case, label in TABLE_I_LABELS.items():
-            for mode in modes:
-                jobs.append((Parameters.table_i(case), mode, label, out / f"{table_i_stem(case, mode)}.json"))
+            if args.template in ("auto", "paper"):
+                for mode in modes:
+                    jobs.append((Parameters.table_i(case), "paper", mode, label, out / f"{table_i_stem(case, mode)}.json"))
+        if args.template == "quadratic" or (args.template == "auto" and not paper_only):
+            # the quadratic template's Table I files, as committed under proofs/quadratic/
+            for name in QUADRATIC_TABLE_I_FILES:
+                case = Path(name).stem[-1]
+                jobs.append((Parameters.table_i(case), "quadratic", None, TABLE_I_LABELS[case], out / "quadratic" / name))
     else:
-        mode = args.mode or "tightest"
-        stem = check_stem(args.name) if args.name is not None else default_stem(params, mode)
         label = args.label or ""
         if len(label) > 1000 or not label.isprintable():
             raise ParameterError(f"--label must be at most 1000 printable characters; got {len(label)} characters")
-        jobs.append((params, mode, label, out / f"{stem}.json"))
-    for _, mode, _, _ in jobs:  # validate before writing anything
-        check_margin(args.margin, mode)
+        stem = check_stem(args.name) if args.name is not None else None
+        jobs.append((params, args.template, args.mode, label, stem))
+    for _, template, mode, _, _ in jobs:  # validate before writing anything
+        if template != "quadratic" and args.margin is not None:
+            check_margin(args.margin, mode or "tightest")
     ensure_directory(args.out)  # an unusable --out (or an empty one) fails now, not after the search
-    for params, mode, label, path in jobs:
-        cert = certify(params, mode=mode, margin=args.margin, label=label, physical=physical, search=args.search)
-        json_path, md_path = write_certificate(cert, path)
-        if args.json:
-            emit(json.dumps({
-                "file": str(json_path), "report": str(md_path), "mode": mode, "search": args.search, "label": label,
-                "parameters": {k: format_rational(v) for k, v in cert.parameters.items()},
-                "physical": None if cert.physical is None else {k: format_rational(v) for k, v in cert.physical.items()},
-                "overshoot_bound": cert.overshoot_bound, "proved": True,
-            }, ensure_ascii=False), level=0)
-        else:
-            # the normalised gains that were certified (physical values, when given, follow in parentheses)
-            emit(f"wrote {json_path} and {md_path.name} ({mode}) for {cert.gains_text()}: "
-                 f"|x(t)|_A <= {cert.overshoot_bound}·|x(0)|_A", level=0)
+    for params_j, template, mode, label, path in jobs:
+        choice = certify_template(params_j, template=template, mode=mode, margin=args.margin, search=args.search,
+                                  label=label, physical=physical)
+        if not isinstance(path, Path):  # one gain set: the file is named after the template chosen
+            kind = (mode or "tightest") if choice.template.name == "paper" else choice.template.name
+            path = out / f"{path or default_stem(params_j, kind)}.json"
+        if path.parent != out:
+            ensure_directory(path.parent)
+        written = choice.chosen.write(path)
+        _render(args, choice, written, mode)
     return 0
+
+
+def _render(args: argparse.Namespace, choice, written: tuple, mode: str | None) -> None:
+    """One line per certificate written (JSON with ``--json``); with ``auto``, the choice first."""
+    from .._infra.output import emit
+    from .._infra.rational import format_rational
+
+    cert, name = choice.certificate, choice.template.name
+    paper = name == "paper"
+    mode = (mode or "tightest") if paper else None
+    if args.json:
+        physical = getattr(cert, "physical", None)
+        emit(json.dumps({
+            "file": str(written[0]), "report": str(written[1]) if len(written) > 1 else None,
+            "template": name, "template_id": choice.template.id, "mode": mode,
+            "search": (args.search or "closed-form") if paper else "sdp",
+            "label": cert.provenance.label if cert.provenance is not None else "",
+            "parameters": {k: format_rational(v) for k, v in cert.parameters.items()},
+            "physical": None if physical is None else {k: format_rational(v) for k, v in physical.items()},
+            "overshoot_bound": cert.overshoot_bound, "proved": True,
+            "alternatives": [{"template": a.template.name, "overshoot_bound": None if a.certificate is None
+                              else a.certificate.overshoot_bound, "reason": a.reason or None} for a in choice.others],
+            "note": choice.note or None,
+        }, ensure_ascii=False), level=0)
+        return
+    if choice.requested == "auto" and (choice.others or choice.note):
+        emit(choice.describe(), level=0)
+    what = f"{written[0]} and {written[1].name} ({mode})" if paper else f"{written[0]} ({name} template)"
+    # the normalised gains that were certified (physical values, when given, follow in parentheses)
+    emit(f"wrote {what} for {cert.gains_text()}: |x(t)|_A <= {cert.overshoot_bound}·|x(0)|_A", level=0)
 
 
 def _run_box(args: argparse.Namespace) -> int:
@@ -234,7 +281,10 @@ def _run_box(args: argparse.Namespace) -> int:
     from .._infra.output import emit
     from .._infra.rational import to_rational
 
-    if args.search != "closed-form":
+    if args.template == "quadratic":
+        raise ParameterError("a box (intervals LO:HI) is certified with the paper's template only (the closed form at "
+                             "its corners); --template quadratic certifies one gain set")
+    if args.search not in (None, "closed-form"):
         raise ParameterError("a box is certified by the closed form only (--search closed-form)")
     if args.mode not in (None, "tightest"):
         raise ParameterError("a box certificate has one mode (tightest); --mode feasible applies to one gain set")

@@ -162,6 +162,7 @@ def _json_report(report, written: list[str]) -> dict:
     for check in report.checks:
         certificates.append({
             "label": check.label,
+            "template": check.claims.template_name,
             "file": check.source or None,
             "exact": {k: str(v) for k, v in check.claims.exact.items()},
             "proved": check.proved,

@@ -57,7 +57,9 @@ class BatchChecker:
         self.rtol = float(rtol)
         self.theta = float(theta)
         self.properties = properties(rtol=self.rtol, theta=self.theta)
-        self._tallies = [{p.id: Tally(p, cl.label, self.rtol) for p in self.properties} for cl in self.claims]
+        # a certificate is held to the properties that are its claims (another template than the paper's: κ only)
+        self._tallies = [{p.id: Tally(p, cl.label, self.rtol) for p in self.properties if p.applies_to(cl)}
+                         for cl in self.claims]
         self._offset = 0
         self._overshoot: list[np.ndarray] = []
         self._sources: list[np.ndarray] = []
@@ -91,6 +93,8 @@ class BatchChecker:
                 continue
             shared: Evaluation | None = None
             for ci, cl in enumerate(self.claims):
+                if prop.id not in self._tallies[ci]:
+                    continue
                 if prop.uses_certificate or shared is None:
                     shared = prop.check(batch, cl)
                 self._fold(self._tallies[ci][prop.id], shared)
@@ -204,7 +208,7 @@ class BatchChecker:
                 }
             if final.size:
                 tallies[_ATTRACTIVITY].details |= self._attractivity_details(final)
-            out.append([tallies[p.id].result() for p in self.properties])
+            out.append([tallies[p.id].result() for p in self.properties if p.id in tallies])
         return out
 
     def _attractivity_details(self, final: np.ndarray) -> dict[str, Any]:

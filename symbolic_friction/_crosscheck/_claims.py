@@ -8,6 +8,12 @@ vectorised checks need, built from any certificate-like object (the
 :func:`dataclasses.replace` that the exact verifier would reject: the
 cross-check deliberately does not verify a certificate before testing it,
 so that wrong certificates can be shown to fail on trajectories too).
+
+A certificate of the quadratic template (beyond the paper) claims no constant
+of Lemmas 2 and 3, only κ: its :class:`Claims` has ``template``
+``"quadratic/v1"`` and NaN for the paper's constants, and the cross-check puts
+to it only the properties that read κ or no constant at all
+(:meth:`~._property.Property.applies_to`).
 """
 
 from __future__ import annotations
@@ -22,9 +28,11 @@ import numpy as np
 from .._infra.errors import CertificateFormatError
 from .._model.parameters import Parameters
 
-__all__ = ["Claims"]
+__all__ = ["Claims", "PAPER_TEMPLATE"]
 
 _CONSTANTS = ("k1", "k2", "k3", "k4", "c1", "c2", "c1_hat", "c2_hat", "c")
+PAPER_TEMPLATE = "lyapunov-pair/v1"
+"""The template of the paper's certificate (the constants of Lemmas 2 and 3)."""
 
 
 @dataclass(frozen=True)
@@ -44,6 +52,9 @@ class Claims:
     exact : dict
         The exact constants (Fractions) and ``overshoot_bound`` string, kept
         for counterexample files.
+    template : str
+        The certificate's template id; only the paper's has the constants
+        above (another template's are NaN and no property reads them).
     """
 
     label: str
@@ -59,16 +70,39 @@ class Claims:
     c: float
     kappa: float
     exact: dict
+    template: str = PAPER_TEMPLATE
+
+    def __post_init__(self) -> None:
+        # the paper's constants may be anything here (the self-test feeds NaN on purpose); another template has none
+        constants = [getattr(self, name) for name in _CONSTANTS]
+        if not self.is_paper and not all(math.isnan(c) for c in constants):
+            raise CertificateFormatError(f"a {self.template} certificate has no constant of Lemmas 2 and 3 (NaN)")
+
+    @property
+    def is_paper(self) -> bool:
+        """Whether the certificate is of the paper's template (has the constants of Lemmas 2 and 3)."""
+        return self.template == PAPER_TEMPLATE
+
+    @property
+    def template_name(self) -> str:
+        """``"paper"`` or the other template's name (its id without the version)."""
+        return "paper" if self.is_paper else self.template.split("/", 1)[0]
 
     @classmethod
     def from_certificate(cls, certificate: Any, *, label: str | None = None) -> "Claims":
         """Read a certificate (or an altered copy of one) without verifying it.
+
+        A quadratic-template certificate is read by :meth:`from_quadratic`.
 
         Raises
         ------
         CertificateFormatError
             If an attribute is missing or not a finite positive number.
         """
+        from .._certify.quadratic import QuadraticCertificate
+
+        if isinstance(certificate, QuadraticCertificate):
+            return cls.from_quadratic(certificate, label=label)
         values: dict[str, float] = {}
         exact: dict[str, Any] = {}
         for name in ("k_p", "k_i", "k_v", "f_c", *_CONSTANTS):
@@ -104,6 +138,25 @@ class Claims:
             kappa=values["overshoot_bound"],
             exact={k: (str(v) if isinstance(v, Fraction) else v) for k, v in exact.items()},
         )
+
+    @classmethod
+    def from_quadratic(cls, certificate: Any, *, label: str | None = None) -> "Claims":
+        """Read a quadratic-template certificate (or an altered copy) without verifying it: its gains and κ."""
+        from .._certify.quadratic import TEMPLATE_ID
+
+        bound = certificate.overshoot_bound
+        try:
+            kappa = float(Fraction(bound))
+        except (TypeError, ValueError):
+            raise CertificateFormatError(f"overshoot_bound must be a number; got {bound!r}") from None
+        if label is None:
+            label = getattr(certificate.provenance, "label", "") or "<certificate>"
+            label = f"{label} [quadratic]"
+        exact = {**certificate.parameters, **certificate.constants, "overshoot_bound": bound}
+        nan = math.nan
+        return cls(label=label, params=Parameters(**certificate.parameters), **{name: nan for name in _CONSTANTS},
+                   kappa=kappa, exact={k: (str(v) if isinstance(v, Fraction) else v) for k, v in exact.items()},
+                   template=TEMPLATE_ID)
 
     @property
     def k(self) -> tuple[float, float, float, float]:

@@ -1,12 +1,16 @@
 """Which certificate files ``crosscheck`` checks when none is given, and which it leaves out and why.
 
 The cross-check's properties instantiate the paper's template (the constants of
-Lemmas 2 and 3); a file of another template is named with the reason it is left out.
+Lemmas 2 and 3) and, for the quadratic template, its bound κ (eq. stabState);
+a file of another template is named with the reason it is left out.
 """
 
 from __future__ import annotations
 
-__all__ = ["SKIPPED", "default_certificate_files", "default_certificate_selection"]
+__all__ = ["SKIPPED", "CHECKED", "default_certificate_files", "default_certificate_selection"]
+
+CHECKED = ("lyapunov-pair/v1", "quadratic/v1")
+"""The templates whose certificates ``crosscheck`` tests on trajectories (the paper's, and the quadratic one's κ)."""
 
 
 SKIPPED = {
@@ -22,9 +26,9 @@ def default_certificate_files() -> list[str]:
     """The certificates ``crosscheck`` checks when none is given.
 
     The project's configured certificates (``[tool.symbolic-friction]``, as for
-    ``check``), else ``proofs/*.json``; only the paper's template is checked on
-    trajectories: hunting certificates (a cycle of the stiction model) and the
-    quadratic template's files are left out.
+    ``check``), else every ``*.json`` under ``proofs/``; the paper's template and
+    the quadratic template (:data:`CHECKED`) are checked on trajectories, hunting
+    and box certificates are left out.
 
     Raises
     ------
@@ -44,18 +48,17 @@ def default_certificate_selection() -> tuple[list[str], list[tuple[str, str]]]:
     """
     from pathlib import Path
 
-    from .._certify.certificate import TEMPLATE_ID
     from .._certify.templates import read_certificate_file
     from .._infra.config import find_config
     from .._infra.errors import CertificateFormatError, InputFileError
 
     def other_template(name: str) -> str | None:
-        """The template id of a file that is not the paper's template, else None."""
+        """The template id of a file the cross-check does not test, else None."""
         try:
             template = read_certificate_file(name)[0].id
         except (CertificateFormatError, InputFileError):
             return None  # the certificate loader says what is wrong with it
-        return None if template == TEMPLATE_ID else template
+        return None if template in CHECKED else template
 
     config = find_config()
     if config is not None and config.certificates:
@@ -69,13 +72,13 @@ def default_certificate_selection() -> tuple[list[str], list[tuple[str, str]]]:
                 pass
             files.append(str(path))
     else:
-        files = sorted(str(p) for p in Path("proofs").glob("*.json"))
+        files = sorted(str(p) for p in Path("proofs").rglob("*.json"))
     skipped = []
     for f in files:
         template = other_template(f)
         if template is not None:
-            skipped.append((f, SKIPPED.get(template, f"a {template} certificate: the cross-check's properties "
-                                                      "instantiate the paper's template only (verify checks it)")))
+            skipped.append((f, SKIPPED.get(template, f"a {template} certificate: the cross-check tests the "
+                                                      "paper's and the quadratic template only (verify checks it)")))
     files = [f for f in files if f not in {name for name, _ in skipped}]
     if not files:
         raise FileNotFoundError("no certificate given and no proofs/*.json in the current directory"

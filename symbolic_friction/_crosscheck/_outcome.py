@@ -186,10 +186,10 @@ class CrosscheckReport:
         failed = [c.label for c in self.checks if c.verdict == "failed"]
         verdict = "FAILED" if failed else ("INCOMPLETE" if self.incomplete else "PASSED")
         checked = sum(r.samples for c in self.checks for r in c.results)
+        kinds = len({r.id for c in self.checks for r in c.results})  # a quadratic certificate has fewer claims
         text = (
             f"crosscheck: {verdict} — {len(self.checks)} certificate(s), {self.trajectories} trajectories "
-            f"({self.incomplete} incomplete), {checked} instances of {len(self.checks[0].results) if self.checks else 0} "
-            f"properties checked"
+            f"({self.incomplete} incomplete), {checked} instances of {kinds} properties checked"
         )
         if failed:
             text += f"; violated by {', '.join(failed)}"

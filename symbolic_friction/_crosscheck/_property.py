@@ -105,12 +105,21 @@ class Property(abc.ABC):
         ``False`` for properties of the solutions alone (the mode table, the
         Remark after Lemma 2, ``V`` nonincreasing, attractivity): evaluated
         once per batch and shared by the certificates of the gain set.
+    paper_constants : bool
+        Whether the property reads the constants of Lemmas 2 and 3 (or the
+        paper's ``V``, ``V̂``), so applies to certificates of the paper's
+        template only; ``False`` for one that reads only κ (any template).
     """
 
     id: ClassVar[str]
     paper: ClassVar[str]
     statement: ClassVar[str]
     uses_certificate: ClassVar[bool] = True
+    paper_constants: ClassVar[bool] = True
+
+    def applies_to(self, certificate: Any) -> bool:
+        """Whether this property is a claim of ``certificate`` (:class:`~._claims.Claims`) at all."""
+        return not self.uses_certificate or not self.paper_constants or certificate.is_paper
 
     @property
     def inequality(self) -> str:

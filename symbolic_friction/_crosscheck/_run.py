@@ -38,8 +38,8 @@ def _as_claims(items: Iterable[Any], *, require_proved: bool) -> list[tuple[Clai
         rejects (the message names the file and the failing inequalities), or
         for :class:`Claims` (floats: nothing left to verify).
     """
-    from .._certify.certificate import Certificate, load
-    from .._certify.verify import verify_certificate
+    from .._certify.certificate import Certificate
+    from .._certify.quadratic import QuadraticCertificate
 
     out = []
     for item in items:
@@ -53,14 +53,16 @@ def _as_claims(items: Iterable[Any], *, require_proved: bool) -> list[tuple[Clai
             continue
         if isinstance(item, (str, os.PathLike)):
             path = Path(item)
-            cert, source, label = load(item), str(path), path.stem  # the text as given: 'x.json/' is refused
+            cert, source, label = _read(item), str(path), path.stem  # the text as given: 'x.json/' is refused
+            if path.parent.name == "quadratic":
+                label = f"quadratic/{label}"  # beside the paper's case_a_tightest etc.
         else:
             cert, source, label = item, "", None
         proved = None
         if require_proved:
-            if not isinstance(cert, Certificate):
+            if not isinstance(cert, (Certificate, QuadraticCertificate)):
                 raise UnprovedCertificateError(f"{type(cert).__name__} is not a certificate; it cannot be verified exactly")
-            report = verify_certificate(cert, source=source or "<certificate>")
+            report = _verify(cert, source or "<certificate>")
             if not report.proved:
                 raise UnprovedCertificateError(
                     f"{source or 'certificate'} does not verify, refusing to cross-check it: "
@@ -69,6 +71,36 @@ def _as_claims(items: Iterable[Any], *, require_proved: bool) -> list[tuple[Clai
             proved = True
         out.append((Claims.from_certificate(cert, label=label), source, proved))
     return out
+
+
+def _read(path: Any) -> Any:
+    """A certificate file of a template whose bound the trajectories can test (the paper's or the quadratic one).
+
+    Raises
+    ------
+    CertificateFormatError
+        For a file of another template (a box, a hunting cycle), naming why it is not cross-checked.
+    """
+    from .._certify.quadratic import QUADRATIC
+    from .._certify.templates import builtin_templates, read_certificate_file
+    from .._infra.errors import CertificateFormatError
+    from ._files import SKIPPED
+
+    template, certificate = read_certificate_file(path)
+    if template not in (builtin_templates()[0], QUADRATIC):
+        raise CertificateFormatError(f"{path}: " + SKIPPED.get(template.id, f"a {template.id} certificate is not "
+                                                                          "cross-checked on trajectories"))
+    return certificate
+
+
+def _verify(certificate: Any, source: str) -> Any:
+    """The exact decision of the certificate's own template."""
+    from .._certify.quadratic import QuadraticCertificate, verify_quadratic
+    from .._certify.verify import verify_certificate
+
+    if isinstance(certificate, QuadraticCertificate):
+        return verify_quadratic(certificate, source=source)
+    return verify_certificate(certificate, source=source)
 
 
 def crosscheck(
@@ -312,6 +344,8 @@ class GroupRun:
                 room = budget - self.count
                 if room <= 0:
                     break
+                if not cl.is_paper:  # V̂ is the paper's template's
+                    continue
                 X = rate_maximisers(self.params, cl, seed=self.seed + 7 * j, count=min(16, room))
                 self.evaluate(X[:room], f"adversarial max V̂'/V̂ on R̂ [{cl.label}]", t=t_short, attractivity=False)
             room = budget - self.count

@@ -19,6 +19,8 @@ cases (a) and (b):
   ``c1_hat`` ĉ₁ = 4ĉ₁                                    ``lemma3.hatV_lower``
   ``c2_hat`` ĉ₂ = ĉ₂/4                                   ``lemma3.hatV_upper``
   ``NaN c``  c = NaN (a NaN slack is a failure)          ``lemma2.decrease``
+  ``quadratic kappa`` the ``kappa`` variant as a quadratic-  ``prop1.stability``
+             template certificate (κ its only claim)
   ``k4``     k₄ = k_p k₂/2 (breaks a derived condition)  ``lemma3.hatV_nonincreasing``
   ``stalled`` trajectories frozen at their start         ``prop1.attractivity``
   ``mode``   one slip sample labelled with the other k   ``model.modes``
@@ -59,6 +61,7 @@ EXPECTED: dict[str, str] = {
     "c1_hat": "lemma3.hatV_lower",
     "c2_hat": "lemma3.hatV_upper",
     "NaN c": "lemma2.decrease",
+    "quadratic kappa": "prop1.stability",
     "k4": "lemma3.hatV_nonincreasing",
     "stalled": "prop1.attractivity",
     "mode": "model.modes",
@@ -174,6 +177,7 @@ def crosscheck_self_test(certificates: dict[str, Any], *, trajectories: int = 10
         claims = {name: Claims.from_certificate(c, label=name) for name, c in wrong.items()}
         k4 = claims.pop("k4")
         claims["NaN c"] = dataclasses.replace(claims["c"], label="NaN c", c=float("nan"))
+        claims["quadratic kappa"] = _another_template(claims["kappa"], "quadratic kappa")
         bad = crosscheck(list(claims.values()), require_proved=False, **options)
         total += bad.checks[0].trajectories
         results = [(wc.label, wc.results) for wc in bad.checks]
@@ -186,6 +190,19 @@ def crosscheck_self_test(certificates: dict[str, Any], *, trajectories: int = 10
             caught = tuple(r.id for r in res if not r.passed and r.counterexample is not None)
             rows.append(SelfTestRow(case, label, EXPECTED[label], caught, EXPECTED[label] in caught))
     return SelfTest(rows=tuple(rows), trajectories=total, seconds=time.perf_counter() - start)
+
+
+def _another_template(claims: Any, label: str) -> Any:
+    """``claims`` as a quadratic-template certificate: the same gains and κ, no constant of Lemmas 2 and 3.
+
+    Such a certificate is held to its bound κ alone; a cross-check that let
+    it pass without ``prop1.stability`` would check it against nothing.
+    """
+    from ._claims import _CONSTANTS
+
+    exact = {k: v for k, v in claims.exact.items() if k in ("k_p", "k_i", "k_v", "f_c", "overshoot_bound")}
+    return dataclasses.replace(claims, label=label, template="quadratic/v1", exact=exact,
+                               **{name: float("nan") for name in _CONSTANTS})
 
 
 def _wrong_solutions(claims: Any, *, seed: int) -> list[tuple[str, list[Any]]]:

@@ -26,6 +26,7 @@ class Stability(Property):
     id = "prop1.stability"
     paper = "Proposition 1, item 2 (eq. stabState)"
     statement = "|x(t)|_A <= kappa |x(0)|_A"
+    paper_constants = False  # κ only: every template's bound, trajectory by trajectory
 
     def check(self, trajectories: Any, certificate: Any) -> Evaluation:
         a = along(trajectories)

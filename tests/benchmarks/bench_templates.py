@@ -9,13 +9,18 @@ compilation) and the median warm time of ``certify`` (search, rounding and
 exact verification) and of the exact verification alone, with the proven κ:
 
 * ``paper`` (the constants of Lemmas 2 and 3), searched by the closed form and by the SDP;
-* ``quadratic`` (beyond the paper: free ``P`` with ``P₁₂ = 0``, ``U = yᵀKy``), searched by an SDP.
+* ``quadratic`` (beyond the paper: free ``P`` with ``P₁₂ = 0``, ``U = yᵀKy``), searched by an SDP;
+* ``auto`` (what ``certify`` does by default): both templates (the paper's by the closed form), the smallest
+  proved κ kept; its verify column is the chosen template's verifier.
+
+The machine's load average is printed before and after (the timings are wall-clock).
 """
 
 from __future__ import annotations
 
 import argparse
 import inspect
+import os
 import statistics
 import time
 
@@ -42,6 +47,10 @@ def main() -> None:
     from symbolic_friction._certify.quadratic import verify_quadratic
     from symbolic_friction._certify.quadratic_search import certify_quadratic
     from symbolic_friction._certify.verify import verify_certificate
+    from symbolic_friction._certify.choose import certify_template
+
+    print("load average (1, 5, 15 min) before: " + ", ".join(f"{x:.2f}" for x in os.getloadavg())
+          + f"; {os.cpu_count()} cores; {args.repeats} warm repeats")
 
     searches = ["closed-form", "sdp"] if "search" in inspect.signature(certify).parameters else ["sdp"]
     print(f"{'case':5s} {'template':10s} {'search':12s} {'certify cold':>13s} {'certify warm':>13s} {'verify warm':>12s}  kappa")
@@ -55,6 +64,11 @@ def main() -> None:
         cert, cold, warm = _time(lambda: certify_quadratic(params), args.repeats)
         _, _, verify = _time(lambda: verify_quadratic(cert), args.repeats)
         print(f"({case})   {'quadratic':10s} {'sdp':12s} {cold * 1e3:10.1f} ms {warm * 1e3:10.2f} ms {verify * 1e3:9.2f} ms  {cert.overshoot_bound}")
+        choice, cold, warm = _time(lambda: certify_template(params), args.repeats)
+        _, _, verify = _time(lambda: choice.template.verify(choice.certificate, "<bench>"), args.repeats)
+        print(f"({case})   {'auto':10s} {'→ ' + choice.template.name:12s} {cold * 1e3:10.1f} ms {warm * 1e3:10.2f} ms "
+              f"{verify * 1e3:9.2f} ms  {choice.certificate.overshoot_bound}")
+    print("load average (1, 5, 15 min) after: " + ", ".join(f"{x:.2f}" for x in os.getloadavg()))
 
 
 if __name__ == "__main__":

@@ -17,11 +17,14 @@ from symbolic_friction._cli.main import main
 REPO = Path(__file__).resolve().parents[2]
 
 
-def test_no_arguments_regenerates_table_i_in_both_modes(tmp_path, capsys):
+def test_no_arguments_regenerates_table_i_in_both_modes_and_every_template(tmp_path, capsys):
     assert main(["certify", "--out", str(tmp_path)]) == 0
     out = capsys.readouterr().out.splitlines()
-    assert len(out) == 4 and all(line.startswith("wrote ") for line in out)
+    assert len(out) == 6 and all(line.startswith("wrote ") for line in out)
     assert "case_a_tightest.json and case_a_tightest.md (tightest) for k_p=3, k_i=4, k_v=32/5, f_c=1: |x(t)|_A <= 3.46703" in out[1]
+    assert "quadratic/case_a.json (quadratic template) for k_p=3, k_i=4, k_v=32/5, f_c=1: |x(t)|_A <= 1.80834" in out[4]
+    for name in ("case_a.json", "case_b.json"):  # what `check` verifies under proofs/quadratic/
+        assert (tmp_path / "quadratic" / name).read_bytes() == (REPO / "proofs" / "quadratic" / name).read_bytes()
     for name in TABLE_I_FILES:
         assert verify_file(tmp_path / name).proved
         # identical to the committed proofs/ (the CLI is what generated them)
@@ -32,11 +35,14 @@ def test_no_arguments_regenerates_table_i_in_both_modes(tmp_path, capsys):
 
 def test_mode_restricts_the_table_i_regeneration(tmp_path, capsys):
     assert main(["certify", "--out", str(tmp_path), "--mode", "feasible"]) == 0
-    assert sorted(p.name for p in tmp_path.glob("*.json")) == ["case_a_feasible.json", "case_b_feasible.json"]
+    # --mode is the paper's template's: the quadratic files are not written
+    assert sorted(p.relative_to(tmp_path).as_posix() for p in tmp_path.rglob("*.json")) == [
+        "case_a_feasible.json", "case_b_feasible.json"]
 
 
 def test_one_gain_set_from_exact_strings(tmp_path, capsys):
-    argv = ["certify", "--k-p", "3", "--k-i", "4", "--k-v", "32/5", "--f-c", "0.5", "--out", str(tmp_path)]
+    argv = ["certify", "--k-p", "3", "--k-i", "4", "--k-v", "32/5", "--f-c", "0.5", "--template", "paper",
+            "--out", str(tmp_path)]
     assert main(argv) == 0
     stem = default_stem(Parameters(k_p=3, k_i=4, k_v="6.4", f_c="0.5"), "tightest")
     cert = load(tmp_path / f"{stem}.json")
@@ -62,7 +68,8 @@ def test_one_gain_set_from_physical_parameters_with_name_margin_and_mode(tmp_pat
 
 
 def test_physical_parameters_without_alpha_v(tmp_path, capsys):
-    argv = ["certify", "--m", "1", "--k-p-bar", "3", "--k-i-bar", "4", "--k-d-bar", "6.4", "--f-c-bar", "1"]
+    argv = ["certify", "--m", "1", "--k-p-bar", "3", "--k-i-bar", "4", "--k-d-bar", "6.4", "--f-c-bar", "1",
+            "--template", "paper"]
     assert main(argv + ["--name", "a", "--out", str(tmp_path)]) == 0
     assert load(tmp_path / "a.json").k_v == Parameters.table_i("a").k_v
 

@@ -46,9 +46,15 @@ def test_default_is_every_committed_certificate(monkeypatch, capsys):
     monkeypatch.chdir(REPO)
     assert main(["crosscheck", "--trajectories", "30", "--no-adversarial", "--samples", "51"]) == 0
     out = capsys.readouterr().out
-    assert "crosscheck: PASSED — 4 certificate(s)" in out.strip().splitlines()[-1]
-    for stem in ("case_a_feasible", "case_a_tightest", "case_b_feasible", "case_b_tightest"):
+    assert "crosscheck: PASSED — 6 certificate(s)" in out.strip().splitlines()[-1]
+    for stem in ("case_a_feasible", "case_a_tightest", "case_b_feasible", "case_b_tightest", "quadratic/case_a",
+                 "quadratic/case_b"):
         assert stem in out
+    # the tightness of each committed certificate, per template
+    table = out[out.index("tightness per certificate"):].splitlines()
+    assert [row.split()[:2] for row in table[2:8]] == [  # by gain set: the certificates sharing trajectories
+        ["case_a_feasible", "paper"], ["case_a_tightest", "paper"], ["quadratic/case_a", "quadratic"],
+        ["case_b_feasible", "paper"], ["case_b_tightest", "paper"], ["quadratic/case_b", "quadratic"]]
 
 
 def test_unproved_certificate_is_refused_with_the_inequality_named(tmp_path, capsys):
@@ -99,15 +105,15 @@ def test_skipped_files_are_named_with_the_reason(monkeypatch, tmp_path, capsys):
     (tmp_path / "proofs").mkdir()
     shutil.copy(PROOFS / "case_a_feasible.json", tmp_path / "proofs")
     shutil.copy(PROOFS / "hunting" / "case_a_fs1.2.json", tmp_path / "proofs" / "hunt.json")
-    shutil.copy(PROOFS / "quadratic" / "case_a.json", tmp_path / "proofs" / "quad.json")
+    shutil.copy(PROOFS / "box_physical.json", tmp_path / "proofs" / "box.json")
     monkeypatch.chdir(tmp_path)
     assert main(["crosscheck", "--trajectories", "4", "--no-adversarial", "--samples", "11"]) == 0
     out = capsys.readouterr().out
     assert "skipped proofs/hunt.json: a hunting certificate: it proves a cycle of the stiction model" in out
-    assert "skipped proofs/quad.json: a quadratic/v1 certificate: the cross-check's properties" in out
+    assert "skipped proofs/box.json: a box certificate: it proves a box of gain sets at its corners" in out
     assert main(["crosscheck", "--trajectories", "4", "--no-adversarial", "--samples", "11", "--json"]) == 0
     skipped = json.loads(capsys.readouterr().out)["skipped"]
-    assert [s["file"] for s in skipped] == ["proofs/hunt.json", "proofs/quad.json"] and "stiction" in skipped[0]["reason"]
+    assert [s["file"] for s in skipped] == ["proofs/box.json", "proofs/hunt.json"] and "stiction" in skipped[1]["reason"]
     (tmp_path / "proofs" / "case_a_feasible.json").unlink()
     assert main(["crosscheck"]) == 2
     assert "(skipped 2 of another template)" in capsys.readouterr().err

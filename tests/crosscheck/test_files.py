@@ -1,4 +1,4 @@
-"""The files ``crosscheck`` checks by default: the paper's template only, every other one named with its reason."""
+"""The files ``crosscheck`` checks by default: the paper's and the quadratic template, every other one named with its reason."""
 
 from __future__ import annotations
 
@@ -19,18 +19,24 @@ def test_other_templates_are_named_with_their_reason(tmp_path, monkeypatch):
         shutil.copy(PROOFS / name, proofs / Path(name).name.replace("case_a.json", "quadratic_a.json").replace("case_a_fs1.2", "hunting_a"))
     monkeypatch.chdir(tmp_path)
     files, skipped = default_certificate_selection()
-    assert files == ["proofs/case_a_tightest.json"]
+    assert files == ["proofs/case_a_tightest.json", "proofs/quadratic_a.json"]
     reasons = dict(skipped)
-    assert set(reasons) == {"proofs/box_physical.json", "proofs/hunting_a.json", "proofs/quadratic_a.json"}
+    assert set(reasons) == {"proofs/box_physical.json", "proofs/hunting_a.json"}
     assert reasons["proofs/hunting_a.json"] == SKIPPED["hunting-cycle/v1"]
     assert reasons["proofs/box_physical.json"] == SKIPPED["lyapunov-box/v1"]
-    assert "quadratic/v1" in reasons["proofs/quadratic_a.json"]
     assert default_certificate_files() == files
+
+
+def test_files_under_proofs_are_found_in_subdirectories(tmp_path, monkeypatch):
+    (tmp_path / "proofs" / "quadratic").mkdir(parents=True)
+    shutil.copy(PROOFS / "quadratic" / "case_b.json", tmp_path / "proofs" / "quadratic" / "case_b.json")
+    monkeypatch.chdir(tmp_path)
+    assert default_certificate_selection() == (["proofs/quadratic/case_b.json"], [])
 
 
 def test_nothing_left_is_an_error(tmp_path, monkeypatch):
     (tmp_path / "proofs").mkdir()
-    shutil.copy(PROOFS / "quadratic" / "case_b.json", tmp_path / "proofs" / "q.json")
+    shutil.copy(PROOFS / "box_physical.json", tmp_path / "proofs" / "b.json")
     monkeypatch.chdir(tmp_path)
     with pytest.raises(FileNotFoundError, match="skipped 1 of another template"):
         default_certificate_selection()

@@ -69,7 +69,7 @@ def test_check_section_reports_a_broken_cross_check(monkeypatch, capsys):
     args = argparse.Namespace(proofs=str(PROOFS), write=False, json=False, no_certificates=False)
     section = check.crosscheck_section(args)
     assert not section.ok
-    assert "2 of 20 wrong certificates caught" in section.summary and "4 of 4 refusals hold" in section.summary
+    assert "2 of 22 wrong certificates caught" in section.summary and "4 of 4 refusals hold" in section.summary
     assert "24 of 24 kernel runs match the reference" in section.summary
     assert any(note.startswith("FAILED cross-check self-test (a) kappa: expected prop1.stability") for note in section.notes)
 

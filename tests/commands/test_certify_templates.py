@@ -1,0 +1,204 @@
+"""``symbolic-friction certify --template paper|quadratic|auto`` and the choice behind it (``_certify/choose.py``)."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from symbolic_friction import Parameters
+from symbolic_friction._certify import choose
+from symbolic_friction._certify.choose import certify_template, searchable_templates
+from symbolic_friction._certify.templates import read_certificate_file, verify_template_file
+from symbolic_friction._cli.main import main
+from symbolic_friction._infra.errors import CertificateError, CertificateFormatError, ParameterError
+
+CASE_A = ["--k-p", "3", "--k-i", "4", "--k-v", "6.4", "--f-c", "1"]
+STIFF = ["--k-p", "1", "--k-i", "1", "--k-v", "1e6", "--f-c", "1"]
+
+
+def _one(tmp_path: Path) -> Path:
+    (path,) = tmp_path.glob("*.json")
+    return path
+
+
+def test_templates_know_their_names():
+    templates = searchable_templates()
+    assert list(templates) == ["paper", "quadratic"]
+    assert templates["paper"].id == "lyapunov-pair/v1" and templates["quadratic"].id == "quadratic/v1"
+    assert all(t.name == name for name, t in templates.items())
+
+
+def test_every_searchable_template_instantiates_only_obligations_check_proves():
+    """``auto`` chooses among templates ``check`` fully covers: each obligation a file names is one ``check`` runs."""
+    from symbolic_friction._certify.certificate import OBLIGATIONS as PAPER
+    from symbolic_friction._certify.quadratic import OBLIGATIONS as QUADRATIC
+    from symbolic_friction._obligations import registry
+
+    ids = {cls.id for cls in registry()}
+    assert set(PAPER) <= ids and set(QUADRATIC) <= ids, (set(PAPER) | set(QUADRATIC)) - ids
+    assert set(searchable_templates()) == {"paper", "quadratic"}  # a new template must be added to this test
+
+
+def test_auto_keeps_the_quadratic_certificate_for_table_i_and_names_the_paper_kappa(tmp_path, capsys):
+    assert main(["certify", *CASE_A, "--out", str(tmp_path)]) == 0
+    first, wrote = capsys.readouterr().out.splitlines()
+    assert first == "template quadratic (auto: the smallest proved κ): κ 1.80834; paper: κ 3.46703"
+    assert wrote.startswith("wrote ") and "(quadratic template)" in wrote and "<= 1.80834·|x(0)|_A" in wrote
+    path = _one(tmp_path)
+    assert path.name.endswith("_quadratic.json")
+    assert json.loads(path.read_text())["template"] == "quadratic/v1"
+    # verify dispatches on the template the file names
+    template, report = verify_template_file(path)
+    assert template.name == "quadratic" and report.proved
+    assert main(["verify", str(path)]) == 0
+    assert "all 22 premises of the quadratic template hold" in capsys.readouterr().out
+
+
+def test_auto_falls_back_to_the_paper_when_the_quadratic_sdp_is_infeasible(tmp_path, capsys):
+    assert main(["certify", *STIFF, "--out", str(tmp_path)]) == 0
+    first, _ = capsys.readouterr().out.splitlines()
+    assert first == ("template paper (auto: the smallest proved κ): κ 1414.22; quadratic: no certificate "
+                     "(its SDP is infeasible at every margin tried (4))")
+    assert read_certificate_file(_one(tmp_path))[0].name == "paper"
+    assert main(["certify", *STIFF, "--name", "j", "--json", "--out", str(tmp_path)]) == 0
+    payload = json.loads(capsys.readouterr().out)
+    assert payload["template"] == "paper" and payload["overshoot_bound"] == "1414.22"
+    assert payload["alternatives"] == [{"template": "quadratic", "overshoot_bound": None,
+                                        "reason": "its SDP is infeasible at every margin tried (4)"}]
+
+
+def test_template_quadratic_writes_a_quadratic_file_and_json(tmp_path, capsys):
+    argv = ["certify", *CASE_A, "--template", "quadratic", "--name", "q", "--label", "case a", "--json",
+            "--out", str(tmp_path)]
+    assert main(argv) == 0
+    payload = json.loads(capsys.readouterr().out)
+    assert payload["template"] == "quadratic" and payload["template_id"] == "quadratic/v1"
+    assert payload["overshoot_bound"] == "1.80834" and payload["report"] is None and payload["alternatives"] == []
+    template, cert = read_certificate_file(tmp_path / "q.json")
+    assert template.name == "quadratic" and cert.provenance.label == "case a"
+
+
+def test_template_paper_is_todays_certificate_by_either_search(tmp_path, capsys):
+    assert main(["certify", *CASE_A, "--template", "paper", "--name", "p", "--out", str(tmp_path)]) == 0
+    assert capsys.readouterr().out.startswith("wrote ")  # no choice line: one template asked for
+    _, cert = read_certificate_file(tmp_path / "p.json")
+    assert cert.overshoot_bound == "3.46703" and cert.provenance.search == "closed-form"
+    assert main(["certify", *CASE_A, "--template", "paper", "--search", "sdp", "--name", "s", "--out", str(tmp_path),
+                 "--json"]) == 0
+    payload = json.loads(capsys.readouterr().out)
+    assert payload["template"] == "paper" and payload["search"] == "sdp" and payload["mode"] == "tightest"
+
+
+def test_auto_with_an_option_of_the_paper_only_certifies_with_the_paper_and_says_so(tmp_path, capsys):
+    assert main(["certify", *CASE_A, "--mode", "feasible", "--out", str(tmp_path)]) == 0
+    first = capsys.readouterr().out.splitlines()[0]
+    assert first == ("template paper (auto: the smallest proved κ; --mode feasible applies to the paper's template "
+                     "only): κ 3.51842")
+
+
+@pytest.mark.parametrize("extra, says", [
+    (["--search", "sdp"], "--search sdp applies to the paper's template only"),
+    (["--search", "closed-form"], "--search closed-form applies to the paper's template only"),
+    (["--mode", "feasible"], "--mode feasible applies to the paper's template only"),
+    (["--margin", "1/1000"], "--margin applies to the paper's template only"),
+])
+def test_options_of_the_paper_only_are_refused_with_the_quadratic_template(tmp_path, capsys, extra, says):
+    assert main(["certify", *CASE_A, "--template", "quadratic", *extra, "--out", str(tmp_path)]) == 2
+    err = capsys.readouterr().err
+    assert says in err and len(err.strip().splitlines()) == 1
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_box_is_refused_with_the_quadratic_template(tmp_path, capsys):
+    argv = ["certify", "--k-p", "2.7:3.3", "--k-i", "4", "--k-v", "6.4", "--f-c", "1", "--template", "quadratic",
+            "--out", str(tmp_path)]
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert "a box (intervals LO:HI) is certified with the paper's template only" in err
+    assert len(err.strip().splitlines()) == 1
+
+
+def test_table_i_with_the_quadratic_template_writes_proofs_quadratic(tmp_path, capsys):
+    assert main(["certify", "--template", "quadratic", "--out", str(tmp_path)]) == 0
+    assert sorted(p.relative_to(tmp_path).as_posix() for p in tmp_path.rglob("*.json")) == [
+        "quadratic/case_a.json", "quadratic/case_b.json"]
+
+
+# --- the library function: the choice trusts only the templates' exact verifiers -------------------------------
+
+def test_the_choice_is_the_smallest_proved_kappa():
+    choice = certify_template(Parameters.table_i("b"))
+    assert choice.template.name == "quadratic" and choice.certificate.overshoot_bound == "3.27300"
+    assert [a.describe() for a in choice.others] == ["paper: κ 7.88526"]
+
+
+def test_a_quadratic_certificate_its_verifier_refuses_is_never_chosen(monkeypatch):
+    """Break the quadratic template's verifier: ``auto`` must keep the paper's certificate."""
+    import dataclasses
+
+    quadratic = searchable_templates()["quadratic"]
+    refusing = dataclasses.replace(quadratic, verify=lambda cert, source: _Refused(cert),
+                                   failure=lambda report: "forged refusal")
+    monkeypatch.setattr(choose, "searchable_templates",
+                        lambda: {"paper": searchable_templates()["paper"], "quadratic": refusing})
+    choice = certify_template(Parameters.table_i("a"))
+    assert choice.template.name == "paper" and choice.certificate.overshoot_bound == "3.46703"
+    assert "does not verify: forged refusal" in choice.others[0].reason
+
+
+class _Refused:
+    proved = False
+
+    def __init__(self, certificate):
+        self.certificate = certificate
+        self.failures = ()
+
+
+def test_a_failing_search_is_a_reason_and_no_template_at_all_is_an_error(monkeypatch):
+    from symbolic_friction._certify import pipeline, quadratic_search
+
+    def no_sdp(params, **_):
+        raise CertificateError("no quadratic certificate for X verifies exactly: margin 1e-07: solver status inaccurate")
+
+    monkeypatch.setattr(quadratic_search, "certify_quadratic", no_sdp)
+    choice = certify_template(Parameters.table_i("a"))
+    assert choice.template.name == "paper"
+    assert choice.others[0].reason == "its SDP is inaccurate at every margin tried (1)"
+
+    def no_paper(params, **_):
+        raise CertificateError("the rounded candidate does not verify exactly")
+
+    monkeypatch.setattr(pipeline, "certify", no_paper)
+    with pytest.raises(CertificateError, match="no template gives a proved certificate: paper: no certificate"):
+        certify_template(Parameters.table_i("a"))
+
+
+def test_gains_only_the_paper_can_take_fall_back_to_it_and_bad_gains_keep_their_message(monkeypatch):
+    """f_c = 10⁹⁹⁹ is exact input the closed form takes and the SDP (floats) cannot: the paper's, with the reason."""
+    choice = certify_template(Parameters(k_p=3, k_i=4, k_v="6.4", f_c="1e999"))
+    assert choice.template.name == "paper" and choice.certificate.overshoot_bound == "3.46703"
+    assert "outside the range of floating point" in choice.others[0].reason
+    with pytest.raises(ParameterError, match="a stability certificate is for the paper's model f_s = f_c"):
+        certify_template(Parameters(k_p=3, k_i=4, k_v="6.4", f_c=1, f_s=2))
+
+
+def test_bad_template_and_options_raise_parameter_errors():
+    with pytest.raises(ParameterError, match="template must be one of auto, paper, quadratic; got 'sup-flow'"):
+        certify_template(Parameters.table_i("a"), template="sup-flow")
+    with pytest.raises(ParameterError, match="--margin applies to the paper's template only"):
+        certify_template(Parameters.table_i("a"), template="quadratic", margin="1/1000")
+
+
+def test_verify_dispatches_on_the_template_a_file_names(tmp_path):
+    """The same numbers under another template's name are read by that template's reader, and refused."""
+    data = json.loads((Path(__file__).resolve().parents[2] / "proofs" / "quadratic" / "case_a.json").read_text())
+    data["template"] = "lyapunov-pair/v1"
+    (tmp_path / "x.json").write_text(json.dumps(data))
+    with pytest.raises(CertificateFormatError):
+        verify_template_file(tmp_path / "x.json")
+    data["template"] = "sup-flow/v1"
+    (tmp_path / "y.json").write_text(json.dumps(data))
+    with pytest.raises(CertificateFormatError, match="unknown certificate template 'sup-flow/v1'"):
+        verify_template_file(tmp_path / "y.json")
