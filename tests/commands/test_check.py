@@ -63,7 +63,7 @@ def test_json_schema(full_run):
     assert payload["configuration"]["source"].endswith("pyproject.toml") and payload["configuration"]["report"] is True
     assert len(payload["configuration"]["certificates"]) == 13 and payload["configuration"]["only"] is None
     assert payload["passed"] is True
-    assert payload["counts"]["selftest_ok"] == payload["counts"]["selftest_rows"] == 50  # 24 kernel runs + 2 × 13
+    assert payload["counts"]["selftest_ok"] == payload["counts"]["selftest_rows"] == 52  # 24 kernel runs + 2 × 14
     assert payload["counts"]["obligations"] == payload["counts"]["obligations_hold"] == len(payload["obligations"])
     assert payload["counts"]["certificates"] == payload["counts"]["certificates_proved"] == 13
     assert [c["proved"] and not c["stale"] for c in payload["certificates"]] == [True] * 13

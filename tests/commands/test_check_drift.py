@@ -28,7 +28,7 @@ def project(tmp_path, monkeypatch):
         "[tool.symbolic-friction]\nproofs = \"proofs\"\n"
         f"certificates = [{{file = \"stage.json\", label = \"stage\", gains = {GAINS}}}]\n", encoding="utf-8")
     monkeypatch.chdir(tmp_path)
-    assert main(["certify", "--k-p", "3", "--k-i", "4", "--k-v", "6.4", "--f-c", "1", "--label", "stage",
+    assert main(["certify", "--template", "paper", "--k-p", "3", "--k-i", "4", "--k-v", "6.4", "--f-c", "1", "--label", "stage",
                  "--name", "stage", "--out", "proofs", "--quiet"]) == 0
     return tmp_path
 
