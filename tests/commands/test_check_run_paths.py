@@ -128,7 +128,7 @@ def _printing_sections():
 
     def alpha(args):
         return _sections.Section(
-            "Alpha table", ("name", "value"), [("r1", "v1"), ("r2", "v2")], {"alpha": [1, 2]}, True,
+            "Alpha table", ("name", "value"), [("r1", "v1"), ("r2", "v2")], {"alpha": [1, 2, "κ ≤ 1 — σ"]}, True,
             ["note: alpha plain", _LONG], summary="alpha: 2 rows", counts={"alpha_rows": 2},
             cases=[Case("a.1", "check.alpha", seconds=0.25), Case("a.2", "check.alpha", skipped="not run")],
         )
@@ -223,3 +223,51 @@ def test_run_takes_a_namespace_without_the_optional_attributes(monkeypatch, tmp_
     args = argparse.Namespace(proofs=str(tmp_path / "proofs"), config=None, write=False, strict=False, no_certificates=False)
     assert check.run(args) == 0
     assert capsys.readouterr().out.rstrip().splitlines()[-1] == "check: PASSED — one summary"
+
+
+def test_the_costly_obligations_go_to_the_other_core_unless_only_is_given(monkeypatch, tmp_path):
+    """Without --only, run_sections gets the offloaded obligations (decided ahead on the second core); with it, none."""
+    from symbolic_friction._cli import _parallel
+
+    seen = []
+    real = _parallel.run_sections
+
+    def spy(makers, args, **kw):
+        seen.append(None if kw.get("ahead") is None else sorted(kw["ahead"]))
+        return real(makers, args, **kw)
+
+    monkeypatch.setattr(_parallel, "run_sections", spy)
+    monkeypatch.setenv(_parallel.ENV, "1")
+    monkeypatch.setattr(check, "obligations_section", _section("only", True))
+    assert _run(monkeypatch, tmp_path, [_section("one", True)]) == 0
+    assert _run(monkeypatch, tmp_path, [_section("one", True)], "--only", "lemma3") == 0
+    assert seen == [sorted(check.OFFLOADED), []]
+
+
+class _Pipe:
+    """stdout as a pipe buffers it (written out on flush); stderr is unbuffered: both merge into one log."""
+
+    def __init__(self, log, buffered):
+        self.log, self.buffered, self.pending = log, buffered, []
+
+    def write(self, text):
+        (self.pending if self.buffered else self.log).append(text)
+        return len(text)
+
+    def flush(self):
+        self.log.extend(self.pending)
+        self.pending.clear()
+
+
+def test_json_reaches_a_merged_log_before_the_notes(monkeypatch, tmp_path):
+    """``check --json 2>&1 | tee log``: the JSON document is flushed before the notes and the closing line."""
+    import sys
+
+    log = []
+    monkeypatch.setattr(sys, "stdout", _Pipe(log, buffered=True))
+    monkeypatch.setattr(sys, "stderr", _Pipe(log, buffered=False))
+    monkeypatch.setattr(check, "SECTIONS", [_section("one", True, notes=["note: n"])])
+    rc = check.run(_args(tmp_path, "--json"))
+    sys.stdout.flush()
+    text = "".join(log)
+    assert rc == 0 and text.index('"passed": true') < text.index("note: n") < text.index("check: PASSED")
