@@ -273,3 +273,15 @@ def test_a_non_strict_k_condition_is_decided_as_non_strict(monkeypatch):
     (k3k2,) = [p for p in premises(ns) if p.name == "k3 > k2"]
     assert k3k2.op == ">="
     assert decide(k3k2).holds is True and str(decide(k3k2)) == "✓ k3 > k2: 2 ≥ 2"
+
+
+def test_text_of_rationals_past_pythons_digit_limit():
+    """A numerator or a denominator of 20,000 bits (over 4,300 digits: ``str`` refuses it) is still written exactly."""
+    from symbolic_friction._certify.verify import _matrix_text, _text
+    from symbolic_friction._infra.rational import format_rational
+
+    huge = 2**20_000 + 1
+    for q in (F(1, huge), F(huge, 3), F(-huge, huge + 2), F(3, 7), F(-5)):
+        assert _text(q) == format_rational(q)
+    assert _text(F(1, huge)).startswith("1/3980276840") and len(_text(F(1, huge))) == 2 + 6021
+    assert _matrix_text([[F(1, 2), F(huge)]]) == f"[1/2, {format_rational(F(huge))}]"

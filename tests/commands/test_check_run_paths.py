@@ -110,3 +110,164 @@ def test_verdict_notes_are_recognised():
         assert _sections._is_verdict(note)
     for note in ("holds", " FAILED", "note: x", "failed"):
         assert not _sections._is_verdict(note)
+
+
+# -- what check.run prints, line by line, on every path (golden file) ------------------------------------------------
+#
+# Three fake sections (one passing with a table and notes, one failing whose rows were streamed, one passing
+# with neither summary nor notes) run through check.run from each configuration origin, as a table and as
+# --json, at each verbosity, with and without --junit-xml.  Every line of stdout, stderr and the JUnit file is
+# pinned: the configuration note and its level, the stream of --json's notes, the wrapping of long notes, the
+# closing line, the JSON payload and the test cases.
+
+_LONG = ("note: a long note that the terminal wraps: " + "word " * 30).rstrip()
+
+
+def _printing_sections():
+    from symbolic_friction._infra.junit import Case
+
+    def alpha(args):
+        return _sections.Section(
+            "Alpha table", ("name", "value"), [("r1", "v1"), ("r2", "v2")], {"alpha": [1, 2, "κ ≤ 1 — σ"]}, True,
+            ["note: alpha plain", _LONG], summary="alpha: 2 rows", counts={"alpha_rows": 2},
+            cases=[Case("a.1", "check.alpha", seconds=0.25), Case("a.2", "check.alpha", skipped="not run")],
+        )
+
+    def beta(args):
+        return _sections.Section(
+            "Beta table", ("x",), [("streamed row",)], {"beta": {"ok": False}}, False,
+            ["FAILED beta: broke", "beta detail"], summary="beta: 0 of 1", counts={"beta_ok": 0},
+            cases=[Case("b.1", "check.beta", seconds=1.5, failure="broke\nsecond line", output="out")], streamed=True,
+        )
+
+    def gamma(args):
+        return _sections.Section("Gamma title", ("c",), [], {"gamma": None}, True)
+
+    return [alpha, beta, gamma]
+
+
+def _printed(monkeypatch, tmp_path, capsys, *, origin, as_json, level, junit=False, only=False):
+    from symbolic_friction._cli import _parallel
+    from symbolic_friction._infra import output
+
+    tmp_path = tmp_path / f"run{len(list(tmp_path.iterdir()))}"  # a fresh directory: no configuration left behind
+    tmp_path.mkdir()
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setenv("COLUMNS", "100")
+    monkeypatch.setenv(_parallel.ENV, "1")
+    monkeypatch.setattr(output, "_VERBOSITY", [level])
+    monkeypatch.setattr(check, "SECTIONS", _printing_sections())
+    (tmp_path / "proofs").mkdir(exist_ok=True)
+    argv = ["check"]
+    if origin == "--proofs":
+        argv += ["--proofs", str(tmp_path / "proofs")]
+    elif origin == "config":
+        (tmp_path / "symbolic-friction.toml").write_text('proofs = "proofs"\nreport = false\ncertificates = ["a.json"]\n')
+        argv += ["--config", str(tmp_path / "symbolic-friction.toml")]
+    else:
+        argv += ["--no-certificates"]
+    if only:
+        argv += ["--only", "lemma3"]
+        monkeypatch.setattr(check, "obligations_section", _printing_sections()[0])
+    if as_json:
+        argv += ["--json"]
+    if junit:
+        argv += ["--junit-xml", str(tmp_path / "out" / "check.xml")]
+    rc = check.run(build_parser().parse_args(argv))
+    captured = capsys.readouterr()
+    lines = [f"exit {rc}"] + ["out: " + x for x in captured.out.splitlines()] + ["err: " + x for x in captured.err.splitlines()]
+    if junit:
+        lines += ["xml: " + x for x in (tmp_path / "out" / "check.xml").read_text(encoding="utf-8").splitlines()]
+    return [x.replace(str(tmp_path), "<TMP>") for x in lines]
+
+
+def test_every_line_check_prints_is_pinned(monkeypatch, tmp_path, capsys):
+    from tests.certify.golden import assert_golden
+
+    actual = {}
+    for origin in ("--proofs", "config", "none"):
+        for as_json in (False, True):
+            for level in (0, 1, 2):
+                actual[f"{origin} json={as_json} level={level}"] = _printed(
+                    monkeypatch, tmp_path, capsys, origin=origin, as_json=as_json, level=level)
+    for as_json in (False, True):
+        actual[f"junit json={as_json}"] = _printed(monkeypatch, tmp_path, capsys, origin="--proofs", as_json=as_json,
+                                                   level=1, junit=True)
+        actual[f"only json={as_json}"] = _printed(monkeypatch, tmp_path, capsys, origin="--proofs", as_json=as_json,
+                                                  level=2, only=True)
+    assert_golden("check_run_printing.json", actual)
+
+
+def test_an_unusable_junit_path_is_refused_before_any_section_runs(monkeypatch, tmp_path):
+    from symbolic_friction._infra.errors import SymbolicFrictionError
+
+    ran = []
+
+    def section(args):
+        ran.append(1)
+        return _sections.Section("S", ("a",), [], {}, True)
+
+    (tmp_path / "taken").mkdir()  # a directory where the report file should go
+    monkeypatch.setattr(check, "SECTIONS", [section])
+    with pytest.raises(SymbolicFrictionError, match="--junit-xml"):
+        check.run(_args(tmp_path, "--junit-xml", str(tmp_path / "taken")))
+    assert ran == []
+
+
+def test_run_takes_a_namespace_without_the_optional_attributes(monkeypatch, tmp_path, capsys):
+    """A caller's Namespace need not carry --junit-xml, --only or --json: each defaults to off."""
+    import argparse
+
+    (tmp_path / "proofs").mkdir()
+    monkeypatch.setattr(check, "SECTIONS", [_section("one", True)])
+    args = argparse.Namespace(proofs=str(tmp_path / "proofs"), config=None, write=False, strict=False, no_certificates=False)
+    assert check.run(args) == 0
+    assert capsys.readouterr().out.rstrip().splitlines()[-1] == "check: PASSED — one summary"
+
+
+def test_the_costly_obligations_go_to_the_other_core_unless_only_is_given(monkeypatch, tmp_path):
+    """Without --only, run_sections gets the offloaded obligations (decided ahead on the second core); with it, none."""
+    from symbolic_friction._cli import _parallel
+
+    seen = []
+    real = _parallel.run_sections
+
+    def spy(makers, args, **kw):
+        seen.append(None if kw.get("ahead") is None else sorted(kw["ahead"]))
+        return real(makers, args, **kw)
+
+    monkeypatch.setattr(_parallel, "run_sections", spy)
+    monkeypatch.setenv(_parallel.ENV, "1")
+    monkeypatch.setattr(check, "obligations_section", _section("only", True))
+    assert _run(monkeypatch, tmp_path, [_section("one", True)]) == 0
+    assert _run(monkeypatch, tmp_path, [_section("one", True)], "--only", "lemma3") == 0
+    assert seen == [sorted(check.OFFLOADED), []]
+
+
+class _Pipe:
+    """stdout as a pipe buffers it (written out on flush); stderr is unbuffered: both merge into one log."""
+
+    def __init__(self, log, buffered):
+        self.log, self.buffered, self.pending = log, buffered, []
+
+    def write(self, text):
+        (self.pending if self.buffered else self.log).append(text)
+        return len(text)
+
+    def flush(self):
+        self.log.extend(self.pending)
+        self.pending.clear()
+
+
+def test_json_reaches_a_merged_log_before_the_notes(monkeypatch, tmp_path):
+    """``check --json 2>&1 | tee log``: the JSON document is flushed before the notes and the closing line."""
+    import sys
+
+    log = []
+    monkeypatch.setattr(sys, "stdout", _Pipe(log, buffered=True))
+    monkeypatch.setattr(sys, "stderr", _Pipe(log, buffered=False))
+    monkeypatch.setattr(check, "SECTIONS", [_section("one", True, notes=["note: n"])])
+    rc = check.run(_args(tmp_path, "--json"))
+    sys.stdout.flush()
+    text = "".join(log)
+    assert rc == 0 and text.index('"passed": true') < text.index("note: n") < text.index("check: PASSED")

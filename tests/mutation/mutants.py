@@ -345,11 +345,12 @@ QUADRATIC = tuple(replace(m, tests=_Q_TESTS) for m in (
 ))
 MUTANTS = MUTANTS + QUADRATIC
 
-PENDING: tuple[Mutant, ...] = (
-    # Not caught by check, verify or a test yet (kept out of MUTANTS and of the committed table).
+KERNEL_RESIDUAL = (
     Mutant("ker.event_residual", "kernel", _KER, "ev_res[n_ev] = residual", "ev_res[n_ev] = 0.0",
-           "the residual |v| at an event is dropped (the mode table's v = 0 at events is then vacuous)"),
+           "the residual abs(v) at an event is dropped (the mode table's v = 0 at events is then vacuous)",
+           tests=("tests/simulation/test_kernel_mutants.py::test_event_residual_is_v_where_the_slip_ended",)),
 )
+MUTANTS = MUTANTS + KERNEL_RESIDUAL
 
 FAST: tuple[str, ...] = ("V.at_rest", "verify.drop_c2")
 """The subset the default test run executes (one model and one verifier mutant)."""

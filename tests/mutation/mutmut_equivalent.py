@@ -22,6 +22,8 @@ SCOPE: tuple[str, ...] = (
 
 _V = "symbolic_friction._certify.verify."
 _H = "symbolic_friction._certify.hunting_proof."
+_D = "symbolic_friction._obligations._decide."
+_C = "symbolic_friction._cli.check."
 EQUIVALENT: dict[str, str] = {
     _V + "x_decide__mutmut_10": "minors of the entries themselves instead of their Fraction copies: _exact has refused every "
     "entry that is not an int or a Fraction, and Fraction(x) == x for those, so every minor has the same value",
@@ -34,11 +36,25 @@ EQUIVALENT: dict[str, str] = {
     _H + "xǁ_Arbǁball__mutmut_4": "mid − arb(0, r) is the same ball as mid + arb(0, r): arb(0, r) is symmetric about 0",
     _H + "xǁ_Arbǁball__mutmut_9": "python-flint reads arb(None, r) as arb(0, r): the same ball",
     _H + "xǁ_Arbǁstate__mutmut_5": "python-flint reads arb(None) as arb(0): the same exact zero",
-    _H + "x__prove__mutmut_40": "float('NAN') is the same NaN as float('nan')",
-    _H + "x__prove__mutmut_43": "float('NAN') is the same NaN as float('nan')",
-    _H + "x__prove__mutmut_141": "float('NAN') is the same NaN as float('nan')",
-    _H + "x__prove__mutmut_144": "float('NAN') is the same NaN as float('nan')",
-    _H + "x__prove__mutmut_190": "dx = X − x̃ is a ball with midpoint exactly 0, so −row·dx is the same ball as +row·dx",
-    _H + "x__prove__mutmut_191": "dx = X − x̃ is a ball with midpoint exactly 0, so −row·dx is the same ball as +row·dx",
+    _H + "x__prove__mutmut_34": "float('NAN') is the same NaN as float('nan')",
+    _H + "x__prove__mutmut_37": "float('NAN') is the same NaN as float('nan')",
+    _H + "x__prove__mutmut_135": "float('NAN') is the same NaN as float('nan')",
+    _H + "x__prove__mutmut_138": "float('NAN') is the same NaN as float('nan')",
+    _H + "x__prove__mutmut_184": "dx = X − x̃ is a ball with midpoint exactly 0, so −row·dx is the same ball as +row·dx",
+    _H + "x__prove__mutmut_185": "dx = X − x̃ is a ball with midpoint exactly 0, so −row·dx is the same ball as +row·dx",
     _H + "x__short__mutmut_2": "x = 0 then also gives Fraction(f'{0.0:.17g}') = Fraction(0): the same value",
+    _V + "x__exact__mutmut_1": "a Fraction then takes the general path, which returns Fraction(value): the same number",
+    _V + "x__text__mutmut_2": "a 10,000-bit integer has 3,011 digits, within str()'s 4,300-digit limit: str(q) is format_rational(q) there",
+    _V + "x__text__mutmut_3": "a 10,000-bit integer has 3,011 digits, within str()'s 4,300-digit limit: str(q) is format_rational(q) there",
+    _V + "x__text__mutmut_4": "a 10,000-bit integer has 3,011 digits, within str()'s 4,300-digit limit: str(q) is format_rational(q) there",
+    _V + "x__text__mutmut_5": "a 10,000-bit integer has 3,011 digits, within str()'s 4,300-digit limit: str(q) is format_rational(q) there",
+    _D + "x__poly_sign__mutmut_16": "Poly.coeffs() lists only non-zero coefficients (p = 0 returned above), so c ≥ 0 is c > 0 on each",
+    _D + "x__poly_sign__mutmut_20": "Poly.coeffs() lists only non-zero coefficients (p = 0 returned above), so c ≤ 0 is c < 0 on each",
+    _D + "x_affine_image__mutmut_34": "sg = 0 has returned above (a point), so sg ∈ {1, −1} here and sg ≥ 0 is sg > 0",
+    _D + "x_affine_image__mutmut_48": "sg = 0 has returned above (a point), so sg ∈ {1, −1} here and sg ≥ 0 is sg > 0",
+    _D + "x_affine_image__mutmut_52": "sg = 0 has returned above (a point), so sg ∈ {1, −1} here and sg ≥ 0 is sg > 0",
+    _D + "x__stationary_points__mutmut_16": "a degree-0 numerator then reaches roots(), which returns {} (multiplicities sum 0 = degree): [] again",
+    _D + "x__stationary_points__mutmut_32": "sympy's solve() reads simplify only by truthiness (if flags.get('simplify', True)): None acts as False",
+    _C + "x_run__mutmut_25": "as_json is read only by truth value (if, not, and emit's err=, which picks the stream by it): None is False",
+    _C + "x_run__mutmut_136": "json reads ensure_ascii only by truth value (if self.ensure_ascii: …): None is False",
 }

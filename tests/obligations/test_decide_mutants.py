@@ -234,3 +234,113 @@ def test_sign_classes():
 
 def test_undecided_is_an_exception():
     assert issubclass(Undecided, Exception)
+
+
+# -- is_zero: simplify() is never asked about a non-smooth function nor a rational one --------------------------------
+
+_PYTHAGORAS = sp.sin(x) ** 2 + sp.cos(x) ** 2  # 1, but only simplify() sees it
+
+
+@pytest.mark.parametrize("expr", [
+    sp.Piecewise((_PYTHAGORAS, x > 1), (1, True)) - 1,
+    sp.Abs(_PYTHAGORAS - 2) - 1,
+    sp.sign(_PYTHAGORAS - 2) + 1,
+    sp.Max(_PYTHAGORAS, sp.Rational(1, 2)) - 1,
+    sp.Min(_PYTHAGORAS, 2) - 1,
+], ids=["Piecewise", "Abs", "sign", "Max", "Min"])
+def test_is_zero_leaves_non_smooth_identities_to_case_splits(expr):
+    """Each is 0, and simplify() shows it; is_zero still answers "not shown".
+
+    A Piecewise, |·|, sign, max or min is resolved by the obligations' explicit case splits
+    (:func:`resolve_piecewise` with decided branch conditions), never by simplify()'s heuristics: each of the
+    five is listed in the guard, and removing any one of them changes the answer on its input here.
+    """
+    num = sp.expand(sp.fraction(sp.together(expr))[0])
+    assert sp.simplify(num) == 0  # the heuristic would have called it zero
+    assert is_zero(expr) is False
+
+
+def test_is_zero_decides_rational_functions_by_expansion_alone():
+    """A rational function is zero iff its expanded numerator is: the polynomial identity, not the symbols' assumptions.
+
+    ``z`` declared zero is still the non-zero polynomial ``z`` (simplify() would replace it by 0), so a
+    rational function never reaches simplify().
+    """
+    z = sp.Symbol("z", zero=True)
+    assert sp.simplify(z) == 0
+    assert is_zero(z) is False and is_zero(a * z + z / b) is False
+    assert is_zero(z - z) is True
+
+
+# -- _stationary_points: the exact-root shortcuts and the solve() fallback -------------------------------------------
+
+def test_stationary_points_of_a_quintic_that_roots_cannot_solve():
+    """x⁵ − x − 1 has one real root that roots() does not find (it returns {}): solve() must give it (as a CRootOf).
+
+    Returning what roots() found would drop the stationary point, and minimum_on would answer the value at an
+    end, -4/3, above the true minimum ≈ -1.4265 of x⁶/6 − x²/2 − x on [1, 2].
+    """
+    f = x**6 / 6 - x**2 / 2 - x
+    assert sp.roots(sp.Poly(sp.diff(f, x), x)) == {}
+    (r,) = D._stationary_points(f, x)
+    assert isinstance(r, sp.CRootOf) and r.poly == sp.Poly(x**5 - x - 1, x)
+    m = minimum_on(f, x, sp.Interval(1, 2))
+    assert m == f.subs(x, r)
+    assert sign_of(sp.Rational(-4, 3) - m) == 1  # strictly below the value at the end 1
+    assert sign_of(m - sp.Rational(-143, 100)) == 1 and sign_of(sp.Rational(-142, 100) - m) == 1
+
+
+def test_stationary_points_of_a_transcendental_function():
+    """exp(x) − √6·x: f' = exp(x) − √6 is not a polynomial; solve() gives log(√6), kept as found (not simplified)."""
+    f = sp.exp(x) - sp.sqrt(6) * x
+    found = D._stationary_points(f, x)
+    assert found == [sp.log(sp.sqrt(6))] and found[0].args == (sp.sqrt(6),)  # simplify would give log(6)/2
+    assert D._stationary_points(a * f, x) == found  # another symbol in f': solve() is told which is the variable
+    m = minimum_on(f, x, sp.Interval(0, 2))
+    assert m == sp.sqrt(6) - sp.sqrt(6) * sp.log(sp.sqrt(6))
+    assert D._stationary_points(-f, x) == found
+    # solve() also returns the complex roots ±2πi/3 of exp(3y) = 1 for a symbol y not declared real: dropped
+    y = sp.Symbol("y")
+    assert D._stationary_points(sp.exp(3 * y) / 3 - y, y) == [0]
+
+
+def test_or_and_of_distinct_decided_relations():
+    """Or(f, f) collapses to f when built: two *different* false disjuncts reach the Or branch (and so for And)."""
+    f1, f2 = _rel(sp.Lt, a + 1, 0), _rel(sp.Lt, b + 1, 0)
+    t1, t2 = _rel(sp.Gt, a + 1, 0), _rel(sp.Gt, b + 1, 0)
+    assert isinstance(sp.Or(f1, f2, evaluate=False), sp.Or) and isinstance(sp.And(t1, t2, evaluate=False), sp.And)
+    assert decide(sp.Or(f1, f2, evaluate=False)) is False
+    assert decide(sp.Or(f1, t2, evaluate=False)) is True
+    assert decide(sp.And(t1, t2, evaluate=False)) is True
+    assert decide(sp.And(t1, f2, evaluate=False)) is False
+
+
+def test_poly_sign_of_mixed_coefficients_below_one():
+    """½a − b has coefficients ½ and −1, both below 1 but of both signs: undecided, not negative."""
+    assert D._poly_sign(sp.expand(a / 2 - b)) is None
+    assert sign_of(a / 2 - b) is None and sign_of(sp.Rational(1, 3) * a - sp.Rational(1, 2) * b) is None
+    assert sign_of(-a / 2 - b) == -1
+
+
+def test_sign_of_is_an_int_never_a_float():
+    """The module uses no float: the sign of a quotient is the product of the two signs (an int), not their ratio."""
+    for expr, want in ((a / (b + 1), 1), (a / (-b - 1), -1), (-a / (b + 1), -1), (-a / (-b - 1), 1),
+                       ((a * (b + 1) - a * b - a) / (a + b), 0)):
+        got = sign_of(expr)
+        assert got == want and type(got) is int, (expr, got)
+
+
+@pytest.mark.parametrize("f", [
+    sp.Piecewise((a, a > b), (b, True)), sp.Abs(a - b), sp.sign(a - b), sp.Max(a, b), sp.Min(a, b),
+], ids=["Piecewise", "Abs", "sign", "Max", "Min"])
+def test_sign_of_refuses_a_non_smooth_function_even_when_it_cancels(f):
+    """c·(F + 1) − c·F is c > 0 once expanded, but sign_of decides rational functions only: it refuses it whole.
+
+    Any Piecewise, |·|, sign, max or min is to be resolved by :func:`resolve_piecewise` with its branch
+    conditions decided; each of the five is listed in the guard, and removing any one of them lets the
+    expansion decide its input here.
+    """
+    expr = c * (f + 1) - c * f
+    assert sp.expand(expr) == c  # what the polynomial test would decide without the guard
+    assert sign_of(expr) is None
+    assert sign_of(c * (f + 1) / (a + b) - c * f / (a + b)) is None  # and with a denominator

@@ -116,3 +116,46 @@ def test_a_horizon_just_after_an_event_still_has_it(name):
         cut = _run(q, z0, t_end=t_e * (1 + 1e-9), t_eval=None)
         assert len(cut.events) == k + 1, (k, t_e, m0, m1, cut.events)
         assert abs(cut.events[-1][0] - t_e) <= 1e-12 * t_e and cut.events[-1][1:] == (m0, m1)
+
+
+@pytest.mark.parametrize("name", ["a", "a_fs1.2"])
+def test_event_residual_is_v_where_the_slip_ended(name, monkeypatch):
+    """Each slip-ending event records |v| of the closed form at the τ the search returned, not a constant 0.
+
+    The mode table's "v = 0 at events" property reads this residue; recorded as 0 it would be vacuous.  The
+    plain-Python kernel is run with the search and the closed form spied on (only the kernel's own calls at
+    a slip's end are kept); each slip-ending event's residual must be |v| of the slip that ended there, bit
+    for bit, and some residue must be non-zero (else the comparison shows nothing).
+    """
+    from symbolic_friction._simulation import _kernel
+    from symbolic_friction._simulation.search import slip_model
+    import sys
+
+    params, f_s, z0 = CASES[name]
+    if f_s is not None:
+        params = _scaled(params, F(1), f_s)
+    ends = []
+    for fn in ("first_zero", "flow"):
+        original = getattr(_kernel, fn)
+
+        def spy(*a, _original=original, _fn=fn):
+            out = _original(*a)
+            if sys._getframe(1).f_code.co_name == "trajectory":  # the loop's own call, not the dense output's
+                ends.append(abs(out[-1]))
+            return out
+
+        monkeypatch.setattr(_kernel, fn, spy)
+    K, W, N = slip_model(params).constants(False)
+    ts = np.array([0.0, T_END])
+    out_x, out_z = np.empty((2, ts.size, 3))
+    out_mode = np.empty(ts.size, dtype=np.int8)
+    room = 200
+    ev_t, ev_x, ev_m, ev_res = np.empty(room), np.empty((room, 3)), np.empty((room, 2), dtype=np.int8), np.empty(room)
+    code, n_ev, _ = _kernel.trajectory(K, W, N, np.array(z0, float), np.empty(3), T_END, room, ts,
+                                       out_x, out_z, out_mode, ev_t, ev_x, ev_m, ev_res)
+    slip_ends = [j for j in range(n_ev) if ev_m[j, 0] != 0]
+    assert code == 0 and len(slip_ends) >= 4
+    # every slip's end is an event here (no grazing contact): the i-th slip end is the i-th such event
+    assert [ev_res[j] for j in slip_ends] == ends[: len(slip_ends)]
+    assert any(ev_res[j] > 0 for j in slip_ends)
+    assert all(ev_res[j] <= 1e-12 * 5.0 for j in slip_ends)
