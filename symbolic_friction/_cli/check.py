@@ -189,7 +189,7 @@ def obligations_section(args: argparse.Namespace) -> Section:
     )
 
 
-OFFLOADED = ("model.V_runtime", "claim1.cases")
+OFFLOADED = ("model.V_runtime", "claim1.cases", "lemma2.lower_bound")
 """Obligations the second core decides first, while this process decides the others in order (costliest)."""
 
 

@@ -44,17 +44,16 @@ __all__ = ["Along", "along", "Chain", "build_chain", "observability_gramian"]
 def observability_gramian(params: Parameters) -> np.ndarray:
     """``W`` with ``AᵀW + WA = -e₃e₃ᵀ``: ``∫_0^∞ v² dt = yᵀWy`` for ``y' = Ay``, ``v = e₃ᵀy``.
 
-    Solved once per gain set (every batch of a run shares it); read-only.
+    It is the paper's ``P`` (eq. lyapLikeP) divided by ``c = 2(k_v k_p − k_i)``:
+    Lemma 2's ``AᵀP + PA = −c e₃e₃ᵀ`` (the identity behind eq. dVdt, which
+    the obligation ``lemma2.dVdt`` proves for the model's ``P``), so no
+    Lyapunov solver (nor scipy.linalg, 0.27 s to import in ``check``) is
+    needed.  Computed once per gain set; read-only.
     """
-    from scipy.linalg import solve_continuous_lyapunov
+    from .._model.lyapunov import lyapunov_matrix
 
-    from .._model.coordinates import system_matrix
-
-    A = system_matrix(params)
-    Q = np.zeros((3, 3))
-    Q[2, 2] = -1.0
-    W = solve_continuous_lyapunov(A.T, Q)
-    W = 0.5 * (W + W.T)
+    k_p, k_i, k_v, _ = params.as_floats()
+    W = lyapunov_matrix(params) / (2.0 * (k_v * k_p - k_i))
     W.setflags(write=False)
     return W
 

@@ -48,10 +48,16 @@ def test_gramian_integral_matches_mpmath_quadrature(gains, x0, tau):
     assert_close(got, float(ref), rtol=1e-12, what="∫ v² by the Gramian")
 
 
-def test_gramian_is_P_over_c():
-    # not used by the check (W is solved from A alone), but it is the paper's identity behind eq. (dVdt)
-    for case in "ab":
-        p = Parameters.table_i(case)
+def test_gramian_solves_the_lyapunov_equation():
+    # W is taken as P/c (the paper's identity behind eq. dVdt); it must solve AᵀW + WA = −e₃e₃ᵀ, which
+    # the mpmath quadrature above checks independently on trajectories
+    from symbolic_friction._model.coordinates import system_matrix
+
+    for p in (Parameters.table_i("a"), Parameters.table_i("b"), Parameters(k_p=3, k_i=1, k_v=3, f_c=2)):
+        W, A = observability_gramian(p), system_matrix(p)
+        E = np.zeros((3, 3))
+        E[2, 2] = 1.0
+        assert np.abs(A.T @ W + W @ A + E).max() < 1e-13 * max(1.0, np.abs(W).max())
         assert_close(observability_gramian(p) * float(p.c), lyapunov_matrix(p), rtol=1e-13, what="c W = P")
 
 

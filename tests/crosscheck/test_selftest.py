@@ -152,3 +152,17 @@ def test_a_mode_table_check_without_f_c_fails_the_self_test(certs, monkeypatch):
     assert not result.ok
     bad = [(r.case, r.variant) for r in result.rows if not r.ok]
     assert ("b", "proved") in bad and ("a", "proved") not in bad
+
+
+@pytest.mark.parametrize("case", ["a", "b"])
+def test_the_sampled_starts_catch_a_wrong_k4_for_every_seed(case):
+    # check's self-test finds its V̂-growth starts with numpy alone (no scipy.optimize import): it must
+    # not depend on a lucky seed
+    from symbolic_friction._crosscheck import _selftest
+    from symbolic_friction._crosscheck._claims import Claims
+
+    cert = _selftest._at_coulomb_level(_selftest.table_i_certificates(PROOFS)[case], _selftest.F_C_OF_CASE.get(case, 1))
+    k4 = Claims.from_certificate(_selftest.wrong_variants(cert, 1.5)["k4"], label="k4")
+    for seed in range(4):
+        _, results = _selftest._growth_run(k4, seed=seed)
+        assert any(r.id == "lemma3.hatV_nonincreasing" and not r.passed and r.counterexample is not None for r in results), seed
