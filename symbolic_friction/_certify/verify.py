@@ -163,14 +163,9 @@ class Inequality:
 
     def margin(self) -> tuple[Any, str]:
         """``(m, kind)`` with the premise equivalent to ``m > 0``, ``m ≥ 0`` or ``m = 0`` (kind ``">"``, ``">="``, ``"=="``)."""
-        return _margin(self.lhs, self.op, self.rhs)
-
-
-def _margin(lhs: Any, op: str, rhs: Any) -> tuple[Any, str]:
-    """:meth:`Inequality.margin` of ``lhs op rhs``."""
-    if op == "<=":
-        return rhs - lhs, ">="
-    return lhs - rhs, op
+        if self.op == "<=":
+            return self.rhs - self.lhs, ">="
+        return self.lhs - self.rhs, self.op
 
 
 @dataclass(frozen=True)
@@ -347,7 +342,8 @@ def decide(premise: Inequality | Semidefinite | Undefined) -> Check:
         instance = f"{_matrix_text(matrix)} ⪰ 0 (all {len(minors)} principal minors ≥ 0, smallest {_text(smallest)})"
         return Check(premise.obligation, premise.name, instance, True)
     lhs, rhs = _exact(premise.lhs, premise.name), _exact(premise.rhs, premise.name)
-    margin, kind = _margin(lhs, premise.op, rhs)
+    # the premise's own margin(): the obligation certificate.verifier reasons about that method
+    margin, kind = Inequality(premise.obligation, premise.name, lhs, premise.op, rhs).margin()
     holds = bool(_DECIDE[kind](margin))
     right = _text(rhs)
     if premise.rhs_text is not None:

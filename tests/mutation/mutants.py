@@ -150,7 +150,7 @@ MUTANTS: tuple[Mutant, ...] = (
            "c₁ > 0 dropped"),
     Mutant("verify.kappa_reversed", "verifier", _V, '            kappa * kappa,\n            ">=",', '            kappa * kappa,\n            "<=",',
            "κ² compared the wrong way"),
-    Mutant("verify.le_margin", "verifier", _V, '        return rhs - lhs, ">="', '        return lhs - rhs, ">="',
+    Mutant("verify.le_margin", "verifier", _V, '            return self.rhs - self.lhs, ">="', '            return self.lhs - self.rhs, ">="',
            "every ≤ premise decided reversed"),
     Mutant("verify.psd_some_minors", "verifier", _V, "negative = [(idx, d) for idx, d in minors if not d >= 0]",
            "negative = [(idx, d) for idx, d in minors[:3] if not d >= 0]", "the PSD decision looks at the 1×1 minors only"),
