@@ -25,7 +25,7 @@ from .._infra.errors import CertificateError, ParameterError, SymbolicFrictionEr
 from .._model.parameters import Parameters
 from ._template import Template
 
-__all__ = ["TEMPLATE_CHOICES", "searchable_templates", "paper_only_options", "Attempt", "TemplateChoice",
+__all__ = ["TEMPLATE_CHOICES", "searchable_templates", "paper_only_options", "refuse_paper_only", "Attempt", "TemplateChoice",
            "certify_template"]
 
 TEMPLATE_CHOICES: tuple[str, ...] = ("auto", "paper", "quadratic")
@@ -45,9 +45,13 @@ def searchable_templates() -> dict[str, Template]:
     return {t.name: t for t in (STABILITY, QUADRATIC)}
 
 
-def paper_only_options(*, mode: str | None = None, margin: object = None, search: str | None = None) -> list[str]:
-    """The options given that only the paper's template takes (``--mode feasible``, ``--margin``, ``--search``)."""
+def paper_only_options(*, mode: str | None = None, margin: object = None, search: str | None = None,
+                       physical: dict | None = None) -> list[str]:
+    """The options given that only the paper's template takes (``--mode feasible``, ``--margin``, ``--search``,
+    and physical parameters, which only the paper's file records: a quadratic file would lose them)."""
     given = []
+    if physical is not None:
+        given.append("physical parameters (--m …)")
     if mode not in (None, "tightest"):
         given.append(f"--mode {mode}")
     if margin is not None:
@@ -164,6 +168,14 @@ def _try(template: Template, params: Parameters, *, mode: str | None, margin: ob
     return Attempt(template, certificate)
 
 
+def refuse_paper_only(template: str, paper_only: list[str]) -> None:
+    """Raise :class:`ParameterError` if ``template`` is ``"quadratic"`` and a paper-only option was given."""
+    if template == "quadratic" and paper_only:
+        raise ParameterError(f"only the paper's template takes {paper_only[0]}: the quadratic template has one "
+                             "search (its SDP), minimises κ and its file records normalised gains only "
+                             "(drop it, give normalised gains, or use --template paper)")
+
+
 def certify_template(
     params: Parameters, *, template: str = "auto", mode: str | None = None, margin: object = None,
     search: str | None = None, label: str = "", physical: dict | None = None,
@@ -186,7 +198,8 @@ def certify_template(
     label : str, keyword-only
         Kept in the certificate's provenance.
     physical : dict, keyword-only
-        Physical parameters, recorded by the paper's template.
+        Physical parameters, recorded by the paper's template only (so with
+        them ``auto`` keeps to the paper's template, and ``quadratic`` refuses).
 
     Returns
     -------
@@ -202,10 +215,8 @@ def certify_template(
     templates = searchable_templates()
     if template not in TEMPLATE_CHOICES:
         raise ParameterError(f"template must be one of {', '.join(TEMPLATE_CHOICES)}; got {template!r}")
-    paper_only = paper_only_options(mode=mode, margin=margin, search=search)
-    if template == "quadratic" and paper_only:
-        raise ParameterError(f"{paper_only[0]} applies to the paper's template only; the quadratic template "
-                             "has one search (its SDP) and minimises κ (drop it, or use --template paper)")
+    paper_only = paper_only_options(mode=mode, margin=margin, search=search, physical=physical)
+    refuse_paper_only(template, paper_only)
     options = dict(mode=mode, margin=margin, search=search, label=label, physical=physical)
     if template != "auto":
         attempt = _try(templates[template], params, **options)
@@ -214,7 +225,7 @@ def certify_template(
     names = list(templates)
     if paper_only:
         names = ["paper"]
-        note = f"{', '.join(paper_only)} applies to the paper's template only"
+        note = f"only the paper's template takes {', '.join(paper_only)}"
     attempts, errors = [], []
     for name in names:
         try:

@@ -186,7 +186,7 @@ def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
     from .._certify import MODES, default_stem
-    from .._certify.choose import certify_template, paper_only_options
+    from .._certify.choose import certify_template, paper_only_options, refuse_paper_only
     from .._certify.pipeline import QUADRATIC_TABLE_I_FILES, TABLE_I_LABELS, table_i_stem
     from .._certify.search import check_margin
     from .._infra.io import check_stem, ensure_directory
@@ -196,12 +196,10 @@ def run(args: argparse.Namespace) -> int:
         return _run_box(args)
     if args.pieces is not None or args.kappa_tol is not None:
         raise ParameterError("--pieces and --kappa-tol apply to a box: give at least one gain as an interval LO:HI")
-    paper_only = paper_only_options(mode=args.mode, margin=args.margin, search=args.search)
-    if args.template == "quadratic" and paper_only:
-        raise ParameterError(f"{paper_only[0]} applies to the paper's template only; the quadratic template has one "
-                             "search (its SDP) and minimises κ (drop it, or use --template paper)")
     params = _gains(args)
     physical = _physical(args) if params is not None else None
+    paper_only = paper_only_options(mode=args.mode, margin=args.margin, search=args.search, physical=physical)
+    refuse_paper_only(args.template, paper_only)  # before any work
     out = Path(args.out)
     jobs = []  # (params, template, mode, label, json path)
     if params is None:

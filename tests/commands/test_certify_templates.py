@@ -94,15 +94,30 @@ def test_template_paper_is_todays_certificate_by_either_search(tmp_path, capsys)
 def test_auto_with_an_option_of_the_paper_only_certifies_with_the_paper_and_says_so(tmp_path, capsys):
     assert main(["certify", *CASE_A, "--mode", "feasible", "--out", str(tmp_path)]) == 0
     first = capsys.readouterr().out.splitlines()[0]
-    assert first == ("template paper (auto: the smallest proved κ; --mode feasible applies to the paper's template "
-                     "only): κ 3.51842")
+    assert first == "template paper (auto: the smallest proved κ; only the paper's template takes --mode feasible): κ 3.51842"
+
+
+PHYSICAL_A = ["--m", "2", "--k-p-bar", "6", "--k-i-bar", "8", "--k-d-bar", "12.3", "--alpha-v", "0.5", "--f-c-bar", "2"]
+
+
+def test_physical_parameters_are_never_lost_to_a_template_that_cannot_record_them(tmp_path, capsys):
+    # auto keeps to the paper's template, whose file records them; asking for the quadratic one is refused
+    assert main(["certify", *PHYSICAL_A, "--out", str(tmp_path / "auto")]) == 0
+    out = capsys.readouterr().out
+    assert "only the paper's template takes physical parameters" in out
+    (written,) = (tmp_path / "auto").glob("*.json")
+    assert json.loads(written.read_text())["physical"]["k_d_bar"] == "123/10"
+    assert main(["certify", "--template", "quadratic", *PHYSICAL_A, "--out", str(tmp_path / "q")]) == 2
+    err = capsys.readouterr().err
+    assert "only the paper's template takes physical parameters" in err and len(err.strip().splitlines()) == 1
+    assert not (tmp_path / "q").exists() or list((tmp_path / "q").iterdir()) == []
 
 
 @pytest.mark.parametrize("extra, says", [
-    (["--search", "sdp"], "--search sdp applies to the paper's template only"),
-    (["--search", "closed-form"], "--search closed-form applies to the paper's template only"),
-    (["--mode", "feasible"], "--mode feasible applies to the paper's template only"),
-    (["--margin", "1/1000"], "--margin applies to the paper's template only"),
+    (["--search", "sdp"], "only the paper's template takes --search sdp"),
+    (["--search", "closed-form"], "only the paper's template takes --search closed-form"),
+    (["--mode", "feasible"], "only the paper's template takes --mode feasible"),
+    (["--margin", "1/1000"], "only the paper's template takes --margin"),
 ])
 def test_options_of_the_paper_only_are_refused_with_the_quadratic_template(tmp_path, capsys, extra, says):
     assert main(["certify", *CASE_A, "--template", "quadratic", *extra, "--out", str(tmp_path)]) == 2
@@ -187,7 +202,7 @@ def test_gains_only_the_paper_can_take_fall_back_to_it_and_bad_gains_keep_their_
 def test_bad_template_and_options_raise_parameter_errors():
     with pytest.raises(ParameterError, match="template must be one of auto, paper, quadratic; got 'sup-flow'"):
         certify_template(Parameters.table_i("a"), template="sup-flow")
-    with pytest.raises(ParameterError, match="--margin applies to the paper's template only"):
+    with pytest.raises(ParameterError, match="only the paper's template takes --margin"):
         certify_template(Parameters.table_i("a"), template="quadratic", margin="1/1000")
 
 
