@@ -28,6 +28,7 @@ from symbolic_friction._certify.verify import (
     Check,
     Inequality,
     Semidefinite,
+    Undefined,
     VerificationReport,
     _det,
     decide,
@@ -248,6 +249,8 @@ def test_verdicts_are_booleans():
     assert decide(Semidefinite("o", "-I", tuple(tuple(-x for x in row) for row in eye))).holds is False
     assert decide(Inequality("o", "n", F(1), ">", F(2))).holds is False
     assert decide(Inequality("o", "n", F(3), ">", F(2))).holds is True
+    undefined = decide(Undefined("o", "n", "it divides by 0"))
+    assert undefined.holds is False and undefined.evaluated is False and str(undefined) == "✗ n: not evaluated (it divides by 0)"
 
 
 def test_a_float_anywhere_in_a_premise_is_refused_by_the_premise_name():

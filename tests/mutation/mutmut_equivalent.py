@@ -25,13 +25,13 @@ _H = "symbolic_friction._certify.hunting_proof."
 _D = "symbolic_friction._obligations._decide."
 _C = "symbolic_friction._cli.check."
 EQUIVALENT: dict[str, str] = {
-    _V + "x_decide__mutmut_10": "minors of the entries themselves instead of their Fraction copies: _exact has refused every "
+    _V + "x_decide__mutmut_22": "minors of the entries themselves instead of their Fraction copies: _exact has refused every "
     "entry that is not an int or a Fraction, and Fraction(x) == x for those, so every minor has the same value",
-    _V + "x_decide__mutmut_64": "the Inequality rebuilt for margin() gets obligation None: margin() reads only op, lhs and rhs",
-    _V + "x_decide__mutmut_65": "the Inequality rebuilt for margin() gets name None: margin() reads only op, lhs and rhs",
-    _V + "x_premises__mutmut_137": "the identity gets a 4th column: only identity[i][j] with i, j < 3 is read",
-    _V + "x_premises__mutmut_139": "the identity gets a 4th row: only identity[i][j] with i, j < 3 is read",
-    _V + "x_premises__mutmut_283": "k + zero → k − zero with zero = k_i − k_i, which is 0 for Fractions and for sympy symbols",
+    _V + "x_decide__mutmut_76": "the Inequality rebuilt for margin() gets obligation None: margin() reads only op, lhs and rhs",
+    _V + "x_decide__mutmut_77": "the Inequality rebuilt for margin() gets name None: margin() reads only op, lhs and rhs",
+    _V + "x_premises__mutmut_130": "the identity gets a 4th column: only identity[i][j] with i, j < 3 is read",
+    _V + "x_premises__mutmut_132": "the identity gets a 4th row: only identity[i][j] with i, j < 3 is read",
+    _V + "x_premises__mutmut_327": "k + zero → k − zero with zero = k_i − k_i, which is 0 for Fractions and for sympy symbols",
     _V + "xǁSemidefiniteǁminors__mutmut_9": "sizes up to n + 1: combinations(range(n), n + 1) is empty, so no minor is added",
     _H + "xǁ_Arbǁball__mutmut_4": "mid − arb(0, r) is the same ball as mid + arb(0, r): arb(0, r) is symmetric about 0",
     _H + "xǁ_Arbǁball__mutmut_9": "python-flint reads arb(None, r) as arb(0, r): the same ball",
@@ -55,6 +55,14 @@ EQUIVALENT: dict[str, str] = {
     _D + "x_affine_image__mutmut_52": "sg = 0 has returned above (a point), so sg ∈ {1, −1} here and sg ≥ 0 is sg > 0",
     _D + "x__stationary_points__mutmut_16": "a degree-0 numerator then reaches roots(), which returns {} (multiplicities sum 0 = degree): [] again",
     _D + "x__stationary_points__mutmut_32": "sympy's solve() reads simplify only by truthiness (if flags.get('simplify', True)): None acts as False",
+    _V + "x_premises__mutmut_225": "the stand-in k_v = 2 for 1: k_conditions reads k_v only in k_i·k1/k_v and k_i·k3/k_v, "
+    "whose two conditions (DIVIDE_BY_K_V) are replaced by Undefined right below, so every premise is the same",
+    _D + "x__coefficient_sign__mutmut_4": "a sparse PolyElement stores only non-zero coefficients (zero has none: 0 returned above), so c ≥ 0 is c > 0 on each",
+    _D + "x__coefficient_sign__mutmut_8": "a sparse PolyElement stores only non-zero coefficients (zero has none: 0 returned above), so c ≤ 0 is c < 0 on each",
+    _D + "x__coefficient_sign__mutmut_9": "numerator and denominator come out of PolyElement.cancel, which clears denominators: non-zero integer "
+    "coefficients, and a non-zero integer is < 1 iff it is < 0",
+    _D + "x__field_element__mutmut_7": "only is_zero passes a number (sign_of returns first); QQ.frac_field() of no symbols is QQ(), whose "
+    "from_sympy(q) == 0 iff q == 0, as with QQ.from_sympy: the same answer",
     _C + "x_run__mutmut_25": "as_json is read only by truth value (if, not, and emit's err=, which picks the stream by it): None is False",
     _C + "x_run__mutmut_136": "json reads ensure_ascii only by truth value (if self.ensure_ascii: …): None is False",
 }

@@ -344,3 +344,75 @@ def test_sign_of_refuses_a_non_smooth_function_even_when_it_cancels(f):
     assert sp.expand(expr) == c  # what the polynomial test would decide without the guard
     assert sign_of(expr) is None
     assert sign_of(c * (f + 1) / (a + b) - c * f / (a + b)) is None  # and with a denominator
+
+
+# -- the rational-function field, the radical path, and the convex-quadratic shortcut ---------------------------------
+
+_ONE = (1 + sp.sqrt(2)) * (sp.sqrt(2) - 1)  # 1 once expanded, but a radical until then: not a rational function
+
+
+def test_sign_of_cancels_common_factors_in_the_field():
+    """(a² − b²)/(a − b) is a + b wherever it is defined: positive, though a² − b² and a − b have no sign."""
+    assert sign_of((a**2 - b**2) / (a - b)) == 1
+    assert sign_of((b**2 - a**2) / (a - b)) == -1
+
+
+def test_sign_of_a_radical_with_a_denominator_is_decided_on_together():
+    """a·(1+√2)(√2−1) + 1/a is (a² + 1)/a after together(): positive, though the expansion a + 1/a is no polynomial."""
+    expr = a * _ONE + 1 / a
+    assert not D._is_rational_function(expr) and D._has_denominator(expr)
+    assert sign_of(expr) == 1 and sign_of(-expr) == -1
+    assert sign_of(a * _ONE - 1 / a) is None  # (a² − 1)/a: mixed
+    # without a denominator the expansion itself is the polynomial: here the constant 1
+    assert sign_of((a + sp.sqrt(2)) * (a - sp.sqrt(2)) - a**2 + 3) == 1
+
+
+def test_is_zero_of_a_radical_expression_by_its_expanded_numerator():
+    """a·(1+√2)(√2−1) − a expands to 0 (an identity); adding 1 gives the non-zero constant 1 without simplify()."""
+    assert is_zero(a * _ONE - a) is True
+    assert is_zero(a * _ONE - a + 1) is False
+    assert is_zero(a * _ONE / b - a / b) is True
+
+
+def test_is_zero_decides_in_the_field_without_together_or_simplify(monkeypatch):
+    """A rational function is decided in Q(symbols), and a radical one whose numerator expands to a polynomial by
+    that expansion: neither needs simplify(), and the rational function not even together()."""
+    def boom(*args, **kwargs):
+        raise AssertionError("not needed here")
+
+    monkeypatch.setattr(sp, "simplify", boom)
+    assert is_zero(a * _ONE - a + 1) is False  # numerator 1: a polynomial, decided without simplify()
+    monkeypatch.setattr(sp, "together", boom)
+    assert is_zero((a + b) ** 2 - a**2 - 2 * a * b - b**2) is True
+    assert is_zero((a**2 - b**2) / (a - b) - a - b) is True
+    assert is_zero((a + b) ** 2 - a**2 - b**2) is False
+
+
+def test_minimum_of_a_convex_quadratic_is_its_clipped_vertex(monkeypatch):
+    """Vertex below, above and inside the interval: the value there, where comparing the candidates decides nothing.
+
+    (x − a − b − c)² on [a, b]: the vertex a + b + c ≥ b, so the minimum is (a + c)² at b, but f(b) − f(a) expands to
+    a² − b² + 2ac − 2bc (no sign); likewise (x − a + c)² on [a, b] (vertex a − c ≤ a, minimum c²), and
+    (a³ + 1)(x − 1/(a + 1))² on [0, 1] (vertex inside, minimum 0, though f(0) = (a² − a + 1)/(a + 1) has no decided sign).
+    """
+    for f, s, want in (((x - a - b - c) ** 2, sp.Interval(a, b), (a + c) ** 2),
+                       ((x - a + c) ** 2, sp.Interval(a, b), c**2),
+                       ((a**3 + 1) * (x - 1 / (a + 1)) ** 2, sp.Interval(0, 1), 0)):
+        assert is_zero(minimum_on(f, x, s) - want), (f, s)
+        with monkeypatch.context() as m:  # the general method alone cannot order the candidates
+            m.setattr(D, "_convex_quadratic_minimum", lambda *args: None)
+            with pytest.raises(Undecided, match="cannot order the candidate values"):
+                minimum_on(f, x, s)
+    # the vertex is −β/(2α), not −β·α/2: 2(x − 1)² on [0, 3] has its minimum 0 at 1 (the other point, 4, is outside)
+    assert minimum_on(2 * (x - 1) ** 2, x, sp.Interval(0, 3)) == 0
+    # a vertex not decided inside is no minimum: c may lie left of a
+    with pytest.raises(Undecided, match=r"cannot decide whether the stationary point c lies in Interval\(a, b \+ c\)"):
+        minimum_on((x - c) ** 2, x, sp.Interval(a, b + c))
+
+
+def test_minimum_on_drops_stationary_points_outside_the_interval():
+    """x⁴ − 2x² has its stationary points −1, 0, 1 left of [2, 3]: the minimum is f(2) = 8, not f(±1) = −1; a cubic
+    (no quadratic) is minimised by the general method."""
+    assert minimum_on(x**4 - 2 * x**2, x, sp.Interval(2, 3)) == 8
+    assert minimum_on(x**3 - 3 * x, x, sp.Interval(2, 3)) == 2
+    assert minimum_on(x**3 - 3 * x, x, sp.Interval(0, 3)) == -2
