@@ -169,7 +169,8 @@ def _p_condition(params: Parameters) -> Fraction:
     return high / low
 
 
-def kappa_lin_bound(params: Parameters, *, rel_tol: Fraction = Fraction(1, 1000), max_pieces: int = 200_000) -> FlowBound:
+def kappa_lin_bound(params: Parameters, *, rel_tol: Fraction = Fraction(1, 1000), max_pieces: int = 200_000,
+                    restarts: int = 20) -> FlowBound:
     """Enclose ``κ_lin = sup_{t≥0} ‖e^{At}‖₂`` for the gains of ``params`` (module docstring).
 
     Parameters
@@ -182,6 +183,8 @@ def kappa_lin_bound(params: Parameters, *, rel_tol: Fraction = Fraction(1, 1000)
         enclosure says how wide it came out.
     max_pieces : int, keyword-only
         Bound on the intervals of the cover.
+    restarts : int, keyword-only
+        Times the target may be raised or widened before giving up.
 
     Raises
     ------
@@ -221,7 +224,7 @@ def kappa_lin_bound(params: Parameters, *, rel_tol: Fraction = Fraction(1, 1000)
             horizon *= 2
         else:
             raise ParameterError(f"no horizon closes the tail for {params}")
-        for _ in range(RESTARTS):
+        for _ in range(restarts):
             target = lower * (1 + rel_tol)
             mu = target * target
             pieces, above = _cover(A, _arb(mu), horizon, max_pieces)
@@ -240,7 +243,7 @@ def kappa_lin_bound(params: Parameters, *, rel_tol: Fraction = Fraction(1, 1000)
                 raise ParameterError(f"cannot show ‖e^(At)‖₂ < {float(target):.8g} near t = {above:.6g} for {params}, "
                                      "nor find a larger norm there")
         else:
-            raise ParameterError(f"the enclosure of sup ‖e^(At)‖₂ did not settle after {RESTARTS} restarts for {params}")
+            raise ParameterError(f"the enclosure of sup ‖e^(At)‖₂ did not settle after {restarts} restarts for {params}")
         from .rounding import sqrt_decimal_up
 
         upper = Fraction(sqrt_decimal_up(mu, 8))
@@ -248,10 +251,6 @@ def kappa_lin_bound(params: Parameters, *, rel_tol: Fraction = Fraction(1, 1000)
                          pieces=pieces)
     finally:
         flint.ctx.prec = old
-
-
-RESTARTS = 20
-"""Times the target may be raised (a larger norm found where the cover failed) before giving up."""
 
 
 def _cover(A: Any, mu: Any, horizon: Fraction, max_pieces: int) -> tuple[int, float | None]:

@@ -93,3 +93,21 @@ def test_the_cli_reports_the_template_in_json(tmp_path, capsys):
     (cert,) = payload["certificates"]
     assert cert["template"] == "quadratic" and cert["verdict"] == "passed"
     assert [p["id"] for p in cert["properties"]] == KAPPA_ONLY
+
+
+def test_the_tightness_table_gives_the_proven_friction_free_floor(both_templates):
+    # no certificate's κ can go below κ_lin; the table gives its proven lower end and κ as a multiple of it
+    rows = [line for line in format_tightness(both_templates).splitlines() if "case_a" in line or "quadratic" in line]
+    assert rows and all("1.373268" in row for row in rows)
+    quadratic = next(row for row in rows if row.split()[1] == "quadratic")
+    assert float(quadratic.split()[6]) == pytest.approx(1.80834 / 1.373268, abs=1e-4)
+
+
+def test_the_floor_is_left_out_where_it_is_not_enclosed():
+    from fractions import Fraction
+
+    from symbolic_friction import Parameters
+    from symbolic_friction._crosscheck._report import _kappa_lin_floor
+
+    assert _kappa_lin_floor(Parameters(k_p=1, k_i=1, k_v=1 + Fraction(1, 10**6))) is None  # a slowly decaying oscillation
+    assert _kappa_lin_floor(Parameters.table_i("b")) > Fraction("2.396915")
