@@ -153,3 +153,30 @@ def test_strict_must_be_a_boolean(tmp_path):
     path.write_text('strict = "yes"\n')
     with pytest.raises(ConfigError, match="'strict' must be true or false"):
         load_config(path)
+
+
+def test_a_quadratic_certificate_is_checked_but_never_regenerated(tmp_path, monkeypatch):
+    # its search is an SDP: check proves the file, its gains and its canonical form, and runs no solver, so a solver
+    # upgrade can neither fail it nor be reported for it (the README's CI example uses the paper's template)
+    import shutil
+
+    from symbolic_friction._certify import quadratic_search
+
+    (tmp_path / ".git").mkdir()
+    shutil.copy(Path(__file__).resolve().parents[2] / "proofs" / "quadratic" / "case_a.json", tmp_path / "q.json")
+    (tmp_path / "pyproject.toml").write_text(
+        "[tool.symbolic-friction]\nproofs = \".\"\ncertificates = [\"q.json\"]\nstrict = true\n", encoding="utf-8")
+    monkeypatch.chdir(tmp_path)
+
+    def no_search(*args, **kwargs):
+        raise AssertionError("check ran the quadratic SDP")
+
+    monkeypatch.setattr(quadratic_search, "certify_quadratic", no_search)
+    (entry,) = _entries(tmp_path, strict=True)
+    assert entry.ok and entry.drift == "" and "quadratic template" in entry.claim
+    # an edited number is still refused
+    data = json.loads((tmp_path / "q.json").read_text())
+    data["overshoot_bound"] = "1.5"
+    (tmp_path / "q.json").write_text(json.dumps(data, indent=2, sort_keys=True) + "\n")
+    (entry,) = _entries(tmp_path)
+    assert not entry.ok
