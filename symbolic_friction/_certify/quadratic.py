@@ -38,7 +38,7 @@ from .._infra.rational import format_rational as _f
 from .._model import quadratic as model
 from ._template import Template, register
 from .copositive import decide_copositive
-from .verify import Check, Inequality, Semidefinite, decide
+from .verify import Check, Inequality, Semidefinite, VerificationReport, decide
 
 __all__ = [
     "SCHEMA", "TEMPLATE_ID", "CONSTANTS", "OBLIGATIONS", "QuadraticCertificate", "QuadraticReport",
@@ -240,26 +240,23 @@ def decide_premise(premise: Inequality | Semidefinite | Copositive) -> Check:
 
 
 @dataclass(frozen=True)
-class QuadraticReport:
-    """Per-premise verdicts of a quadratic certificate (``proved`` iff every premise holds)."""
+class QuadraticReport(VerificationReport):
+    """Per-premise verdicts of a quadratic certificate.
 
-    certificate: QuadraticCertificate
+    ``proved``, ``failures``, ``raise_if_failed`` and the FAILED line are the
+    stability verifier's (:class:`~.verify.VerificationReport`): one rule for
+    every template (proved iff there is a check and every one holds).
+    """
+
+    certificate: QuadraticCertificate  # type: ignore[assignment]
     checks: tuple[Check, ...]
     source: str = "<certificate>"
-
-    @property
-    def proved(self) -> bool:
-        return bool(self.checks) and all(check.holds for check in self.checks)
-
-    @property
-    def failures(self) -> tuple[Check, ...]:
-        return tuple(check for check in self.checks if not check.holds)
 
     def summary(self) -> str:
         if self.proved:
             return (f"PROVED {self.source}: all {len(self.checks)} premises of the quadratic template hold; "
                     f"|x(t)|_A <= {self.certificate.overshoot_bound}·|x(0)|_A")
-        return f"FAILED {self.source}: " + "; ".join(check.message for check in self.failures)
+        return super().summary()
 
 
 def verify_quadratic(certificate: QuadraticCertificate, *, source: str = "<certificate>") -> QuadraticReport:
