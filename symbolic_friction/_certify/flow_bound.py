@@ -147,25 +147,35 @@ def _lower(A: Any, t: float) -> Fraction:
 
 
 def _p_condition(params: Parameters) -> Fraction:
-    """An exact ``q ≥ λ_max(P)/λ_min(P)`` for the paper's ``P`` (eq. lyapLikeP), decided by principal minors."""
+    """An exact ``q ≥ λ_max(P)/λ_min(P)`` for the paper's ``P`` (eq. lyapLikeP), decided by principal minors.
+
+    Floats only give the first guesses ``0 < p ≤ λ_min`` and ``p̄ ≥ λ_max``; each is halved or doubled
+    until ``P − pI ⪰ 0`` and ``p̄I − P ⪰ 0`` hold exactly.
+    """
     import numpy as np
 
     from .verify import Semidefinite
 
     P = [[Fraction(x) for x in row] for row in lyapunov_matrix_entries(params.k_p, params.k_i, params.k_v)]
+
+    def psd(sign: int, shift: Fraction) -> bool:  # sign·(P − shift·I) ⪰ 0, exactly
+        rows = tuple(tuple(sign * (P[i][j] - shift * (i == j)) for j in range(3)) for i in range(3))
+        return all(d >= 0 for _, d in Semidefinite("", "", rows).minors())
+
     eig = np.linalg.eigvalsh(np.array(P, dtype=float))
-    eye = [[Fraction(int(i == j)) for j in range(3)] for i in range(3)]
     low, high = Fraction(float(eig[0])) / 2, Fraction(float(eig[-1])) * 2
     for _ in range(200):
-        if all(d >= 0 for _, d in Semidefinite("", "", tuple(tuple(P[i][j] - low * eye[i][j] for j in range(3)) for i in range(3))).minors()):
+        if low > 0 and psd(1, low):
             break
-        low /= 2
+        low = low / 2 if low > 0 else Fraction(1, 2**60)
     else:
-        raise ParameterError(f"cannot bound λ_min(P) below for {params}: is Assumption 1 satisfied?")
+        raise ParameterError(f"cannot bound λ_min(P) > 0 below for {params}: is Assumption 1 satisfied?")
     for _ in range(200):
-        if all(d >= 0 for _, d in Semidefinite("", "", tuple(tuple(high * eye[i][j] - P[i][j] for j in range(3)) for i in range(3))).minors()):
+        if psd(-1, high):
             break
         high *= 2
+    else:
+        raise ParameterError(f"cannot bound λ_max(P) above for {params}")
     return high / low
 
 
@@ -246,8 +256,7 @@ def kappa_lin_bound(params: Parameters, *, rel_tol: Fraction = Fraction(1, 1000)
             raise ParameterError(f"the enclosure of sup ‖e^(At)‖₂ did not settle after {restarts} restarts for {params}")
         from .rounding import sqrt_decimal_up
 
-        upper = Fraction(sqrt_decimal_up(mu, 8))
-        return FlowBound(lower=lower, upper=max(upper, lower), upper_squared=mu, t_peak=t_peak, horizon=horizon,
+        return FlowBound(lower=lower, upper=Fraction(sqrt_decimal_up(mu, 8)), upper_squared=mu, t_peak=t_peak, horizon=horizon,
                          pieces=pieces)
     finally:
         flint.ctx.prec = old

@@ -116,6 +116,16 @@ def ensure_directory(path: str | os.PathLike[str], *, what: str = "output direct
     return path
 
 
+def _lstat_or_none(path: Path, prefix: str) -> os.stat_result | None:
+    """``os.lstat(path)``, None if nothing is there; any other error is an :class:`OutputPathError` (``prefix`` + why)."""
+    try:
+        return os.lstat(path)
+    except FileNotFoundError:
+        return None
+    except OSError as exc:
+        raise OutputPathError(prefix + describe_os_error(exc, path)) from None
+
+
 def atomic_write(path: str | os.PathLike[str], write: Callable[[IO[bytes]], object]) -> Path:
     """Call ``write(handle)`` on a binary temporary file, then rename it to ``path``.
 
@@ -133,12 +143,7 @@ def atomic_write(path: str | os.PathLike[str], write: Callable[[IO[bytes]], obje
     """
     _check_file_spelling(path, what="output file")
     path = Path(path)
-    try:
-        st = os.lstat(path)
-    except FileNotFoundError:
-        st = None
-    except OSError as exc:
-        raise OutputPathError(describe_os_error(exc, path)) from None
+    st = _lstat_or_none(path, "")
     if st is not None and not stat.S_ISREG(st.st_mode):
         return _write_through(path, st, write)
     path.parent.mkdir(parents=True, exist_ok=True)
@@ -230,12 +235,7 @@ def check_output_file(path: str | os.PathLike[str], *, what: str = "output file"
     """
     _check_file_spelling(path, what=what)
     path = Path(path)
-    try:
-        st = os.lstat(path)
-    except FileNotFoundError:
-        st = None
-    except OSError as exc:
-        raise OutputPathError(f"cannot use {what} {describe_os_error(exc, path)}") from None
+    st = _lstat_or_none(path, f"cannot use {what} ")
     if st is not None:
         try:
             _refuse_special(path, st.st_mode)

@@ -108,3 +108,16 @@ def test_bad_input_is_refused():
         kappa_lin_bound(Parameters.table_i("a"), rel_tol=0)
     with pytest.raises(ParameterError, match="cannot show|did not settle"):
         kappa_lin_bound(Parameters(k_p=1, k_i=1, k_v=1 + Fraction(1, 10**6)), max_pieces=200)
+
+
+def test_the_tail_constant_does_not_trust_the_float_eigenvalues(monkeypatch):
+    # floats only seed the search: a wrong guess (λ_min ≤ 0, λ_max far too small) still ends in an exact bound
+    import numpy as np
+
+    from symbolic_friction._model.lyapunov import lyapunov_matrix
+
+    params = Parameters.table_i("b")
+    true = np.linalg.eigvalsh(lyapunov_matrix(params))
+    monkeypatch.setattr(np.linalg, "eigvalsh", lambda M: np.array([-1.0, 0.0, 1e-3]))
+    q = flow_bound._p_condition(params)
+    assert q > 0 and q >= true[-1] / true[0]
