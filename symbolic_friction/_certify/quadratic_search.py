@@ -21,40 +21,13 @@ from .._model.parameters import Parameters
 if TYPE_CHECKING:
     from .quadratic import QuadraticCertificate
 
-__all__ = ["certify_quadratic", "copositive_constraints", "MARGINS", "DIGITS"]
+__all__ = ["certify_quadratic", "MARGINS", "DIGITS"]
 
 DIGITS = 12
 """Significant digits kept from the solver's numbers."""
 MARGINS: tuple[float, ...] = (1e-7, 1e-6, 1e-5, 1e-4)
 """Relative margins tried in turn until the rounded constants verify."""
 SOLVER = "CLARABEL"
-
-
-def copositive_constraints(M, mask, margin: float) -> list:
-    """cvxpy constraints making ``M`` copositive with a margin.
-
-    ``mask[i]`` is 0 where ``M``'s diagonal entry is structurally zero.  Such
-    a row is copositive only with nonnegative off-diagonal entries, so those
-    are kept ``≥ margin`` by linear constraints, and the rest of ``M`` is
-    written ``M − margin·I = S + N`` with ``S ⪰ 0`` and ``N ≥ 0`` (Diananda:
-    exact for ``n ≤ 4``).  Writing the zero rows into ``S + N`` too would let
-    an interior-point solver keep ``S_ii`` at its tolerance and a visibly
-    negative ``S_ij`` beside it, which rounding then exposes.
-    """
-    import cvxpy as cp
-    import numpy as np
-
-    n = M.shape[0]
-    zero = [i for i in range(n) if not mask[i]]
-    rest = [i for i in range(n) if mask[i]]
-    cons = [M[i, j] >= margin for i in zero for j in range(n) if j != i]
-    if rest:
-        m = len(rest)
-        S = cp.Variable((m, m), symmetric=True)
-        N = cp.Variable((m, m), symmetric=True)
-        sub = cp.bmat([[M[i, j] for j in rest] for i in rest])
-        cons += [S >> 0, N >= 0, sub - margin * np.eye(m) == S + N]
-    return cons
 
 
 def _solve(params: Parameters, margin: float):
@@ -73,7 +46,13 @@ def _solve(params: Parameters, margin: float):
     cons = [P - (1 + eps) * eye >> 0, c2 * eye - P - eps * eye >> 0, c >= eps, -(Q + c * e3) - eps * scale * np.diag([0.0, 1.0, 1.0]) >> 0]
 
     def copositive(M, mask):
-        return copositive_constraints(M, mask, eps * scale)
+        n = M.shape[0]
+        S = cp.Variable((n, n), symmetric=True)
+        N = cp.Variable((n, n), symmetric=True)
+        # a structurally zero diagonal entry forces its row of M to be ≥ 0: keep those entries ≥ the margin instead
+        free = 1 - np.array(mask, dtype=float)
+        margin_matrix = np.diag(np.array(mask, dtype=float)) + (1 - np.eye(n)) * np.minimum(1, np.add.outer(free, free))
+        return [S >> 0, N >= 0, M - eps * scale * margin_matrix == S + N]
 
     k_rows = tuple(tuple(K[i, j] for j in range(3)) for i in range(3))
     for s in (1.0, -1.0):

@@ -12,7 +12,7 @@ Nothing here is called proved.  The search:
    ``[T, ∞)`` and, for each, minimises ``γ`` by an SDP (cvxpy, Clarabel) over
    ``K`` subject to the quadratic template's rate premises and the exit
    forms at :data:`SAMPLES` times of the piece, each copositive premise as
-   ``S + N`` with a margin (:func:`.quadratic_search.copositive_constraints`);
+   ``S + N`` with a margin (:func:`copositive_constraints`);
 4. halves the piece with the largest ``γ`` while that lowers the largest
    ``γ`` by more than ``rel_tol`` (so the pieces are where the bound needs
    them, not where a hand put them), up to ``max_pieces``;
@@ -36,7 +36,7 @@ from .._model.parameters import Parameters
 if TYPE_CHECKING:
     from .sup_flow import SupFlowCertificate
 
-__all__ = ["certify_sup_flow", "DIGITS", "SAMPLES", "INITIAL_PIECES", "MARGIN", "C2_MARGIN"]
+__all__ = ["certify_sup_flow", "copositive_constraints", "DIGITS", "SAMPLES", "INITIAL_PIECES", "MARGIN", "C2_MARGIN"]
 
 DIGITS = 12
 """Significant digits kept from the solver's numbers."""
@@ -61,8 +61,36 @@ class _Piece:
     gamma: float = float("inf")
     values: dict[str, float] | None = None
     final: bool = False
+    status: str = ""
     stalls: int = 0
     best: float = float("inf")
+
+
+def copositive_constraints(M, mask, margin: float) -> list:
+    """cvxpy constraints making ``M`` copositive with a margin.
+
+    ``mask[i]`` is 0 where ``M``'s diagonal entry is structurally zero.  Such
+    a row is copositive only with nonnegative off-diagonal entries, so those
+    are kept ``≥ margin`` by linear constraints, and the rest of ``M`` is
+    written ``M − margin·I = S + N`` with ``S ⪰ 0`` and ``N ≥ 0`` (Diananda:
+    exact for ``n ≤ 4``).  Writing the zero rows into ``S + N`` too would let
+    an interior-point solver keep ``S_ii`` at its tolerance and a visibly
+    negative ``S_ij`` beside it, which rounding then exposes.
+    """
+    import cvxpy as cp
+    import numpy as np
+
+    n = M.shape[0]
+    zero = [i for i in range(n) if not mask[i]]
+    rest = [i for i in range(n) if mask[i]]
+    cons = [M[i, j] >= margin for i in zero for j in range(n) if j != i]
+    if rest:
+        m = len(rest)
+        S = cp.Variable((m, m), symmetric=True)
+        N = cp.Variable((m, m), symmetric=True)
+        sub = cp.bmat([[M[i, j] for j in rest] for i in rest])
+        cons += [S >> 0, N >= 0, sub - margin * np.eye(m) == S + N]
+    return cons
 
 
 def _flows(a_matrix: Any, times: Any) -> list[Any]:
@@ -83,8 +111,6 @@ class _PieceProblem:
     def __init__(self, k: tuple[float, float, float], *, first: bool, room: bool = False) -> None:
         import cvxpy as cp
         import numpy as np
-
-        from .quadratic_search import copositive_constraints
 
         k_p, k_i, k_v = k
         self.names = ("k11", "k13", "k22", "k23", "k33", "gamma")
@@ -195,6 +221,9 @@ def certify_sup_flow(params: Parameters, *, label: str = "", rel_tol: float = 3e
     solve = lambda piece: _solve(a_matrix, p_float, float(p), problems, piece)  # noqa: E731
     for piece in pieces:
         solve(piece)
+        if piece.values is None:
+            raise CertificateError(f"no sup-flow certificate for {params} verifies exactly: the SDP of the piece starting at "
+                                   f"t = {float(piece.start):.6g} is {piece.status} at every margin tried")
     # halve the pieces whose K fails between its sample times (a dense float look, not a proof)
     while True:
         bad = [q for q in pieces if q.end is not None and q.values is not None and not _dense_ok(a_matrix, q)]
@@ -291,6 +320,8 @@ def _dense_ok(a_matrix: Any, piece: _Piece) -> bool:
     import numpy as np
 
     v = piece.values
+    if v is None:
+        return False
     k = quad.u_matrix_entries(v["k11"], v["k13"], v["k22"], v["k23"], v["k33"])
     for e in _flows(a_matrix, np.linspace(float(piece.start), float(piece.end), DENSE)):
         g = tuple(map(tuple, e.T @ e))
@@ -364,6 +395,6 @@ def _solve(a_matrix: Any, p_float: Any, p: float, problems: dict[bool, _PiecePro
     for margin in (MARGIN, MARGIN * 10, MARGIN * 100):
         status, values = problems[piece.start == 0].solve(grams, margin)
         if status == "optimal" and values:
-            piece.values, piece.gamma = values, values["gamma"]
+            piece.values, piece.gamma, piece.status = values, values["gamma"], status
             return
-    piece.values, piece.gamma = None, float("inf")
+    piece.values, piece.gamma, piece.status = None, float("inf"), status
