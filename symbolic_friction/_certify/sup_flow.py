@@ -51,7 +51,7 @@ from .verify import Check, Inequality, Semidefinite, VerificationReport
 
 __all__ = [
     "SCHEMA", "TEMPLATE_ID", "OBLIGATIONS", "MAX_PIECES", "MAX_PARTS", "SupFlowPiece", "SupFlowCertificate",
-    "SupFlowProvenance", "FlowNorm", "FlowExit", "sup_flow_premises", "verify_sup_flow", "dumps_sup_flow", "SUP_FLOW",
+    "SupFlowProvenance", "MAX_TOTAL_PARTS", "FlowNorm", "FlowExit", "sup_flow_premises", "verify_sup_flow", "dumps_sup_flow", "SUP_FLOW",
 ]
 
 SCHEMA = "symbolic-friction/sup-flow-certificate/v1"
@@ -62,8 +62,10 @@ PIECE_CONSTANTS = ("k11", "k13", "k22", "k23", "k33", "gamma")
 INFINITY = "inf"
 MAX_PIECES = 256
 """Pieces a file may hold (bounded before anything is built)."""
-MAX_PARTS = 4096
+MAX_PARTS = 2048
 """Intervals one rigorous decision may bisect its interval into before it says *not proved*."""
+MAX_TOTAL_PARTS = 12_288
+"""Intervals all rigorous decisions of one certificate may use together (a few seconds at most)."""
 PRECISION = 128
 """Bits of the arb balls."""
 OBLIGATIONS = (
@@ -310,41 +312,85 @@ def _lower(ball: Any) -> Fraction:
     return _fraction(ball.lower())
 
 
-def _exit_holds(k: Any, gram: Any) -> tuple[bool, str]:
-    """Every exit form, with each entry replaced by the lower end of its ball, copositive (exactly).
+def _upper(ball: Any) -> Fraction:
+    from .flow_bound import _fraction
 
-    Copositivity is monotone in the entries, so the rational matrix of lower
-    ends being copositive shows it for every ``G`` in the enclosure.
+    return _fraction(ball.upper())
+
+
+def _exit_holds(k: Any, gram: Any, *, end: Any = _lower) -> tuple[bool, str]:
+    """Every exit form, with each entry replaced by one end of its ball, copositive (exactly).
+
+    Copositivity is monotone in the entries: the rational matrix of lower ends
+    being copositive shows it for every ``G`` in the enclosure; the matrix of
+    upper ends (``end=_upper``) *not* being copositive shows that no ``G`` in
+    it is (at a point ``t``: the premise is false there).
     """
     from .copositive import decide_copositive
 
     for s in (1, -1):
         for plane, form in zip(model.EXIT_PLANES, model.exit_forms(k, gram, _arb(Fraction(s)))):
-            low = min(_lower(form[0][1]), _lower(form[1][0]))
-            rows = ((_lower(form[0][0]), low), (low, _lower(form[1][1])))
+            pick = min if end is _lower else max
+            off = pick(end(form[0][1]), end(form[1][0]))
+            rows = ((end(form[0][0]), off), (off, end(form[1][1])))
             decision = decide_copositive(rows)
             if decision.holds is not True:
                 return False, f"{plane}, sign σ = {'+' if s > 0 else '−'}: {decision.reason}"
     return True, ""
 
 
-def _bisect(a: Fraction, b: Fraction, test: Any) -> tuple[int, str]:
-    """Cover ``[a, b]`` by dyadic parts on each of which ``test(lo, hi)`` holds: ``(parts, "")``, or ``(parts, why not)``."""
+def _not(verdict: tuple[bool, str]) -> tuple[bool, str]:
+    return not verdict[0], verdict[1]
+
+
+class _Budget:
+    """The parts one verification may still bisect into (all its premises together)."""
+
+    def __init__(self, parts: int) -> None:
+        self.left = parts
+
+
+def _bisect(a: Fraction, b: Fraction, test: Any, refute: Any, budget: _Budget) -> tuple[int, str]:
+    """Cover ``[a, b]`` by dyadic parts on each of which ``test(lo, hi)`` holds: ``(parts, "")``, or ``(parts, why not)``.
+
+    Where a part is not decided, ``refute(t)`` looks at its midpoint: a premise
+    false there ends the search at once (a false certificate costs little);
+    otherwise the part is halved, up to :data:`MAX_PARTS` parts for this
+    premise and the budget of the whole verification.
+    """
     stack, done, why = [(a, b)], 0, ""
     while stack:
         lo, hi = stack.pop()
         holds, why = test(lo, hi)
+        budget.left -= 1
         if holds:
             done += 1
             continue
-        if done + len(stack) + 2 > MAX_PARTS:
-            return done, f"not decided on [{float(lo):.6g}, {float(hi):.6g}] within {MAX_PARTS} parts ({why})"
         mid = (lo + hi) / 2
+        false_at, reason = refute(mid)
+        if false_at:
+            return done, f"refuted at t = {_f(mid)} ({reason})"
+        if done + len(stack) + 2 > MAX_PARTS or budget.left < 2:
+            limit = f"{MAX_PARTS} parts" if budget.left >= 2 else f"the {MAX_TOTAL_PARTS} parts of one verification"
+            return done, f"not decided on [{float(lo):.6g}, {float(hi):.6g}] within {limit} ({why})"
         stack += [(mid, hi), (lo, mid)]
     return done, ""
 
 
-def _decide_flow(premise: FlowNorm | FlowExit) -> Check:
+def _norm_refuted(cert: SupFlowCertificate, mu: Any, t: Fraction) -> tuple[bool, str]:
+    """``‖e^{At}‖₂² > c₂`` shown at the point ``t`` (the Rayleigh quotient of ``e^{At}ᵀe^{At}`` at a float guess of
+    its top eigenvector, in arb; a lower end above ``c₂``)."""
+    import numpy as np
+
+    e = _flow(cert, t, t)
+    g = e.transpose() * e
+    guess = np.linalg.eigh(np.array([[float(g[i, j].mid()) for j in range(3)] for i in range(3)]))[1][:, -1]
+    v = [_arb(Fraction(float(x))) for x in guess]
+    q = sum(v[i] * g[i, j] * v[j] for i in range(3) for j in range(3)) / sum(x * x for x in v)
+    return bool(q > mu), "‖e^(At)‖² > c2 there"
+
+
+def _decide_flow(premise: FlowNorm | FlowExit, budget: _Budget) -> Check:
     import flint
 
     from .flow_bound import _below
@@ -356,27 +402,25 @@ def _decide_flow(premise: FlowNorm | FlowExit) -> Check:
         horizon = cert.pieces[-1].start
         if isinstance(premise, FlowNorm):
             mu = _arb(cert.constants["c2"])
-            if cert.constants["p"] <= 0:
-                return Check(premise.obligation, premise.name, "p ≤ 0: no tail bound", False)
             if not _below(mu, flint.arb_mat([list(r) for r in _tail_gram(cert, horizon)])):
                 return Check(premise.obligation, premise.name, f"the tail form at T = {_f(horizon)} is not below c2", False)
+
             def below(lo: Fraction, hi: Fraction) -> tuple[bool, str]:
                 e = _flow(cert, lo, hi)
                 return _below(mu, e.transpose() * e), "‖e^(At)‖² ≥ c2 or too close to it"
 
-            parts, why = _bisect(Fraction(0), horizon, below)
+            parts, why = _bisect(Fraction(0), horizon, below, lambda t: _norm_refuted(cert, mu, t), budget)
             text = f"c2 = {_f(cert.constants['c2'])} on [0, {_f(horizon)}] in {parts} parts and past it by P"
             return Check(premise.obligation, premise.name, why or text, not why)
         piece = cert.pieces[premise.index]
         k = tuple(tuple(_arb(x) for x in row) for row in piece.k_matrix())
         if piece.end is None:
-            if cert.constants["p"] <= 0:
-                return Check(premise.obligation, premise.name, "p ≤ 0: no tail bound", False)
             holds, why = _exit_holds(k, _tail_gram(cert, piece.start))
             return Check(premise.obligation, premise.name, why or f"past T = {_f(piece.start)} by P", holds)
         if not piece.start < piece.end:
             return Check(premise.obligation, premise.name, f"empty piece {piece.interval_text()}", False)
-        parts, why = _bisect(piece.start, piece.end, lambda lo, hi: _exit_holds(k, _gram(_flow(cert, lo, hi))))
+        parts, why = _bisect(piece.start, piece.end, lambda lo, hi: _exit_holds(k, _gram(_flow(cert, lo, hi))),
+                             lambda t: _not(_exit_holds(k, _gram(_flow(cert, t, t)), end=_upper)), budget)
         return Check(premise.obligation, premise.name, why or f"on {piece.interval_text()} in {parts} parts", not why)
     finally:
         flint.ctx.prec = old
@@ -432,9 +476,9 @@ def sup_flow_premises(cert: SupFlowCertificate) -> list[Any]:
     return out
 
 
-def _decide(premise: Any) -> Check:
+def _decide(premise: Any, budget: _Budget | None = None) -> Check:
     if isinstance(premise, (FlowNorm, FlowExit)):
-        return _decide_flow(premise)
+        return _decide_flow(premise, budget or _Budget(MAX_TOTAL_PARTS))
     return decide_premise(premise)
 
 
@@ -457,7 +501,7 @@ def verify_sup_flow(certificate: SupFlowCertificate, *, source: str = "<certific
     """Decide every premise of :func:`sup_flow_premises` (a structural failure stops before the flow is enclosed)."""
     if not isinstance(certificate, SupFlowCertificate):
         raise TypeError(f"verify_sup_flow needs a SupFlowCertificate; got {type(certificate).__name__}")
-    checks, structural = [], True
+    checks, structural, budget = [], True, _Budget(MAX_TOTAL_PARTS)
     for premise in sup_flow_premises(certificate):
         if isinstance(premise, Inequality) and premise.obligation in ("lemma2.P", "sup_flow.exit"):
             check = _decide(premise)
@@ -468,7 +512,7 @@ def verify_sup_flow(certificate: SupFlowCertificate, *, source: str = "<certific
             # the enclosures need Assumption 1, contiguous pieces and p > 0: without them they mean nothing
             checks.append(Check(premise.obligation, premise.name, "not evaluated (an earlier premise fails)", False, evaluated=False))
             continue
-        checks.append(_decide(premise))
+        checks.append(_decide(premise, budget))
     return SupFlowReport(certificate, tuple(checks), source)
 
 

@@ -123,6 +123,8 @@ def test_c2_below_the_peak_of_the_flow_is_refused():
     data = _data()
     data["constants"]["c2"] = "3/2"  # sup ‖e^(At)‖² ≈ 1.886 for case (a)
     assert _failed(data) == ["c2 ≥ ‖e^(At)‖² for every t ≥ 0"]
+    (check,) = _verify(data).failures
+    assert check.instance.startswith("refuted at t = ") and "‖e^(At)‖² > c2 there" in check.instance
 
 
 def test_a_horizon_too_early_for_the_tail_is_refused():
@@ -164,6 +166,8 @@ def test_a_piece_whose_u_is_below_the_flow_on_the_exits_is_refused():
     data = _data()
     index = len(data["pieces"]) // 2
     failed = _failed(_scale_piece(data, index, Fraction(1, 2)))
+    (check,) = _verify(_scale_piece(data, index, Fraction(1, 2))).failures
+    assert check.instance.startswith("refuted at t = ")  # a false premise is found false, not merely undecided
     assert failed == [f"piece {index + 1}: U ≥ |e^(At)w|² on the exits of R̂ for t in "
                       + sup_flow.SupFlowPiece(start=Fraction(data["pieces"][index]["start"]),
                                               end=Fraction(data["pieces"][index]["end"]),
@@ -183,6 +187,13 @@ def test_an_undecided_enclosure_is_not_proved(monkeypatch):
     report = _verify(_data())
     assert not report.proved
     assert any("not decided" in c.instance for c in report.failures)
+
+
+def test_one_verification_has_a_budget_of_parts(monkeypatch):
+    monkeypatch.setattr(sup_flow, "MAX_TOTAL_PARTS", 20)
+    report = _verify(_data())
+    assert not report.proved
+    assert any("within the 20 parts of one verification" in c.instance for c in report.failures)
 
 
 def test_the_exit_decision_uses_the_lower_ends_of_the_balls(monkeypatch):
