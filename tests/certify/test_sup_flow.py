@@ -196,8 +196,8 @@ def test_one_verification_has_a_budget_of_parts(monkeypatch):
     assert any("within the 20 parts of one verification" in c.instance for c in report.failures)
 
 
-def test_the_exit_decision_uses_the_lower_ends_of_the_balls(monkeypatch):
-    """With the midpoint in place of the lower end a wide ball would pass; the lower end refuses it."""
+def test_a_piece_stretched_beyond_where_its_k_holds_is_refused():
+    """Piece 1's K over the whole finite horizon: it is below the flow somewhere there, and the verifier says so."""
     data = _data()
     # one piece stretched over the whole finite horizon with piece 1's K: its enclosures are wide
     first, tail = copy.deepcopy(data["pieces"][0]), data["pieces"][-1]
