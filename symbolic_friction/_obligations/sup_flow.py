@@ -33,7 +33,9 @@ from typing import Any
 import sympy as sp
 
 from .._model import attractor as _attractor
+from .._model import coordinates as _coordinates
 from .._model import lyapunov as _lyapunov
+from .._model import symbolic as _symbolic
 from . import _sup_flow_points as _pt
 from ._base import Obligation, Outcome
 from ._decide import G, is_zero, latex, pos, sign_of
@@ -114,13 +116,23 @@ class SlipFlow(Obligation):
 
 @dataclass(frozen=True)
 class RestMinimumSubject:
-    time_rate: sp.Expr  # d/dt |Mσe₁|² with M' = MA
-    psi_slope: sp.Expr  # ∂_ψ |M(σe₁ + ψe₂)|² at ψ = 0
-    sigma: sp.Symbol
-    slope_at_identity: sp.Expr  # the slope at M = I (t* = 0)
-    curvature: sp.Expr  # ∂²_ψ |M(σe₁ + ψe₂)|²
-    column_two: sp.Expr  # |Me₂|²
-    taylor_gap: sp.Expr  # q(ψ) − (q(0) + ψ q'(0) + ½ψ² q'')
+    """Polynomials (elements of one ring over ℚ: exact, and cheap to multiply out)."""
+
+    time_rate: Any  # d/dt |Mσe₁|² with M' = MA
+    psi_slope: Any  # ∂_ψ |M(σe₁ + ψe₂)|² at ψ = 0
+    sigma: Any
+    slope_at_identity: Any  # the slope at M = I (t* = 0)
+    curvature: Any  # ∂²_ψ |M(σe₁ + ψe₂)|²
+    column_two: Any  # |Me₂|²
+    taylor_gap: Any  # q(ψ) − (q(0) + ψ q'(0) + ½ψ² q'')
+
+
+def _mul(a, b) -> list:
+    return [[sum((a[i][k] * b[k][j] for k in range(3)), a[0][0] * 0) for j in range(3)] for i in range(3)]
+
+
+def _norm2(u) -> Any:
+    return sum((e * e for e in u), u[0] * 0)
 
 
 class RestMinimum(Obligation):
@@ -135,43 +147,49 @@ class RestMinimum(Obligation):
         "this replaces the Danskin step (cited only: the sup is attained, as e^{At} → 0); a sup of convex "
         "quadratics, ψ ↦ g(σ,ψ,0) is convex, so nondecreasing in |ψ| on each side of 0"
     )
-    method = "sympy polynomial identities in a generic 3×3 M; sum of squares"
+    method = "polynomial identities over ℚ in a generic 3×3 M; sum of squares"
 
     def derive(self) -> RestMinimumSubject:
-        g = G()
-        A = _pt.system_matrix(g)
-        m = sp.Matrix(3, 3, sp.symbols("m11 m12 m13 m21 m22 m23 m31 m32 m33", real=True))
-        sigma, psi = sp.symbols("sigma psi", real=True)
-        e1, e2, _ = _pt.E
-        u = m * (sigma * e1 + psi * e2)
-        q = _pt.dot(u, u)
-        slope = sp.expand(sp.diff(q, psi).subs(psi, 0))
-        curvature = sp.expand(sp.diff(q, psi, 2))
-        at_identity = slope.xreplace(dict(zip(m, sp.eye(3))))
-        me2 = m * e2
+        from sympy.polys.rings import ring
+
+        ring_, *gens = ring("m11 m12 m13 m21 m22 m23 m31 m32 m33 sigma psi k_p k_i k_v", sp.QQ)
+        m = [gens[0:3], gens[3:6], gens[6:9]]
+        sigma, psi, k_p, k_i, k_v = gens[9:]
+        a = [[ring_(e) for e in row] for row in _coordinates.system_matrix_entries(k_p, k_i, k_v)]
+        ma = _mul(m, a)
+        column = lambda mat, j: [mat[i][j] for i in range(3)]  # noqa: E731
+        u = [sigma * m[i][0] + psi * m[i][1] for i in range(3)]  # M(σe₁ + ψe₂)
+        q = _norm2(u)
+        slope = q.diff(psi).compose(psi, ring_(0))
+        curvature = q.diff(psi).diff(psi)
+        identity = {g: ring_(int(i == j)) for (i, row) in enumerate(m) for (j, g) in enumerate(row)}
+        at_identity = slope.compose(list(identity.items()))
+        me1 = [sigma * e for e in column(m, 0)]
+        rate = 2 * sum((x * (sigma * y) for x, y in zip(me1, column(ma, 0))), ring_(0))  # M' = MA: (Mσe₁)' = MAσe₁
         return RestMinimumSubject(
-            time_rate=sp.expand(2 * _pt.dot(m * sigma * e1, m * A * sigma * e1)),
+            time_rate=rate,
             psi_slope=slope,
             sigma=sigma,
-            slope_at_identity=sp.expand(at_identity),
+            slope_at_identity=at_identity,
             curvature=curvature,
-            column_two=_pt.dot(me2, me2),
-            taylor_gap=sp.expand(q - (q.subs(psi, 0) + psi * slope + psi**2 * curvature / 2)),
+            column_two=_norm2(column(m, 1)),
+            taylor_gap=q - (q.compose(psi, ring_(0)) + psi * slope + psi**2 * curvature * sp.Rational(1, 2)),
         )
 
     def verify(self, s: RestMinimumSubject) -> Outcome:
-        gap = sp.expand(s.time_rate - s.sigma * s.psi_slope)
-        if not is_zero(gap):
+        gap = s.time_rate - s.sigma * s.psi_slope
+        if gap != 0:
             return Outcome.fail(f"d/dt|Mσe₁|² − σ·∂_ψ|M(σe₁+ψe₂)|² = {gap} ≠ 0: the maximiser does not fix the ψ-slope")
-        if not is_zero(s.slope_at_identity):
+        if s.slope_at_identity != 0:
             return Outcome.fail(f"at t* = 0 (M = I) the ψ-slope is {s.slope_at_identity}, not 0")
-        if not is_zero(s.psi_slope.xreplace({s.sigma: 0})):
-            return Outcome.fail(f"at σ = 0 the ψ-slope is {s.psi_slope.xreplace({s.sigma: 0})}, not 0")
-        if not is_zero(s.curvature - 2 * s.column_two):
+        at_rest = s.psi_slope.compose(s.sigma, s.sigma.ring(0))
+        if at_rest != 0:
+            return Outcome.fail(f"at σ = 0 the ψ-slope is {at_rest}, not 0")
+        if s.curvature - 2 * s.column_two != 0:
             return Outcome.fail(f"∂²_ψ|M(σe₁+ψe₂)|² = {s.curvature}, not 2|Me₂|²")
-        if not is_nonneg(s.curvature):
+        if not is_nonneg(s.curvature.as_expr()):
             return Outcome.fail(f"∂²_ψ = {s.curvature} is not shown ≥ 0")
-        if not is_zero(s.taylor_gap):
+        if s.taylor_gap != 0:
             return Outcome.fail(f"|M(σe₁+ψe₂)|² is not its second-order Taylor polynomial in ψ: gap {s.taylor_gap}")
         return Outcome(True, "", (
             ("\\tfrac{d}{dt}|M\\sigma e_1|^2", "2\\sigma^2 (Me_1)^\\top (MAe_1) = \\sigma\\,\\partial_\\psi |M(\\sigma e_1 + \\psi e_2)|^2\\big|_{\\psi=0}"),
@@ -293,7 +311,7 @@ class Bounds(Obligation):
         for label, phi, fc in _pt.phi_points(g.f_c):
             d = _pt.exact(_attractor.dz(phi, fc))
             fcg = _pt.WithFc(fc)
-            dist = _pt.exact(_attractor.squared_distance_x(fcg, [g.sigma, phi, g.v]))
+            dist = _pt.exact(_attractor.squared_distance_x(fcg, [g.sigma, phi, g.v]))  # every v at once
             residual = sp.expand(g.sigma**2 + (phi - f) ** 2 + g.v**2 - dist - (phi - f - d) ** 2 - 2 * d * (phi - f - d))
             lower.append(_pt.LowerPiece(label, residual, tuple(sp.expand(d * (phi - ff - d)) for ff in (fc, -fc))))
             for h, v in ((0, sp.Integer(0)), (1, qv), (-1, -qv)):
@@ -302,8 +320,7 @@ class Bounds(Obligation):
                 where = f"v {'=' if h == 0 else ('>' if h > 0 else '<')} 0, {label}"
                 if h == 0 or label in _pt.sides(h):
                     w = _pt.minimiser_w(fcg, *point)
-                    gap = sp.expand(_pt.dot(w, w) - _pt.exact(_attractor.squared_distance_x(fcg, point)))
-                    upper.append(_pt.UpperPiece(where, margin, gap))
+                    upper.append(_pt.UpperPiece(where, margin, sp.expand(_pt.dot(w, w) - dist.xreplace({g.v: v}))))
                 else:
                     outside.append((where, margin))
         return BoundsSubject(tuple(lower), tuple(upper), tuple(outside))
@@ -333,7 +350,9 @@ class Bounds(Obligation):
 @dataclass(frozen=True)
 class ExitSubject:
     points: tuple[_pt.ExitPoint, ...]
-    rate: sp.Expr  # d/dt |z|²_P along ż = Az with the paper's P, under Assumption 1
+    rate: sp.Expr  # d/dt |z|²_P along ż = Az with the paper's P
+    decrease: sp.Expr  # c z₃², c = 2(k_v k_p − k_i) of eq. (dVdt)
+    c_under_assumption1: sp.Expr  # c with k_v = (k_i + δ)/k_p
     tail_bound: sp.Expr  # the bound on |z|² the verifier uses for t ≥ T
     norm: sp.Expr  # |z|²
     premise: sp.Expr  # zᵀ(P − pI)z, ≥ 0 by the certificate's premise P − pI ⪰ 0
@@ -350,44 +369,48 @@ class Exit(Obligation):
         "for both signs s of σ the minimiser's w is h·(h s y₁, −y₂, 0) resp. h·(h s y₁, 0, y₃) with y = (|σ|, |dz φ|, |v|) "
         "from the model, so (g even) U_i = yᵀK_iy ≥ |e^{At}w|² on the two forms for both signs and t ∈ I_i gives "
         "U = max_i U_i ≥ g(w) = V_∞ there; tail: with the paper's P, d/dt|z|²_P = zᵀ(AᵀP+PA)z ≤ 0 along ż = Az "
-        "(Assumption 1) and (1/p)|z|²_P − |z|² = (1/p)zᵀ(P − pI)z ≥ 0 when P − pI ⪰ 0, so for t ≥ T "
+        "(= −c z₃², c = 2(k_v k_p − k_i) > 0 by Assumption 1, as in lemma2.dVdt) and (1/p)|z|²_P − |z|² = (1/p)zᵀ(P − pI)z ≥ 0 when P − pI ⪰ 0, so for t ≥ T "
         "|e^{At}w|² ≤ (1/p)|e^{At}w|²_P ≤ (1/p)|e^{AT}w|²_P"
     )
     method = "exhaustive split over the half of R̂, the sign of σ and the class of φ; sympy identities; sign-definite decomposition"
 
     def derive(self) -> ExitSubject:
-        from .lemma2 import under_assumption1
+        from .lemma2 import decrease_rate
 
         g = G()
         y1, n = pos("y_1"), pos("y_3")
+        rest = {}  # per class of φ at v = 0: the model's minimiser f and |dz φ| (σ does not enter them)
+        for label, phi, fc in _pt.phi_points(g.f_c):
+            fcg = _pt.WithFc(fc)
+            w = _pt.minimiser_w(fcg, g.sigma, phi, sp.Integer(0))
+            rest[label] = (phi, w, _pt.exact(sp.Abs(_pt.exact(_attractor.dz(phi, fc)))), sp.expand(_pt.exact(_lyapunov.R_margin(fcg, [g.sigma, phi, 0]))))
         points = []
         for h in (1, -1):
+            point = [g.sigma, h * g.f_c, h * n]
+            w_edge = _pt.minimiser_w(g, *point)
+            dz_edge = _pt.exact(sp.Abs(_pt.exact(_attractor.dz(point[1], g.f_c))))
+            margin_edge = sp.expand(_pt.exact(_lyapunov.R_margin(g, point)))
             for s in (1, -1):
-                for label, phi, fc in _pt.phi_points(g.f_c):
+                sigma = {g.sigma: s * y1}
+                abs_sigma = _pt.exact(sp.Abs(s * y1))
+                for label, (phi, w, abs_dz, margin) in rest.items():
                     if label in _pt.sides(h) and label not in ("φ = f_c", "φ = -f_c"):
                         continue  # h·φ > f_c at v = 0: not on the closure of R̂ ∩ {hv > 0}
-                    fcg = _pt.WithFc(fc)
-                    point = [s * y1, phi, sp.Integer(0)]
-                    w = _pt.minimiser_w(fcg, *point)
-                    y = [_pt.exact(sp.Abs(point[0])), _pt.exact(sp.Abs(_pt.exact(_attractor.dz(phi, fc)))), sp.Integer(0)]
-                    gap = (w - h * _pt.rest_exit_form(h * s, y[0], y[1])).applyfunc(sp.expand)
-                    margin = sp.expand(_pt.exact(_lyapunov.R_margin(fcg, point)))
-                    points.append(_pt.ExitPoint(f"h = {h}, s = {s}, v = 0, {label}", margin, gap))
-                point = [s * y1, h * g.f_c, h * n]
-                w = _pt.minimiser_w(g, *point)
-                y = [_pt.exact(sp.Abs(point[0])), _pt.exact(sp.Abs(_pt.exact(_attractor.dz(point[1], g.f_c)))), _pt.exact(sp.Abs(point[2]))]
-                gap = (w - h * _pt.edge_exit_form(h * s, y[0], y[2])).applyfunc(sp.expand)
-                gap = gap.col_join(sp.Matrix([y[1]]))  # |dz| = 0 on the edge
-                margin = sp.expand(_pt.exact(_lyapunov.R_margin(g, point)))
-                points.append(_pt.ExitPoint(f"h = {h}, s = {s}, φ = h f_c, hv > 0", margin, gap))
+                    gap = (w.xreplace(sigma) - h * _pt.rest_exit_form(h * s, abs_sigma, abs_dz)).applyfunc(sp.expand)
+                    points.append(_pt.ExitPoint(f"h = {h}, s = {s}, v = 0, {label}", margin.xreplace(sigma), gap))
+                gap = (w_edge.xreplace(sigma) - h * _pt.edge_exit_form(h * s, abs_sigma, _pt.exact(sp.Abs(point[2])))).applyfunc(sp.expand)
+                gap = gap.col_join(sp.Matrix([dz_edge]))  # |dz φ| = 0 on the edge
+                points.append(_pt.ExitPoint(f"h = {h}, s = {s}, φ = h f_c, hv > 0", margin_edge.xreplace(sigma), gap))
         A = _pt.system_matrix(g)
         P = sp.Matrix([[sp.sympify(e) for e in row] for row in _lyapunov.lyapunov_matrix_entries(g.k_p, g.k_i, g.k_v)])
         z = sp.Matrix(sp.symbols("z1 z2 z3", real=True))
         p = pos("p")
-        rate = under_assumption1(2 * (z.T * P * (A * z))[0])
+        c = decrease_rate(g)
         return ExitSubject(
             points=tuple(points),
-            rate=rate,
+            rate=sp.expand(2 * (z.T * P * (A * z))[0]),
+            decrease=c * z[2] ** 2,
+            c_under_assumption1=c.xreplace(_symbolic.assumption1_substitution(g)),
             tail_bound=(z.T * P * z)[0] / p,
             norm=_pt.dot(z, z),
             premise=(z.T * (P - p * sp.eye(3)) * z)[0],
@@ -402,15 +425,17 @@ class Exit(Obligation):
                 return Outcome.fail(f"{pt.label}: the minimiser's w differs from the exit form by {list(pt.gap)}")
         if len(s.points) != 20:
             return Outcome.fail(f"{len(s.points)} exit points checked, not 20")
-        if not is_nonneg(-s.rate):
-            return Outcome.fail(f"d/dt |z|²_P = {s.rate} along ż = Az is not shown ≤ 0 (AᵀP + PA ⪯ 0)")
+        if not is_zero(s.rate + s.decrease):
+            return Outcome.fail(f"d/dt |z|²_P = {s.rate} along ż = Az is not −c z₃² = {-s.decrease}: AᵀP + PA ⪯ 0 is not shown")
+        if sign_of(s.c_under_assumption1) != 1:
+            return Outcome.fail(f"c = {s.c_under_assumption1} under Assumption 1 is not shown > 0: AᵀP + PA ⪯ 0 is not shown")
         if sign_of(s.p) != 1:
             return Outcome.fail(f"the tail factor 1/p has p = {s.p}, not shown > 0")
-        residual = sp.expand(s.tail_bound - s.norm - s.premise / s.p)
+        residual = sp.expand(s.p * s.tail_bound - s.p * s.norm - s.premise)  # times p > 0: no fractions to expand
         if not is_zero(residual):
-            return Outcome.fail(f"the tail bound − |z|² − (1/p)zᵀ(P − pI)z = {residual} ≠ 0: the tail bound does not follow from P − pI ⪰ 0")
+            return Outcome.fail(f"p·(the tail bound − |z|²) − zᵀ(P − pI)z = {residual} ≠ 0: the tail bound does not follow from P − pI ⪰ 0")
         return Outcome(True, "", (
-            ("\\tfrac{d}{dt}|z|_P^2 \\text{ along } \\dot z = Az", latex(sp.factor(s.rate))),
+            ("\\tfrac{d}{dt}|z|_P^2 \\text{ along } \\dot z = Az", latex(-s.decrease)),
             ("\\tfrac1p|z|_P^2 - |z|^2", "\\tfrac1p z^\\top (P - pI) z"),
         ))
 

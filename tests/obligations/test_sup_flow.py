@@ -96,34 +96,38 @@ def test_rest_minimum_sees_a_wrong_first_column_of_a(monkeypatch):
     assert not result.holds and "ψ-slope" in result.reason
 
 
+def _rest_subject():
+    ob = RestMinimum()
+    subject = ob.derive()
+    gens = {str(x): x for x in subject.sigma.ring.gens}
+    return ob, subject, gens
+
+
 @pytest.mark.parametrize(
     ("field", "value", "fragment"),
     [
-        ("slope_at_identity", sp.Symbol("sigma", real=True), "M = I"),
-        ("curvature", -sp.Symbol("m12", real=True) ** 2, "2|Me₂|²"),
-        ("taylor_gap", sp.Symbol("psi", real=True) ** 3, "Taylor"),
+        ("slope_at_identity", lambda g: g["sigma"], "M = I"),
+        ("curvature", lambda g: -g["m12"] ** 2, "2|Me₂|²"),
+        ("taylor_gap", lambda g: g["psi"] ** 3, "Taylor"),
     ],
 )
 def test_rest_minimum_sees_a_forged_step(field, value, fragment):
-    ob = RestMinimum()
-    subject = ob.derive()
-    result = ob.verify(dataclasses.replace(subject, **{field: value}))
+    ob, subject, gens = _rest_subject()
+    result = ob.verify(dataclasses.replace(subject, **{field: value(gens)}))
     assert not result.holds and fragment in result.reason
 
 
 def test_rest_minimum_sees_a_slope_that_survives_at_sigma_zero():
-    ob = RestMinimum()
-    subject = ob.derive()
-    extra = sp.Symbol("m11", real=True)
+    ob, subject, gens = _rest_subject()
+    extra = gens["m11"]
     forged = dataclasses.replace(subject, psi_slope=subject.psi_slope + extra, time_rate=subject.time_rate + subject.sigma * extra)
     result = ob.verify(forged)
     assert not result.holds and "σ = 0" in result.reason
 
 
 def test_rest_minimum_sees_a_curvature_that_is_not_a_sum_of_squares():
-    ob = RestMinimum()
-    subject = ob.derive()
-    m = sp.Symbol("m12", real=True)
+    ob, subject, gens = _rest_subject()
+    m = gens["m12"]
     result = ob.verify(dataclasses.replace(subject, curvature=-2 * m**2, column_two=-(m**2)))
     assert not result.holds and "≥ 0" in result.reason
 
