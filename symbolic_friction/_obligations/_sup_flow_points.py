@@ -9,6 +9,8 @@ written with fresh positive symbols that cover them exactly; the band
 model's ``Piecewise`` branches are decided without common denominators.
 The exit forms are those where a solution leaves ``R̂ ∩ {v > 0}``
 (Proposition 1's case (ii) at ``t₁``), in ``y = (|σ|, |dz φ|, |v|)``.
+Proposition 1's two cases for ``V_∞`` are a chain of inequalities
+(:func:`stability_chain`) that ``sup_flow.stability_bound`` decides.
 """
 
 from __future__ import annotations
@@ -24,7 +26,8 @@ from ._decide import Undecided, pos, resolve_piecewise
 
 __all__ = [
     "E", "system_matrix", "input_vector", "state", "exact", "minimiser_w", "rest_exit_form", "edge_exit_form", "dot",
-    "phi_points", "WithFc", "sides", "Between", "RowStep", "LowerPiece", "UpperPiece", "ExitPoint",
+    "phi_points", "WithFc", "sides", "Between", "RowStep", "LowerPiece", "UpperPiece", "ExitPoint", "matmul", "norm2",
+    "stability_chain",
 ]
 
 E = (sp.Matrix([1, 0, 0]), sp.Matrix([0, 1, 0]), sp.Matrix([0, 0, 1]))
@@ -152,3 +155,55 @@ class ExitPoint:
     label: str
     margin: sp.Expr  # the model's R-margin there: 0 (the boundary of R̂)
     gap: sp.Matrix  # the minimiser's w − h·(exit form at σ-sign h·s) in the model's y
+
+
+def matmul(a, b) -> list:
+    """``ab`` for 3×3 nested lists (of polynomial-ring elements)."""
+    return [[sum((a[i][k] * b[k][j] for k in range(3)), a[0][0] * 0) for j in range(3)] for i in range(3)]
+
+
+def norm2(u) -> Any:
+    """``|u|²`` for a list of polynomial-ring elements."""
+    return sum((e * e for e in u), u[0] * 0)
+
+
+def stability_chain(step_type: type) -> tuple[dict, tuple, tuple, sp.Expr]:
+    """Proposition 1's two cases for ``V_∞`` and ``U = max_i U_i``: the facts (each naming where it is proved), the steps, the goals, ``κ²``.
+
+    ``step_type`` is the step record of ``quadratic.stability_bound``'s chain checker.
+    """
+    c2, gamma, kappa = sp.symbols("c_2 gamma_j kappa", positive=True)
+    D0, Dt, U0, Ut, U1, Uj0, W0, W1, Wt, G1, E, Ui1 = sp.symbols(
+        "D_0 D_t U_0 U_t U_t1 U_j0 V_0 V_t1 V_t g_t1 E_t U_it1", nonnegative=True)
+    facts = {
+        "|x|²_𝒜 ≤ V_∞ (sup_flow.bounds)": (Dt, Wt),
+        "V_∞ ≤ c₂|x|²_𝒜 on R, x(0) ∈ R (sup_flow.bounds)": (W0, c2 * D0),
+        "V_∞ nonincreasing, t ≥ t₁ (sup_flow.nonincreasing)": (Wt, W1),
+        "V_∞ nonincreasing, x(0) ∈ R (sup_flow.nonincreasing)": (Wt, W0),
+        "V_∞ = g(w) at t₁ (sup_flow.exit)": (W1, G1),
+        "|e^{At}w|² ≤ U_i(t₁) for t ∈ I_i (sup_flow.exit; verifier premise)": (E, Ui1),
+        "U_i ≤ U = max_i U_i": (Ui1, U1),
+        "g(w) = sup_t |e^{At}w|² ≤ U at t₁ (step 'every t ≥ 0', the I_i cover [0, ∞))": (G1, U1),
+        "U ≥ |y|² = |x|²_𝒜 on R̂ (K₀ − I copositive)": (Dt, Ut),
+        "U nonincreasing on R̂ (each U_i: quadratic.U_rate)": (Ut, U0),
+        "U nonincreasing on R̂ up to t₁ (quadratic.U_rate)": (U1, U0),
+        "U(x(0)) = U_j(x(0)), j the maximising piece": (U0, Uj0),
+        "U_j ≤ γ_j|y|² (γ_jI − K_j copositive)": (Uj0, gamma * D0),
+        "κ² ≥ c₂": (c2, kappa**2),
+        "κ² ≥ γ_j (κ² ≥ max_i γ_i)": (gamma, kappa**2),
+    }
+    uses_hat = (("U nonincreasing on R̂ (each U_i: quadratic.U_rate)", 1), ("U(x(0)) = U_j(x(0)), j the maximising piece", 1),
+                ("U_j ≤ γ_j|y|² (γ_jI − K_j copositive)", 1), ("κ² ≥ γ_j (κ² ≥ max_i γ_i)", D0))
+    steps = (
+        step_type("every t ≥ 0", E, U1, (("|e^{At}w|² ≤ U_i(t₁) for t ∈ I_i (sup_flow.exit; verifier premise)", 1), ("U_i ≤ U = max_i U_i", 1))),
+        step_type("case (i) / t < t₁", Dt, kappa**2 * D0, (("U ≥ |y|² = |x|²_𝒜 on R̂ (K₀ − I copositive)", 1),) + uses_hat),
+        step_type("case (ii), t ≥ t₁", Dt, kappa**2 * D0, (
+            ("|x|²_𝒜 ≤ V_∞ (sup_flow.bounds)", 1), ("V_∞ nonincreasing, t ≥ t₁ (sup_flow.nonincreasing)", 1),
+            ("V_∞ = g(w) at t₁ (sup_flow.exit)", 1), ("g(w) = sup_t |e^{At}w|² ≤ U at t₁ (step 'every t ≥ 0', the I_i cover [0, ∞))", 1),
+            ("U nonincreasing on R̂ up to t₁ (quadratic.U_rate)", 1)) + uses_hat[1:]),
+        step_type("case (ii), t₁ = 0", Dt, kappa**2 * D0, (
+            ("|x|²_𝒜 ≤ V_∞ (sup_flow.bounds)", 1), ("V_∞ nonincreasing, x(0) ∈ R (sup_flow.nonincreasing)", 1),
+            ("V_∞ ≤ c₂|x|²_𝒜 on R, x(0) ∈ R (sup_flow.bounds)", 1), ("κ² ≥ c₂", D0))),
+    )
+    goals = tuple((step.name, Dt, D0) for step in steps[1:])
+    return facts, steps, goals, kappa**2

@@ -127,14 +127,6 @@ class RestMinimumSubject:
     taylor_gap: Any  # q(ψ) − (q(0) + ψ q'(0) + ½ψ² q'')
 
 
-def _mul(a, b) -> list:
-    return [[sum((a[i][k] * b[k][j] for k in range(3)), a[0][0] * 0) for j in range(3)] for i in range(3)]
-
-
-def _norm2(u) -> Any:
-    return sum((e * e for e in u), u[0] * 0)
-
-
 class RestMinimum(Obligation):
     """``sup_flow.rest_minimum``: ``ψ ↦ g(σ, ψ, 0)`` is convex and minimal at ``ψ = 0``."""
 
@@ -156,10 +148,10 @@ class RestMinimum(Obligation):
         m = [gens[0:3], gens[3:6], gens[6:9]]
         sigma, psi, k_p, k_i, k_v = gens[9:]
         a = [[ring_(e) for e in row] for row in _coordinates.system_matrix_entries(k_p, k_i, k_v)]
-        ma = _mul(m, a)
+        ma = _pt.matmul(m, a)
         column = lambda mat, j: [mat[i][j] for i in range(3)]  # noqa: E731
         u = [sigma * m[i][0] + psi * m[i][1] for i in range(3)]  # M(σe₁ + ψe₂)
-        q = _norm2(u)
+        q = _pt.norm2(u)
         slope = q.diff(psi).compose(psi, ring_(0))
         curvature = q.diff(psi).diff(psi)
         identity = {g: ring_(int(i == j)) for (i, row) in enumerate(m) for (j, g) in enumerate(row)}
@@ -172,7 +164,7 @@ class RestMinimum(Obligation):
             sigma=sigma,
             slope_at_identity=at_identity,
             curvature=curvature,
-            column_two=_norm2(column(m, 1)),
+            column_two=_pt.norm2(column(m, 1)),
             taylor_gap=q - (q.compose(psi, ring_(0)) + psi * slope + psi**2 * curvature * sp.Rational(1, 2)),
         )
 
@@ -468,41 +460,8 @@ class SupFlowStabilityBound(Obligation):
         from . import registry
         from .quadratic import BoundSubject, Step
 
-        c2, gamma, kappa = sp.symbols("c_2 gamma_j kappa", positive=True)
-        D0, Dt, U0, Ut, U1, Uj0, W0, W1, Wt, G1, E, Ui1 = sp.symbols(
-            "D_0 D_t U_0 U_t U_t1 U_j0 V_0 V_t1 V_t g_t1 E_t U_it1", nonnegative=True)
-        facts = {
-            "|x|²_𝒜 ≤ V_∞ (sup_flow.bounds)": (Dt, Wt),
-            "V_∞ ≤ c₂|x|²_𝒜 on R, x(0) ∈ R (sup_flow.bounds)": (W0, c2 * D0),
-            "V_∞ nonincreasing, t ≥ t₁ (sup_flow.nonincreasing)": (Wt, W1),
-            "V_∞ nonincreasing, x(0) ∈ R (sup_flow.nonincreasing)": (Wt, W0),
-            "V_∞ = g(w) at t₁ (sup_flow.exit)": (W1, G1),
-            "|e^{At}w|² ≤ U_i(t₁) for t ∈ I_i (sup_flow.exit; verifier premise)": (E, Ui1),
-            "U_i ≤ U = max_i U_i": (Ui1, U1),
-            "g(w) = sup_t |e^{At}w|² ≤ U at t₁ (step 'every t ≥ 0', the I_i cover [0, ∞))": (G1, U1),
-            "U ≥ |y|² = |x|²_𝒜 on R̂ (K₀ − I copositive)": (Dt, Ut),
-            "U nonincreasing on R̂ (each U_i: quadratic.U_rate)": (Ut, U0),
-            "U nonincreasing on R̂ up to t₁ (quadratic.U_rate)": (U1, U0),
-            "U(x(0)) = U_j(x(0)), j the maximising piece": (U0, Uj0),
-            "U_j ≤ γ_j|y|² (γ_jI − K_j copositive)": (Uj0, gamma * D0),
-            "κ² ≥ c₂": (c2, kappa**2),
-            "κ² ≥ γ_j (κ² ≥ max_i γ_i)": (gamma, kappa**2),
-        }
-        uses_hat = (("U nonincreasing on R̂ (each U_i: quadratic.U_rate)", 1), ("U(x(0)) = U_j(x(0)), j the maximising piece", 1),
-                    ("U_j ≤ γ_j|y|² (γ_jI − K_j copositive)", 1), ("κ² ≥ γ_j (κ² ≥ max_i γ_i)", D0))
-        steps = (
-            Step("every t ≥ 0", E, U1, (("|e^{At}w|² ≤ U_i(t₁) for t ∈ I_i (sup_flow.exit; verifier premise)", 1), ("U_i ≤ U = max_i U_i", 1))),
-            Step("case (i) / t < t₁", Dt, kappa**2 * D0, (("U ≥ |y|² = |x|²_𝒜 on R̂ (K₀ − I copositive)", 1),) + uses_hat),
-            Step("case (ii), t ≥ t₁", Dt, kappa**2 * D0, (
-                ("|x|²_𝒜 ≤ V_∞ (sup_flow.bounds)", 1), ("V_∞ nonincreasing, t ≥ t₁ (sup_flow.nonincreasing)", 1),
-                ("V_∞ = g(w) at t₁ (sup_flow.exit)", 1), ("g(w) = sup_t |e^{At}w|² ≤ U at t₁ (step 'every t ≥ 0', the I_i cover [0, ∞))", 1),
-                ("U nonincreasing on R̂ up to t₁ (quadratic.U_rate)", 1)) + uses_hat[1:]),
-            Step("case (ii), t₁ = 0", Dt, kappa**2 * D0, (
-                ("|x|²_𝒜 ≤ V_∞ (sup_flow.bounds)", 1), ("V_∞ nonincreasing, x(0) ∈ R (sup_flow.nonincreasing)", 1),
-                ("V_∞ ≤ c₂|x|²_𝒜 on R, x(0) ∈ R (sup_flow.bounds)", 1), ("κ² ≥ c₂", D0))),
-        )
-        goals = tuple((step.name, Dt, D0) for step in steps[1:])
-        return SupFlowBoundSubject(BoundSubject(facts, steps, goals, kappa**2), tuple(cls.id for cls in registry()))
+        facts, steps, goals, kappa_squared = _pt.stability_chain(Step)
+        return SupFlowBoundSubject(BoundSubject(facts, steps, goals, kappa_squared), tuple(cls.id for cls in registry()))
 
     def verify(self, s: SupFlowBoundSubject) -> Outcome:
         from .quadratic import QuadraticStabilityBound
