@@ -7,8 +7,11 @@ breaks one of them is what the obligations see.  The classes of ``φ`` are
 written with fresh positive symbols that cover them exactly; the band
 ``|φ| < f_c`` polynomially (``f_c = (u + w)/2``, ``φ = (w − u)/2``), so the
 model's ``Piecewise`` branches are decided without common denominators.
-The exit forms are those where a solution leaves ``R̂ ∩ {v > 0}``
-(Proposition 1's case (ii) at ``t₁``), in ``y = (|σ|, |dz φ|, |v|)``.
+Where a solution leaves ``R̂`` (Proposition 1's case (ii) at ``t₁``) the
+minimiser's ``w`` is compared with the template model's ``exit_map`` in
+``y = (|σ|, |dz φ|, |v|)``, and the verifier's ``exit_forms`` and
+``tail_gram`` with what they stand for, for a generic Gram matrix and a
+generic flow ``M`` (polynomial rings over ℚ: exact, and cheap to multiply out).
 Proposition 1's two cases for ``V_∞`` are a chain of inequalities
 (:func:`stability_chain`) that ``sup_flow.stability_bound`` decides.
 """
@@ -20,14 +23,17 @@ from typing import Any
 
 import sympy as sp
 
+from .._model import attractor as _attractor
 from .._model import coordinates as _coordinates
 from .._model import lyapunov as _lyapunov
+from .._model import quadratic as _quadratic
+from .._model import sup_flow as _sup_flow
 from ._decide import Undecided, pos, resolve_piecewise
 
 __all__ = [
-    "E", "system_matrix", "input_vector", "state", "exact", "minimiser_w", "rest_exit_form", "edge_exit_form", "dot",
+    "E", "system_matrix", "input_vector", "state", "exact", "minimiser_w", "dot",
     "phi_points", "WithFc", "sides", "Between", "RowStep", "LowerPiece", "UpperPiece", "ExitPoint", "matmul", "norm2",
-    "stability_chain",
+    "stability_chain", "exit_points", "exit_form_gaps", "tail_gram_gap",
 ]
 
 E = (sp.Matrix([1, 0, 0]), sp.Matrix([0, 1, 0]), sp.Matrix([0, 0, 1]))
@@ -62,16 +68,6 @@ def minimiser_w(g, sigma: Any, phi: Any, v: Any) -> sp.Matrix:
     """``x − f e₂`` with the model's minimiser ``f`` of eq. (lyapLikeV) (:func:`lyapunov.friction_selection`)."""
     f = exact(_lyapunov.friction_selection(g, sp.sympify(phi), sp.sympify(v)))
     return sp.Matrix([sigma, phi - f, v])
-
-
-def rest_exit_form(s: Any, y1: Any, y2: Any) -> sp.Matrix:
-    """``w = (s·y₁, −y₂, 0)``: the exit of ``R̂ ∩ {v > 0}`` at ``v = 0`` in ``y = (|σ|, |dz φ|, |v|)``, ``s = sign σ``."""
-    return sp.Matrix([s * y1, -y2, 0])
-
-
-def edge_exit_form(s: Any, y1: Any, y3: Any) -> sp.Matrix:
-    """``w = (s·y₁, 0, y₃)``: the exit of ``R̂ ∩ {v > 0}`` at ``φ = f_c``."""
-    return sp.Matrix([s * y1, 0, y3])
 
 
 def dot(u: sp.Matrix, w: sp.Matrix) -> sp.Expr:
@@ -207,3 +203,84 @@ def stability_chain(step_type: type) -> tuple[dict, tuple, tuple, sp.Expr]:
     )
     goals = tuple((step.name, Dt, D0) for step in steps[1:])
     return facts, steps, goals, kappa**2
+
+
+def exit_points(g: Any) -> tuple[ExitPoint, ...]:
+    """Where a solution leaves ``R̂ ∩ {hv > 0}``, ``h = ±1``, for both signs ``s`` of ``σ``: the minimiser's ``w`` against ``h·D·y``.
+
+    ``D = exit_map(plane, h·s)`` of the template model: ``g`` is even and
+    ``F`` odd, so the half ``v < 0`` is the half ``v > 0`` at ``−x``.  At
+    ``v = 0`` every class of ``φ`` with ``hφ ≤ f_c``; on the edge ``φ = h f_c``,
+    ``hv > 0``.  The model's ``R``-margin must be ``0`` at each.
+    """
+    y1, n = pos("y_1"), pos("y_3")
+    rest = {}  # per class of φ at v = 0: the minimiser's w, |dz φ| and the R-margin (σ enters only w)
+    for label, phi, fc in phi_points(g.f_c):
+        fcg = WithFc(fc)
+        rest[label] = (minimiser_w(fcg, g.sigma, phi, sp.Integer(0)), exact(sp.Abs(exact(_attractor.dz(phi, fc)))),
+                       sp.expand(exact(_lyapunov.R_margin(fcg, [g.sigma, phi, 0]))))
+    out = []
+    for h in (1, -1):
+        edge = [g.sigma, h * g.f_c, h * n]
+        w_edge, margin_edge = minimiser_w(g, *edge), sp.expand(exact(_lyapunov.R_margin(g, edge)))
+        dz_edge = exact(sp.Abs(exact(_attractor.dz(edge[1], g.f_c))))
+        for s in (1, -1):
+            at = {g.sigma: s * y1}
+            for label, (w, abs_dz, margin) in rest.items():
+                if label in sides(h) and label not in ("φ = f_c", "φ = -f_c"):
+                    continue  # h·φ > f_c at v = 0: not on the closure of R̂ ∩ {hv > 0}
+                d = sp.Matrix(_sup_flow.exit_map("v = 0", h * s))
+                gap = (w.xreplace(at) - h * d * sp.Matrix([exact(sp.Abs(s * y1)), abs_dz])).applyfunc(sp.expand)
+                out.append(ExitPoint(f"h = {h}, s = {s}, v = 0, {label}", margin.xreplace(at), gap))
+            d = sp.Matrix(_sup_flow.exit_map("φ = f_c", h * s))
+            gap = (w_edge.xreplace(at) - h * d * sp.Matrix([exact(sp.Abs(s * y1)), exact(sp.Abs(edge[2]))])).applyfunc(sp.expand)
+            out.append(ExitPoint(f"h = {h}, s = {s}, φ = h f_c, hv > 0", margin_edge.xreplace(at), gap.col_join(sp.Matrix([dz_edge]))))
+    return tuple(out)
+
+
+def exit_form_gaps() -> tuple[tuple[str, Any], ...]:
+    """``(y_a, y_b)·F·(y_a, y_b)ᵀ − (U(y) − wᵀGw)`` for the verifier's ``exit_forms`` ``F``, both planes, ``s = ±1``.
+
+    ``U = yᵀKy`` with the quadratic template's ``K``, ``G`` a generic symmetric
+    matrix (the verifier's ``e^{At}ᵀe^{At}``), ``w = D·(y_a, y_b)`` with the
+    model's ``exit_map`` and ``y`` the exit point's ``(|σ|, |dz φ|, |v|)``.
+    """
+    from sympy.polys.rings import ring
+
+    ring_, *gens = ring("K11 K13 K22 K23 K33 G11 G12 G13 G22 G23 G33 ya yb", sp.QQ)
+    k = _quadratic.u_matrix_entries(*gens[:5])
+    g11, g12, g13, g22, g23, g33, ya, yb = gens[5:]
+    gram = ((g11, g12, g13), (g12, g22, g23), (g13, g23, g33))
+    out = []
+    for s in (1, -1):
+        forms = _sup_flow.exit_forms(k, gram, ring_(s))
+        for plane, form in zip(_sup_flow.EXIT_PLANES, forms):
+            y = (ya, yb, ring_(0)) if plane == "v = 0" else (ya, ring_(0), yb)
+            d = _sup_flow.exit_map(plane, ring_(s))
+            w = [d[i][0] * ya + d[i][1] * yb for i in range(3)]
+            quad = lambda m, u: sum((u[i] * m[i][j] * u[j] for i in range(len(u)) for j in range(len(u))), ring_(0))  # noqa: E731
+            out.append((f"{plane}, s = {s}", quad(form, (ya, yb)) - (quad(k, y) - quad(gram, w))))
+    return tuple(out)
+
+
+def tail_gram_gap() -> Any:
+    """``tail_gram(M, pQ, p) − MᵀQM`` for a generic flow ``M``, a generic symmetric ``Q`` and a symbol ``p`` (0 when right).
+
+    ``tail_gram(M, P, p)`` must be ``(1/p)MᵀPM`` for every symmetric ``P``;
+    as ``Q ↦ pQ`` is onto the symmetric matrices for ``p ≠ 0``, the identity
+    above (in a polynomial ring over ℚ, no fractions) is the same claim.  A
+    quotient that is not exact is a failure, returned as its message.
+    """
+    from sympy.polys.polyerrors import ExactQuotientFailed
+    from sympy.polys.rings import ring
+
+    ring_, *gens = ring("m11 m12 m13 m21 m22 m23 m31 m32 m33 Q11 Q12 Q13 Q22 Q23 Q33 p", sp.QQ)
+    m = (tuple(gens[0:3]), tuple(gens[3:6]), tuple(gens[6:9]))
+    q11, q12, q13, q22, q23, q33, p = gens[9:]
+    q = ((q11, q12, q13), (q12, q22, q23), (q13, q23, q33))
+    try:
+        tail = _sup_flow.tail_gram(m, tuple(tuple(p * e for e in row) for row in q), p)
+    except ExactQuotientFailed as exc:
+        return f"not (1/p)·MᵀPM: {exc}"
+    gaps = [tail[i][j] - sum((m[k][i] * q[k][l] * m[l][j] for k in range(3) for l in range(3)), ring_(0)) for i in range(3) for j in range(3)]
+    return next((gap for gap in gaps if gap != 0), ring_(0))

@@ -18,8 +18,10 @@ package's one model (``A`` from ``system_matrix_entries``, the minimiser
   and Claim 1's table row by row for ``V_∞``; lsc and Fact 2 are cited.
 * ``sup_flow.bounds`` — ``|x|²_𝒜 ≤ V_∞`` (the ``t = 0`` term) and
   ``V_∞ = g(w)``, ``|w| = |x|_𝒜`` on ``R``.
-* ``sup_flow.exit`` — the minimiser's ``w`` where a solution leaves ``R̂``, in
-  the verifier's exit forms, and the tail ``|e^{At}w|² ≤ (1/p)|e^{AT}w|²_P``.
+* ``sup_flow.exit`` — the minimiser's ``w`` where a solution leaves ``R̂`` is
+  the template model's ``exit_map`` (:mod:`symbolic_friction._model.sup_flow`),
+  the verifier's ``exit_forms`` are ``U − |e^{At}w|²`` there, and its
+  ``tail_gram`` is the tail ``|e^{At}w|² ≤ (1/p)|e^{AT}w|²_P``.
 * ``sup_flow.stability_bound`` — eq. (stabState) by Proposition 1's two
   cases, with the chain checker of ``quadratic.stability_bound``.
 """
@@ -342,6 +344,8 @@ class Bounds(Obligation):
 @dataclass(frozen=True)
 class ExitSubject:
     points: tuple[_pt.ExitPoint, ...]
+    form_gaps: tuple[tuple[str, Any], ...]  # the verifier's exit forms − (U − wᵀGw), generic G
+    gram_gap: Any  # tail_gram(M, pQ, p) − MᵀQM, generic M and symmetric Q
     rate: sp.Expr  # d/dt |z|²_P along ż = Az with the paper's P
     decrease: sp.Expr  # c z₃², c = 2(k_v k_p − k_i) of eq. (dVdt)
     c_under_assumption1: sp.Expr  # c with k_v = (k_i + δ)/k_p
@@ -358,48 +362,29 @@ class Exit(Obligation):
     paper = "beyond the paper: Proposition 1's case (ii) at t₁, eqs. (lyapLikeP), (dVdt) for the tail"
     statement = (
         "where a solution leaves R̂ ∩ {v ≷ 0} (h = ±1: at v = 0 with hφ ≤ f_c, or at φ = h f_c with hv > 0; R-margin 0), "
-        "for both signs s of σ the minimiser's w is h·(h s y₁, −y₂, 0) resp. h·(h s y₁, 0, y₃) with y = (|σ|, |dz φ|, |v|) "
-        "from the model, so (g even) U_i = yᵀK_iy ≥ |e^{At}w|² on the two forms for both signs and t ∈ I_i gives "
-        "U = max_i U_i ≥ g(w) = V_∞ there; tail: with the paper's P, d/dt|z|²_P = zᵀ(AᵀP+PA)z ≤ 0 along ż = Az "
+        "for both signs s of σ the minimiser's w is h·D·y with D = exit_map(plane, h s) of the template model (h s y₁, −y₂, 0) resp. "
+        "(h s y₁, 0, y₃), y = (|σ|, |dz φ|, |v|) from the model; the verifier's exit_forms are yᵀKy − wᵀGw there (generic "
+        "symmetric G), so (g even) these copositive for G = e^{At}ᵀe^{At}, both signs and t ∈ I_i give U = max_i U_i ≥ "
+        "g(w) = V_∞ there; tail: with the paper's P, d/dt|z|²_P = zᵀ(AᵀP+PA)z ≤ 0 along ż = Az "
         "(= −c z₃², c = 2(k_v k_p − k_i) > 0 by Assumption 1, as in lemma2.dVdt) and (1/p)|z|²_P − |z|² = (1/p)zᵀ(P − pI)z ≥ 0 when P − pI ⪰ 0, so for t ≥ T "
-        "|e^{At}w|² ≤ (1/p)|e^{At}w|²_P ≤ (1/p)|e^{AT}w|²_P"
+        "|e^{At}w|² ≤ (1/p)|e^{At}w|²_P ≤ (1/p)|e^{AT}w|²_P = wᵀ·tail_gram(e^{AT}, P, p)·w (tail_gram = (1/p)MᵀPM for generic M, P)"
     )
-    method = "exhaustive split over the half of R̂, the sign of σ and the class of φ; sympy identities; sign-definite decomposition"
+    method = ("exhaustive split over the half of R̂, the sign of σ and the class of φ; sympy identities; polynomial identities "
+              "over ℚ for the verifier's forms; sign-definite decomposition")
 
     def derive(self) -> ExitSubject:
         from .lemma2 import decrease_rate
 
         g = G()
-        y1, n = pos("y_1"), pos("y_3")
-        rest = {}  # per class of φ at v = 0: the model's minimiser f and |dz φ| (σ does not enter them)
-        for label, phi, fc in _pt.phi_points(g.f_c):
-            fcg = _pt.WithFc(fc)
-            w = _pt.minimiser_w(fcg, g.sigma, phi, sp.Integer(0))
-            rest[label] = (phi, w, _pt.exact(sp.Abs(_pt.exact(_attractor.dz(phi, fc)))), sp.expand(_pt.exact(_lyapunov.R_margin(fcg, [g.sigma, phi, 0]))))
-        points = []
-        for h in (1, -1):
-            point = [g.sigma, h * g.f_c, h * n]
-            w_edge = _pt.minimiser_w(g, *point)
-            dz_edge = _pt.exact(sp.Abs(_pt.exact(_attractor.dz(point[1], g.f_c))))
-            margin_edge = sp.expand(_pt.exact(_lyapunov.R_margin(g, point)))
-            for s in (1, -1):
-                sigma = {g.sigma: s * y1}
-                abs_sigma = _pt.exact(sp.Abs(s * y1))
-                for label, (phi, w, abs_dz, margin) in rest.items():
-                    if label in _pt.sides(h) and label not in ("φ = f_c", "φ = -f_c"):
-                        continue  # h·φ > f_c at v = 0: not on the closure of R̂ ∩ {hv > 0}
-                    gap = (w.xreplace(sigma) - h * _pt.rest_exit_form(h * s, abs_sigma, abs_dz)).applyfunc(sp.expand)
-                    points.append(_pt.ExitPoint(f"h = {h}, s = {s}, v = 0, {label}", margin.xreplace(sigma), gap))
-                gap = (w_edge.xreplace(sigma) - h * _pt.edge_exit_form(h * s, abs_sigma, _pt.exact(sp.Abs(point[2])))).applyfunc(sp.expand)
-                gap = gap.col_join(sp.Matrix([dz_edge]))  # |dz φ| = 0 on the edge
-                points.append(_pt.ExitPoint(f"h = {h}, s = {s}, φ = h f_c, hv > 0", margin_edge.xreplace(sigma), gap))
         A = _pt.system_matrix(g)
         P = sp.Matrix([[sp.sympify(e) for e in row] for row in _lyapunov.lyapunov_matrix_entries(g.k_p, g.k_i, g.k_v)])
         z = sp.Matrix(sp.symbols("z1 z2 z3", real=True))
         p = pos("p")
         c = decrease_rate(g)
         return ExitSubject(
-            points=tuple(points),
+            points=_pt.exit_points(g),
+            form_gaps=_pt.exit_form_gaps(),
+            gram_gap=_pt.tail_gram_gap(),
             rate=sp.expand(2 * (z.T * P * (A * z))[0]),
             decrease=c * z[2] ** 2,
             c_under_assumption1=c.xreplace(_symbolic.assumption1_substitution(g)),
@@ -417,6 +402,13 @@ class Exit(Obligation):
                 return Outcome.fail(f"{pt.label}: the minimiser's w differs from the exit form by {list(pt.gap)}")
         if len(s.points) != 20:
             return Outcome.fail(f"{len(s.points)} exit points checked, not 20")
+        for label, gap in s.form_gaps:
+            if gap != 0:
+                return Outcome.fail(f"{label}: the verifier's exit form is not U − wᵀGw at the exit; they differ by {gap}")
+        if len(s.form_gaps) != 4:
+            return Outcome.fail(f"{len(s.form_gaps)} exit forms checked, not 4")
+        if s.gram_gap != 0:
+            return Outcome.fail(f"tail_gram(M, P, p) − (1/p)MᵀPM ≠ 0 ({s.gram_gap}): the verifier's tail Gram is not the tail bound")
         if not is_zero(s.rate + s.decrease):
             return Outcome.fail(f"d/dt |z|²_P = {s.rate} along ż = Az is not −c z₃² = {-s.decrease}: AᵀP + PA ⪯ 0 is not shown")
         if sign_of(s.c_under_assumption1) != 1:

@@ -8,6 +8,7 @@ import pytest
 import sympy as sp
 
 from symbolic_friction._model import attractor, coordinates, lyapunov
+from symbolic_friction._model import sup_flow as template
 from symbolic_friction._obligations import _sup_flow_points as points
 from symbolic_friction._obligations import lemma2, obligation_modules, registry
 from symbolic_friction._obligations import sup_flow as module
@@ -192,16 +193,38 @@ def test_bounds_sees_a_missing_class():
 # -- exit -----------------------------------------------------------------------------------
 
 
-def test_exit_sees_a_wrong_sign_in_the_rest_form(monkeypatch):
-    monkeypatch.setattr(points, "rest_exit_form", lambda s, y1, y2: sp.Matrix([s * y1, y2, 0]))
+def test_exit_sees_a_wrong_sign_in_the_rest_exit_map(monkeypatch):
+    real = template.exit_map
+    monkeypatch.setattr(template, "exit_map", lambda plane, s: ((real(plane, s)[0], (0, 1), real(plane, s)[2]) if plane == "v = 0"
+                                                              else real(plane, s)))
     result = Exit().run()
     assert not result.holds and "v = 0" in result.reason and "exit form" in result.reason
 
 
-def test_exit_sees_a_wrong_sign_in_the_edge_form(monkeypatch):
-    monkeypatch.setattr(points, "edge_exit_form", lambda s, y1, y3: sp.Matrix([-s * y1, 0, y3]))
+def test_exit_sees_a_wrong_sign_of_sigma_on_the_edge(monkeypatch):
+    real = template.exit_map
+    monkeypatch.setattr(template, "exit_map", lambda plane, s: real(plane, -s) if plane == "φ = f_c" else real(plane, s))
     result = Exit().run()
     assert not result.holds and "φ = h f_c" in result.reason
+
+
+def test_exit_sees_verifier_forms_that_are_not_u_minus_the_flow(monkeypatch):
+    real = template.exit_forms
+
+    def wrong(k, gram, s):
+        rest, edge = real(k, gram, s)
+        return rest, ((edge[0][0], edge[0][1] + gram[0][2]), (edge[1][0] + gram[0][2], edge[1][1]))  # a dropped sign of the cross term
+
+    monkeypatch.setattr(template, "exit_forms", wrong)
+    result = Exit().run()
+    assert not result.holds and "φ = f_c" in result.reason and "U − wᵀGw" in result.reason
+
+
+def test_exit_sees_a_tail_gram_without_its_factor(monkeypatch):
+    real = template.tail_gram
+    monkeypatch.setattr(template, "tail_gram", lambda flow, p_matrix, p: tuple(tuple(e * p for e in row) for row in real(flow, p_matrix, p)))
+    result = Exit().run()
+    assert not result.holds and "tail Gram" in result.reason
 
 
 def test_exit_sees_a_dropped_tail_factor():
