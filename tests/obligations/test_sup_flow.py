@@ -293,3 +293,10 @@ def test_stability_bound_sees_a_goal_that_is_not_the_bound():
     goals = ((name, dt, 2 * d0),) + subject.bound.goals[1:]
     result = ob.verify(dataclasses.replace(subject, bound=dataclasses.replace(subject.bound, goals=goals)))
     assert not result.holds and "κ² D_0" in result.reason
+
+
+def test_every_obligation_the_sup_flow_certificate_cites_is_one_check_runs():
+    from symbolic_friction._certify.sup_flow import OBLIGATIONS as CITED
+
+    ids = {cls.id for cls in registry()}
+    assert set(IDS) <= set(CITED) and set(CITED) <= ids, sorted(set(CITED) - ids)
