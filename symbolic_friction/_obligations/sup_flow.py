@@ -271,6 +271,8 @@ class Nonincreasing(Obligation):
             rows.append(f"{r.label}\\;k={r.k}")
         if any(not is_zero(e) for e in s.stick_rates):
             return Outcome.fail(f"along f₀, (σ̇, v̇) = {list(s.stick_rates)} ≠ 0: a stick does not keep g(σ, 0, 0)")
+        if (len(s.classes), len(rows)) != (5, 11):
+            return Outcome.fail(f"{len(s.classes)} classes of φ and {len(rows)} rows of Claim 1's table checked, not 5 and 11")
         return Outcome(True, "", (("\\text{rows checked}", ",\\ ".join(rows)),))
 
 

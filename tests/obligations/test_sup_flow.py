@@ -166,6 +166,13 @@ def test_nonincreasing_sees_a_stick_that_moves_sigma(monkeypatch):
     assert not result.holds and "f₀" in result.reason
 
 
+def test_nonincreasing_sees_a_missing_row():
+    ob = Nonincreasing()
+    subject = ob.derive()
+    result = ob.verify(dataclasses.replace(subject, rows=subject.rows[:-1]))
+    assert not result.holds and "not 5 and 11" in result.reason
+
+
 # -- bounds ---------------------------------------------------------------------------------
 
 
