@@ -364,8 +364,8 @@ class Exit(Obligation):
     paper = "beyond the paper: Proposition 1's case (ii) at t₁, eqs. (lyapLikeP), (dVdt) for the tail"
     statement = (
         "where a solution leaves R̂ ∩ {v ≷ 0} (h = ±1: at v = 0 with hφ ≤ f_c, or at φ = h f_c with hv > 0; R-margin 0), "
-        "for both signs s of σ the minimiser's w is h·D·y with D = exit_map(plane, h s) of the template model (h s y₁, −y₂, 0) resp. "
-        "(h s y₁, 0, y₃), y = (|σ|, |dz φ|, |v|) from the model; the verifier's exit_forms are yᵀKy − wᵀGw there (generic "
+        "for both signs s of σ the minimiser's w is h·D·y with D = exit_map(plane, h·s) of the template model, (h·s·y₁, −y₂, 0) resp. "
+        "(h·s·y₁, 0, y₃), y = (|σ|, |dz φ|, |v|) from the model; the verifier's exit_forms are yᵀKy − wᵀGw there (generic "
         "symmetric G), so (g even) these copositive for G = e^{At}ᵀe^{At}, both signs and t ∈ I_i give U = max_i U_i ≥ "
         "g(w) = V_∞ there; tail: with the paper's P, d/dt|z|²_P = zᵀ(AᵀP+PA)z ≤ 0 along ż = Az "
         "(= −c z₃², c = 2(k_v k_p − k_i) > 0 by Assumption 1, as in lemma2.dVdt) and (1/p)|z|²_P − |z|² = (1/p)zᵀ(P − pI)z ≥ 0 when P − pI ⪰ 0, so for t ≥ T "
