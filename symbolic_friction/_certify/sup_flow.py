@@ -306,16 +306,42 @@ def _tail_gram(cert: SupFlowCertificate, horizon: Fraction) -> tuple[tuple[Any, 
     return model.tail_gram(e, p, _arb(cert.constants["p"]))
 
 
-def _lower(ball: Any) -> Fraction:
-    from .flow_bound import _fraction
+EXPONENT_LIMIT = 4096
+"""Binary exponent beyond which an end of a ball is not turned into a Fraction (see :func:`_end`)."""
 
-    return _fraction(ball.lower())
+
+class _TooWide(Exception):
+    """An end of a ball is beyond ``2^EXPONENT_LIMIT``: nothing is decided from it."""
+
+
+def _end(point: Any, *, down: bool) -> Fraction:
+    """The exact value of an arb point as a Fraction, moved outward where it is tiny (so sizes stay bounded).
+
+    A magnitude below ``2^-EXPONENT_LIMIT`` becomes 0 or ``±2^-EXPONENT_LIMIT``,
+    whichever is below (``down``) or above the value, so a lower end stays a
+    lower end and an upper end an upper end; a magnitude above
+    ``2^EXPONENT_LIMIT`` raises :class:`_TooWide` (the premise is then not
+    decided on that part), never a Fraction of thousands of digits.
+    """
+    mantissa, exponent = (int(x) for x in point.man_exp())
+    if mantissa == 0:
+        return Fraction(0)
+    if exponent + mantissa.bit_length() > EXPONENT_LIMIT:
+        raise _TooWide(f"a ball end beyond 2^{EXPONENT_LIMIT}")
+    if exponent + mantissa.bit_length() < -EXPONENT_LIMIT:
+        tiny = Fraction(1, 2**EXPONENT_LIMIT)
+        if down:
+            return Fraction(0) if mantissa > 0 else -tiny
+        return tiny if mantissa > 0 else Fraction(0)
+    return Fraction(mantissa * 2**exponent) if exponent >= 0 else Fraction(mantissa, 2**-exponent)
+
+
+def _lower(ball: Any) -> Fraction:
+    return _end(ball.lower(), down=True)
 
 
 def _upper(ball: Any) -> Fraction:
-    from .flow_bound import _fraction
-
-    return _fraction(ball.upper())
+    return _end(ball.upper(), down=False)
 
 
 def _exit_holds(k: Any, gram: Any, *, end: Any = _lower) -> tuple[bool, str]:
@@ -331,8 +357,11 @@ def _exit_holds(k: Any, gram: Any, *, end: Any = _lower) -> tuple[bool, str]:
     for s in (1, -1):
         for plane, form in zip(model.EXIT_PLANES, model.exit_forms(k, gram, _arb(Fraction(s)))):
             pick = min if end is _lower else max
-            off = pick(end(form[0][1]), end(form[1][0]))
-            rows = ((end(form[0][0]), off), (off, end(form[1][1])))
+            try:
+                off = pick(end(form[0][1]), end(form[1][0]))
+                rows = ((end(form[0][0]), off), (off, end(form[1][1])))
+            except _TooWide as exc:
+                return end is not _lower, f"{plane}: {exc}"  # decides nothing: neither proved nor refuted
             decision = decide_copositive(rows)
             if decision.holds is not True:
                 return False, f"{plane}, sign σ = {'+' if s > 0 else '−'}: {decision.reason}"

@@ -243,3 +243,20 @@ def test_the_search_refuses_what_it_cannot_certify():
         certify_sup_flow(Parameters(k_p=3, k_i=4, k_v=Fraction(32, 5), f_c=1, f_s=Fraction(6, 5)))
     with pytest.raises(ParameterError, match="rel_tol must be in"):
         certify_sup_flow(Parameters.table_i("a"), rel_tol=2)
+
+
+def test_ball_ends_stay_bounded_and_outward():
+    """An end of a ball far below 2^-4096 moves outward to 0 or ±2^-4096; one beyond 2^4096 decides nothing."""
+    import flint
+
+    tiny, huge = flint.arb(2) ** -10_000, flint.arb(2) ** 10_000
+    bound = Fraction(1, 2**sup_flow.EXPONENT_LIMIT)
+    assert sup_flow._end(tiny, down=True) == 0 and sup_flow._end(tiny, down=False) == bound
+    assert sup_flow._end(-tiny, down=True) == -bound and sup_flow._end(-tiny, down=False) == 0
+    assert sup_flow._end(flint.arb(3) / 4, down=True) == Fraction(3, 4)
+    with pytest.raises(sup_flow._TooWide):
+        sup_flow._end(huge, down=True)
+    k = ((flint.arb(1), 0, 0), (0, flint.arb(1), 0), (0, 0, flint.arb(1)))
+    gram = ((huge, 0 * huge, 0 * huge), (0 * huge, flint.arb(0), flint.arb(0)), (0 * huge, flint.arb(0), flint.arb(0)))
+    assert sup_flow._exit_holds(k, gram)[0] is False  # not proved
+    assert sup_flow._exit_holds(k, gram, end=sup_flow._upper)[0] is True  # and not refuted either
