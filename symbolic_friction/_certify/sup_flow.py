@@ -51,7 +51,7 @@ from .verify import Check, Inequality, Semidefinite, VerificationReport
 
 __all__ = [
     "SCHEMA", "TEMPLATE_ID", "OBLIGATIONS", "MAX_PIECES", "MAX_PARTS", "SupFlowPiece", "SupFlowCertificate",
-    "SupFlowProvenance", "MAX_TOTAL_PARTS", "FlowNorm", "FlowExit", "sup_flow_premises", "verify_sup_flow", "dumps_sup_flow", "SUP_FLOW",
+    "SupFlowProvenance", "MAX_TOTAL_PARTS", "FlowNorm", "FlowExit", "sup_flow_premises", "verify_sup_flow", "load_sup_flow", "dumps_sup_flow", "SUP_FLOW",
 ]
 
 SCHEMA = "symbolic-friction/sup-flow-certificate/v1"
@@ -543,6 +543,19 @@ def verify_sup_flow(certificate: SupFlowCertificate, *, source: str = "<certific
             continue
         checks.append(_decide(premise, budget))
     return SupFlowReport(certificate, tuple(checks), source)
+
+
+def load_sup_flow(path: str | Path) -> SupFlowCertificate:
+    """Read a sup-flow certificate file strictly (bounded read; not verified).
+
+    Raises
+    ------
+    InputFileError, CertificateFormatError
+        If the file cannot be read, is not strict JSON or is not a sup-flow certificate.
+    """
+    from ._json import read_json
+
+    return SupFlowCertificate.from_dict(read_json(path), source=str(path))
 
 
 def dumps_sup_flow(certificate: SupFlowCertificate) -> str:
