@@ -13,6 +13,11 @@ breaks and the exact set of checks that fail:
   ``c₁ > 0``, ``κ > 0``, …) is forged as a well-formed number of the wrong
   sign: the file format reads it, and the verifier must refuse it like any
   other premise;
+* sup-flow certificates, one per premise only that template has (its pieces'
+  order and horizon, ``p``, ``c₂`` against the flow, the exits of ``R̂`` on a
+  finite piece and past ``T``, ``K₁ − I``), on a small true certificate with
+  room (the premises it shares with the quadratic template are decided by the
+  same functions, and broken by the quadratic files);
 * hunting certificates: a box around a later zero of ``v``, a box that
   holds no zero, boxes shifted so that the zero lies just outside each end
   in ``σ`` and in ``τ`` (the Krawczyk inclusion, both ends), ``σ_lo = 0``, a
@@ -39,7 +44,7 @@ from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
-__all__ = ["DIRECTORY", "Refusal", "SelfCheck", "refuse_false_certificates", "expected_failures", "named_failures"]
+__all__ = ["DIRECTORY", "SUP_FLOW_PREMISES", "Refusal", "SelfCheck", "refuse_false_certificates", "expected_failures", "named_failures"]
 
 DIRECTORY = Path(__file__).with_name("false_certificates")
 """Where the known-false (and the two true) certificates are shipped."""
@@ -101,6 +106,16 @@ def named_failures(report: Any) -> list[str]:
     return failing
 
 
+SUP_FLOW_PREMISES: tuple[str, ...] = (
+    "the first piece starts at t = 0", "piece 3 starts where piece 2 ends", "the last piece ends at ∞",
+    "T > 0 (the last piece starts after 0)", "p > 0", "P − p·I ⪰ 0 (the paper's P)", "c2 ≥ ‖e^(At)‖² for every t ≥ 0",
+    "K1 − I copositive (piece 1)", "piece 2: U ≥ |e^(At)w|² on the exits of R̂ for t in [2, 4)",
+    "piece 5: U ≥ |e^(At)w|² on the exits of R̂ for t in [8, ∞)",
+)
+"""The sup-flow premises a shipped false certificate must break (those only the sup-flow template has, on the
+five-piece true certificate the false ones are edited from)."""
+
+
 def _premise_names() -> dict[str, list[str]]:
     """Every premise name of the stability and the quadratic verifier (on a stand-in whose numbers are all 1)."""
     from .quadratic import CONSTANTS, quadratic_premises
@@ -112,7 +127,8 @@ def _premise_names() -> dict[str, list[str]]:
         def __getattr__(self, name: str) -> Fraction:
             return Fraction(1)
 
-    return {"stability": [p.name for p in premises(One())], "quadratic": [p.name for p in quadratic_premises(One())]}
+    return {"stability": [p.name for p in premises(One())], "quadratic": [p.name for p in quadratic_premises(One())],
+            "sup-flow": list(SUP_FLOW_PREMISES)}
 
 
 def _decide(data: object, source: str) -> Any:

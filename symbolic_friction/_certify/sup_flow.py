@@ -20,8 +20,10 @@ balls, outward rounding, :mod:`._certify.flow_bound`'s enclosure of
   ``t`` of the piece (:class:`FlowExit`; past ``T`` with the tail form);
 * ``κ > 0``, ``κ² ≥ c₂`` and ``κ² ≥ γ_i`` for every piece.
 
-A rigorous decision on an interval bisects it until every part is decided or
-:data:`MAX_PARTS` parts were tried; what is not decided is *not proved*.
+The premises on the flow are decided by :mod:`.sup_flow_enclosure`: an
+interval is bisected until every part is decided, a premise false at a point
+is refuted there, and what is not decided within :data:`MAX_PARTS` parts is
+*not proved*.
 
 Format (``schema`` ``symbolic-friction/sup-flow-certificate/v1``, ``template``
 ``sup-flow/v1``; keys sorted, exact rational strings, no timings)::
@@ -43,10 +45,10 @@ from typing import Any
 from .._infra.errors import CertificateFormatError
 from .._infra.rational import format_rational as _f
 from .._model import quadratic as quad
-from .._model import sup_flow as model
 from .._model.lyapunov import lyapunov_matrix_entries
 from ._template import Template, register
 from .quadratic import Copositive, _scaled_identity, _sub, decide_premise
+from .sup_flow_enclosure import MAX_PARTS, MAX_TOTAL_PARTS, Budget, FlowExit, FlowNorm, decide_flow
 from .verify import Check, Inequality, Semidefinite, VerificationReport
 
 __all__ = [
@@ -62,12 +64,6 @@ PIECE_CONSTANTS = ("k11", "k13", "k22", "k23", "k33", "gamma")
 INFINITY = "inf"
 MAX_PIECES = 256
 """Pieces a file may hold (bounded before anything is built)."""
-MAX_PARTS = 2048
-"""Intervals one rigorous decision may bisect its interval into before it says *not proved*."""
-MAX_TOTAL_PARTS = 12_288
-"""Intervals all rigorous decisions of one certificate may use together (a few seconds at most)."""
-PRECISION = 128
-"""Bits of the arb balls."""
 OBLIGATIONS = (
     "lemma2.P",
     "lemma2.dVdt",
@@ -236,225 +232,6 @@ class SupFlowCertificate:
 # -- the premises that need the flow: decided in arb balls, interval by interval ------------------
 
 
-@dataclass(frozen=True)
-class FlowNorm:
-    """``c₂I − e^{At}ᵀe^{At} ≻ 0`` for every ``t ∈ [0, T]``, and ``c₂I − (1/p)e^{AT}ᵀPe^{AT} ≻ 0`` (the tail)."""
-
-    obligation: str
-    name: str
-    certificate: SupFlowCertificate
-
-
-@dataclass(frozen=True)
-class FlowExit:
-    """``U_i ≥ |e^{At}w|²`` on both exit planes, both signs of ``σ``, every ``t`` of piece ``index``."""
-
-    obligation: str
-    name: str
-    certificate: SupFlowCertificate
-    index: int
-
-
-def _arb(q: Fraction) -> Any:
-    from .flow_bound import _arb as arb
-
-    return arb(Fraction(q))
-
-
-def _flow(cert: SupFlowCertificate, a: Fraction, b: Fraction) -> Any:
-    """An arb enclosure of ``e^{At}`` for every ``t ∈ [a, b]``: ``e^{Aa}·e^{A[0, b − a]}``.
-
-    Ball arithmetic encloses the value at every point of the input ball, so
-    the exponential of the ball ``A·[0, b − a]`` holds every ``e^{Aτ}``; the
-    point factor ``e^{Aa}`` first keeps the ball small (the exponential of a
-    wide ball ``A·[a, b]`` far from 0 would be needlessly wide).
-    """
-    import flint
-
-    from .flow_bound import _system
-
-    a_matrix = _system(_Gains(cert))
-    start = (a_matrix * _arb(a)).exp()
-    if a == b:
-        return start
-    half = _arb((b - a) / 2)
-    return start * (a_matrix * flint.arb(half, half)).exp()
-
-
-class _Gains:
-    """The gains of ``cert`` in the shape :func:`.flow_bound._system` reads."""
-
-    def __init__(self, cert: SupFlowCertificate) -> None:
-        self.k_p, self.k_i, self.k_v = cert.k_p, cert.k_i, cert.k_v
-
-
-def _rows(m: Any) -> tuple[tuple[Any, ...], ...]:
-    return tuple(tuple(m[i, j] for j in range(3)) for i in range(3))
-
-
-def _gram(e: Any) -> tuple[tuple[Any, ...], ...]:
-    return _rows(e.transpose() * e)
-
-
-def _paper_p(cert: SupFlowCertificate) -> tuple[tuple[Fraction, ...], ...]:
-    return tuple(tuple(Fraction(x) for x in row) for row in lyapunov_matrix_entries(cert.k_p, cert.k_i, cert.k_v))
-
-
-def _tail_gram(cert: SupFlowCertificate, horizon: Fraction) -> tuple[tuple[Any, ...], ...]:
-    e = _rows(_flow(cert, horizon, horizon))
-    p = tuple(tuple(_arb(x) for x in row) for row in _paper_p(cert))
-    return model.tail_gram(e, p, _arb(cert.constants["p"]))
-
-
-EXPONENT_LIMIT = 4096
-"""Binary exponent beyond which an end of a ball is not turned into a Fraction (see :func:`_end`)."""
-
-
-class _TooWide(Exception):
-    """An end of a ball is beyond ``2^EXPONENT_LIMIT``: nothing is decided from it."""
-
-
-def _end(point: Any, *, down: bool) -> Fraction:
-    """The exact value of an arb point as a Fraction, moved outward where it is tiny (so sizes stay bounded).
-
-    A magnitude below ``2^-EXPONENT_LIMIT`` becomes 0 or ``±2^-EXPONENT_LIMIT``,
-    whichever is below (``down``) or above the value, so a lower end stays a
-    lower end and an upper end an upper end; a magnitude above
-    ``2^EXPONENT_LIMIT`` raises :class:`_TooWide` (the premise is then not
-    decided on that part), never a Fraction of thousands of digits.
-    """
-    mantissa, exponent = (int(x) for x in point.man_exp())
-    if mantissa == 0:
-        return Fraction(0)
-    if exponent + mantissa.bit_length() > EXPONENT_LIMIT:
-        raise _TooWide(f"a ball end beyond 2^{EXPONENT_LIMIT}")
-    if exponent + mantissa.bit_length() < -EXPONENT_LIMIT:
-        tiny = Fraction(1, 2**EXPONENT_LIMIT)
-        if down:
-            return Fraction(0) if mantissa > 0 else -tiny
-        return tiny if mantissa > 0 else Fraction(0)
-    return Fraction(mantissa * 2**exponent) if exponent >= 0 else Fraction(mantissa, 2**-exponent)
-
-
-def _lower(ball: Any) -> Fraction:
-    return _end(ball.lower(), down=True)
-
-
-def _upper(ball: Any) -> Fraction:
-    return _end(ball.upper(), down=False)
-
-
-def _exit_holds(k: Any, gram: Any, *, end: Any = _lower) -> tuple[bool, str]:
-    """Every exit form, with each entry replaced by one end of its ball, copositive (exactly).
-
-    Copositivity is monotone in the entries: the rational matrix of lower ends
-    being copositive shows it for every ``G`` in the enclosure; the matrix of
-    upper ends (``end=_upper``) *not* being copositive shows that no ``G`` in
-    it is (at a point ``t``: the premise is false there).
-    """
-    from .copositive import decide_copositive
-
-    for s in (1, -1):
-        for plane, form in zip(model.EXIT_PLANES, model.exit_forms(k, gram, _arb(Fraction(s)))):
-            pick = min if end is _lower else max
-            try:
-                off = pick(end(form[0][1]), end(form[1][0]))
-                rows = ((end(form[0][0]), off), (off, end(form[1][1])))
-            except _TooWide as exc:
-                return end is not _lower, f"{plane}: {exc}"  # decides nothing: neither proved nor refuted
-            decision = decide_copositive(rows)
-            if decision.holds is not True:
-                return False, f"{plane}, sign σ = {'+' if s > 0 else '−'}: {decision.reason}"
-    return True, ""
-
-
-def _not(verdict: tuple[bool, str]) -> tuple[bool, str]:
-    return not verdict[0], verdict[1]
-
-
-class _Budget:
-    """The parts one verification may still bisect into (all its premises together)."""
-
-    def __init__(self, parts: int) -> None:
-        self.left = parts
-
-
-def _bisect(a: Fraction, b: Fraction, test: Any, refute: Any, budget: _Budget) -> tuple[int, str]:
-    """Cover ``[a, b]`` by dyadic parts on each of which ``test(lo, hi)`` holds: ``(parts, "")``, or ``(parts, why not)``.
-
-    Where a part is not decided, ``refute(t)`` looks at its midpoint: a premise
-    false there ends the search at once (a false certificate costs little);
-    otherwise the part is halved, up to :data:`MAX_PARTS` parts for this
-    premise and the budget of the whole verification.
-    """
-    stack, done, why = [(a, b)], 0, ""
-    while stack:
-        lo, hi = stack.pop()
-        holds, why = test(lo, hi)
-        budget.left -= 1
-        if holds:
-            done += 1
-            continue
-        mid = (lo + hi) / 2
-        false_at, reason = refute(mid)
-        if false_at:
-            return done, f"refuted at t = {_f(mid)} ({reason})"
-        if done + len(stack) + 2 > MAX_PARTS or budget.left < 2:
-            limit = f"{MAX_PARTS} parts" if budget.left >= 2 else f"the {MAX_TOTAL_PARTS} parts of one verification"
-            return done, f"not decided on [{float(lo):.6g}, {float(hi):.6g}] within {limit} ({why})"
-        stack += [(mid, hi), (lo, mid)]
-    return done, ""
-
-
-def _norm_refuted(cert: SupFlowCertificate, mu: Any, t: Fraction) -> tuple[bool, str]:
-    """``‖e^{At}‖₂² > c₂`` shown at the point ``t`` (the Rayleigh quotient of ``e^{At}ᵀe^{At}`` at a float guess of
-    its top eigenvector, in arb; a lower end above ``c₂``)."""
-    import numpy as np
-
-    e = _flow(cert, t, t)
-    g = e.transpose() * e
-    guess = np.linalg.eigh(np.array([[float(g[i, j].mid()) for j in range(3)] for i in range(3)]))[1][:, -1]
-    v = [_arb(Fraction(float(x))) for x in guess]
-    q = sum(v[i] * g[i, j] * v[j] for i in range(3) for j in range(3)) / sum(x * x for x in v)
-    return bool(q > mu), "‖e^(At)‖² > c2 there"
-
-
-def _decide_flow(premise: FlowNorm | FlowExit, budget: _Budget) -> Check:
-    import flint
-
-    from .flow_bound import _below
-
-    cert = premise.certificate
-    old = flint.ctx.prec
-    flint.ctx.prec = PRECISION
-    try:
-        horizon = cert.pieces[-1].start
-        if isinstance(premise, FlowNorm):
-            mu = _arb(cert.constants["c2"])
-            if not _below(mu, flint.arb_mat([list(r) for r in _tail_gram(cert, horizon)])):
-                return Check(premise.obligation, premise.name, f"the tail form at T = {_f(horizon)} is not below c2", False)
-
-            def below(lo: Fraction, hi: Fraction) -> tuple[bool, str]:
-                e = _flow(cert, lo, hi)
-                return _below(mu, e.transpose() * e), "‖e^(At)‖² ≥ c2 or too close to it"
-
-            parts, why = _bisect(Fraction(0), horizon, below, lambda t: _norm_refuted(cert, mu, t), budget)
-            text = f"c2 = {_f(cert.constants['c2'])} on [0, {_f(horizon)}] in {parts} parts and past it by P"
-            return Check(premise.obligation, premise.name, why or text, not why)
-        piece = cert.pieces[premise.index]
-        k = tuple(tuple(_arb(x) for x in row) for row in piece.k_matrix())
-        if piece.end is None:
-            holds, why = _exit_holds(k, _tail_gram(cert, piece.start))
-            return Check(premise.obligation, premise.name, why or f"past T = {_f(piece.start)} by P", holds)
-        if not piece.start < piece.end:
-            return Check(premise.obligation, premise.name, f"empty piece {piece.interval_text()}", False)
-        parts, why = _bisect(piece.start, piece.end, lambda lo, hi: _exit_holds(k, _gram(_flow(cert, lo, hi))),
-                             lambda t: _not(_exit_holds(k, _gram(_flow(cert, t, t)), end=_upper)), budget)
-        return Check(premise.obligation, premise.name, why or f"on {piece.interval_text()} in {parts} parts", not why)
-    finally:
-        flint.ctx.prec = old
-
-
 def sup_flow_premises(cert: SupFlowCertificate) -> list[Any]:
     """Every premise of a sup-flow certificate, in proof order."""
     k_p, k_i, k_v, f_c = cert.k_p, cert.k_i, cert.k_v, cert.f_c
@@ -480,7 +257,7 @@ def sup_flow_premises(cert: SupFlowCertificate) -> list[Any]:
         Semidefinite("sup_flow.exit", "P − p·I ⪰ 0 (the paper's P)", _sub(p_paper, _scaled_identity(3, p))),
         Semidefinite("lemma2.dVdt", "−(AᵀP + PA) ⪰ 0 (the paper's P)",
                      tuple(tuple(-x for x in row) for row in quad.lyapunov_rate_entries(k_p, k_i, k_v, p_paper))),
-        FlowNorm("sup_flow.bounds", "c2 ≥ ‖e^(At)‖² for every t ≥ 0", cert),
+        FlowNorm("sup_flow.bounds", "c2 ≥ ‖e^(At)‖² for every t ≥ 0", cert, p_paper),
         Copositive("sup_flow.bounds", "K1 − I copositive (piece 1)", _sub(pieces[0].k_matrix(), _scaled_identity(3, zero + 1))),
     ]
     for i, piece in enumerate(pieces):
@@ -494,7 +271,8 @@ def sup_flow_premises(cert: SupFlowCertificate) -> list[Any]:
             out.append(Inequality("quadratic.U_rate", f"{tag}: K3{j + 1} ≥ 0", k[2][j], ">=", zero))
         out.append(Copositive("sup_flow.stability_bound", f"{tag}: gamma·I − K copositive",
                               _sub(_scaled_identity(3, piece.constants["gamma"]), k)))
-        out.append(FlowExit("sup_flow.exit", f"{tag}: U ≥ |e^(At)w|² on the exits of R̂ for t in {piece.interval_text()}", cert, i))
+        out.append(FlowExit("sup_flow.exit", f"{tag}: U ≥ |e^(At)w|² on the exits of R̂ for t in {piece.interval_text()}", cert,
+                            p_paper, i))
     kappa = cert.kappa
     out += [
         Inequality("sup_flow.stability_bound", "overshoot_bound > 0", kappa, ">", zero),
@@ -505,9 +283,13 @@ def sup_flow_premises(cert: SupFlowCertificate) -> list[Any]:
     return out
 
 
-def _decide(premise: Any, budget: _Budget | None = None) -> Check:
+def _paper_p(cert: SupFlowCertificate) -> tuple[tuple[Fraction, ...], ...]:
+    return tuple(tuple(Fraction(x) for x in row) for row in lyapunov_matrix_entries(cert.k_p, cert.k_i, cert.k_v))
+
+
+def _decide(premise: Any, budget: Budget | None = None) -> Check:
     if isinstance(premise, (FlowNorm, FlowExit)):
-        return _decide_flow(premise, budget or _Budget(MAX_TOTAL_PARTS))
+        return decide_flow(premise, budget or Budget())
     return decide_premise(premise)
 
 
@@ -530,7 +312,7 @@ def verify_sup_flow(certificate: SupFlowCertificate, *, source: str = "<certific
     """Decide every premise of :func:`sup_flow_premises` (a structural failure stops before the flow is enclosed)."""
     if not isinstance(certificate, SupFlowCertificate):
         raise TypeError(f"verify_sup_flow needs a SupFlowCertificate; got {type(certificate).__name__}")
-    checks, structural, budget = [], True, _Budget(MAX_TOTAL_PARTS)
+    checks, structural, budget = [], True, Budget()
     for premise in sup_flow_premises(certificate):
         if isinstance(premise, Inequality) and premise.obligation in ("lemma2.P", "sup_flow.exit"):
             check = _decide(premise)

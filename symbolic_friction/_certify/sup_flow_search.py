@@ -2,23 +2,23 @@
 
 Nothing here is called proved.  The search:
 
-1. takes ``p`` just below ``λ_min(P)`` for the paper's ``P`` and a horizon
-   ``T = 2^m`` (in units of the slowest decay time) at which the tail form
-   ``(1/p)e^{AT}ᵀPe^{AT}`` is below a quarter of ``sup_t ‖e^{At}‖₂²``
-   (sampled);
-2. sets ``c₂`` a relative :data:`C2_MARGIN` above the sampled peak of
-   ``‖e^{At}‖₂²``;
-3. starts from :data:`INITIAL_PIECES` equal pieces of ``[0, T]`` plus the tail
-   ``[T, ∞)`` and, for each, minimises ``γ`` by an SDP (cvxpy, Clarabel) over
-   ``K`` subject to the quadratic template's rate premises and the exit
-   forms at :data:`SAMPLES` times of the piece, each copositive premise as
-   ``S + N`` with a margin (:func:`copositive_constraints`);
-4. halves the piece with the largest ``γ`` while that lowers the largest
-   ``γ`` by more than ``rel_tol`` (so the pieces are where the bound needs
-   them, not where a hand put them), up to ``max_pieces``;
-5. rounds ``K`` to :data:`DIGITS` significant digits (``γ`` up) and lets the
-   verifier decide each piece; a piece whose exit premise is not proved
-   between its sample times is solved again with twice the samples.
+1. takes ``p`` just below ``λ_min(P)`` for the paper's ``P`` (exactly: ``P − pI ⪰ 0`` by principal minors)
+   and a horizon ``T = 2^m`` at which the tail form ``(1/p)e^{AT}ᵀPe^{AT}`` is below a quarter of the sampled
+   ``sup_t ‖e^{At}‖₂²``;
+2. starts from :data:`INITIAL_PIECES` equal pieces of ``[0, T]`` plus the tail ``[T, ∞)`` and, for each,
+   minimises ``γ`` by an SDP (cvxpy, Clarabel; compiled once, :class:`_PieceProblem`) over ``K`` subject to the
+   quadratic template's rate premises and the exit forms on :data:`SAMPLES` − 1 parts of the piece, each with
+   the Gram at the part's middle plus its measured spread (:func:`_covering_grams`), every copositive premise
+   as ``S + N`` with a margin (:func:`copositive_constraints`);
+3. halves a piece whose ``K`` fails between its parts on a dense float grid (:func:`_dense_ok`);
+4. halves the piece with the largest ``γ`` until halving stops lowering it (:data:`STALLS` generations
+   without a drop of ``rel_tol``), up to ``max_pieces``, so the pieces are where the bound is decided, not
+   where a hand put them;
+5. gives every piece below the largest ``γ`` room: ``γ`` capped there, the exit forms' common margin
+   maximised (the verifier then needs few parts);
+6. sets ``c₂ = κ²`` (``c₂`` costs nothing up to ``κ²``, and the room makes the verifier's cover of ``[0, T]``
+   coarse), rounds ``K`` to :data:`DIGITS` significant digits (``γ`` up) and lets the verifier decide; a piece
+   it does not prove is halved and solved again (at most three rounds).
 """
 
 from __future__ import annotations
@@ -36,7 +36,7 @@ from .._model.parameters import Parameters
 if TYPE_CHECKING:
     from .sup_flow import SupFlowCertificate
 
-__all__ = ["certify_sup_flow", "copositive_constraints", "DIGITS", "SAMPLES", "INITIAL_PIECES", "MARGIN", "C2_MARGIN"]
+__all__ = ["certify_sup_flow", "copositive_constraints", "DIGITS", "SAMPLES", "INITIAL_PIECES", "MARGIN"]
 
 DIGITS = 12
 """Significant digits kept from the solver's numbers."""
@@ -46,8 +46,6 @@ INITIAL_PIECES = 4
 """Equal pieces of ``[0, T]`` the refinement starts from."""
 MARGIN = 1e-6
 """Relative margin of every SDP constraint, so that rounding keeps them."""
-C2_MARGIN = 1e-3
-"""``c₂`` is this much (relative) above the sampled peak of ``‖e^{At}‖₂²``."""
 STALLS = 3
 """Generations of halving without a drop of ``rel_tol`` in ``γ`` after which a piece is left as it is."""
 SOLVER = "CLARABEL"
@@ -213,7 +211,7 @@ def certify_sup_flow(params: Parameters, *, label: str = "", rel_tol: float = 3e
         horizon *= 2
     else:
         raise CertificateError(f"no horizon makes the tail small for {params}")
-    c2 = round_significant(peak * (1 + C2_MARGIN), 6, direction="up")
+    c2_floor = round_significant(peak * (1 + 1e-3), 6, direction="up")  # above the sampled peak of ‖e^{At}‖²
     k = (k_p, k_i, k_v)
     width = horizon / INITIAL_PIECES
     pieces = [_Piece(width * j, width * (j + 1)) for j in range(INITIAL_PIECES)] + [_Piece(horizon, None)]
@@ -274,7 +272,7 @@ def certify_sup_flow(params: Parameters, *, label: str = "", rel_tol: float = 3e
                 constants[name] = (round_significant(abs(value), DIGITS, direction=direction) * (1 if value > 0 else -1)
                                    if value != 0 else Fraction(0))
             rounded.append(SupFlowPiece(start=piece.start, end=piece.end, constants=constants))
-        kappa_sq = max([c2] + [q.constants["gamma"] for q in rounded])
+        kappa_sq = max([c2_floor] + [q.constants["gamma"] for q in rounded])
         # c₂ costs nothing up to κ², and the room above the peak makes the verifier's cover of [0, T] coarse
         certificate = SupFlowCertificate(
             k_p=params.k_p, k_i=params.k_i, k_v=params.k_v, f_c=params.f_c, constants={"c2": kappa_sq, "p": p},
@@ -389,8 +387,7 @@ def _piece_grams(a_matrix: Any, p_float: Any, p: float, piece: _Piece) -> list[A
 
 
 def _solve(a_matrix: Any, p_float: Any, p: float, problems: dict[bool, _PieceProblem], piece: _Piece) -> None:
-    import numpy as np
-
+    """Solve ``piece``'s SDP at growing margins; keep the first optimal solution (or none, with the last status)."""
     grams = _piece_grams(a_matrix, p_float, p, piece)
     for margin in (MARGIN, MARGIN * 10, MARGIN * 100):
         status, values = problems[piece.start == 0].solve(grams, margin)

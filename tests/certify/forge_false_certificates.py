@@ -78,6 +78,50 @@ QUADRATIC = [
 ]
 
 
+# -- sup-flow certificates: the premises only this template has (the ones it shares with the quadratic template --
+# Assumption 1, the rate, band and K3j premises, gamma, the bound -- are decided by the same functions and broken by
+# the quadratic files), each on a small true certificate with room
+SUP_FLOW = [
+    ("first_start", "the first piece starts at t = 0", lambda d: d["pieces"][0].update(start="1/1000")),
+    ("gap", "piece 3 starts where piece 2 ends", lambda d: d["pieces"][2].update(start="21/10")),
+    ("last_end", "the last piece ends at ∞", lambda d: d["pieces"][-1].update(end="1000")),
+    ("horizon", "T > 0 (the last piece starts after 0)", lambda d: d.update(pieces=[dict(d["pieces"][-1], start="0")])),
+    ("p_positive", "p > 0", lambda d: d["constants"].update(p="0")),
+    ("p_lower", "P − p·I ⪰ 0 (the paper's P)", lambda d: d["constants"].update(p="10")),
+    ("c2_flow", "c2 ≥ ‖e^(At)‖² for every t ≥ 0", lambda d: d["constants"].update(c2="1")),
+    ("u_lower", "K1 − I copositive (piece 1)", lambda d: _scale(d["pieces"][0], F(1, 100))),
+    # K = 0 keeps every cone premise of the piece: only the exit premise, decided on the enclosures, can fail
+    ("exit", "piece 2: U ≥ |e^(At)w|² on the exits of R̂ for t in [2, 4)", lambda d: _scale(d["pieces"][1], F(0))),
+    ("exit_tail", "piece 5: U ≥ |e^(At)w|² on the exits of R̂ for t in [8, ∞)", lambda d: _scale(d["pieces"][-1], F(0))),
+]
+
+
+def _scale(piece: dict, factor: F) -> None:
+    from symbolic_friction._infra.rational import format_rational
+
+    for name in ("k11", "k13", "k22", "k23", "k33"):
+        piece[name] = format_rational(F(piece[name]) * factor)
+
+
+def _sup_flow_base() -> dict:
+    """A true sup-flow certificate that verifies in a few parts: gains with roots −1, −2, −3 (a short horizon),
+    five pieces, and ``K``, ``γ``, ``c₂`` doubled so that every premise has room."""
+    from symbolic_friction import Parameters
+    from symbolic_friction._certify.rounding import sqrt_decimal_up
+    from symbolic_friction._certify.sup_flow import dumps_sup_flow
+    from symbolic_friction._certify.sup_flow_search import certify_sup_flow
+    from symbolic_friction._infra.rational import format_rational
+
+    data = json.loads(dumps_sup_flow(certify_sup_flow(Parameters(k_p=11, k_i=6, k_v=6, f_c=1), max_pieces=3, rel_tol=0.5)))
+    del data["provenance"]
+    for piece in data["pieces"]:
+        _scale(piece, F(2))
+        piece["gamma"] = format_rational(F(piece["gamma"]) * 2)
+    data["constants"]["c2"] = format_rational(F(data["constants"]["c2"]) * 2)
+    data["overshoot_bound"] = sqrt_decimal_up(max([F(data["constants"]["c2"])] + [F(q["gamma"]) for q in data["pieces"]]))
+    return data
+
+
 def _quadratic(edits: dict | None = None) -> dict:
     from symbolic_friction._infra.rational import format_rational
 
@@ -135,6 +179,15 @@ def forged() -> tuple[dict[str, str], list[dict]]:
         name = f"quadratic_{stem}.json"
         files[name] = _text(data)
         manifest.append({"file": name, "template": "quadratic", "premise": premise, "fails": expected_failures(data)})
+    base = _sup_flow_base()
+    files["true_sup_flow.json"] = _text(base)
+    manifest.append({"file": "true_sup_flow.json", "template": "sup-flow", "premise": None, "fails": []})
+    for stem, premise, edit in SUP_FLOW:
+        data = copy.deepcopy(base)
+        edit(data)
+        name = f"sup-flow_{stem}.json"
+        files[name] = _text(data)
+        manifest.append({"file": name, "template": "sup-flow", "premise": premise, "fails": expected_failures(data)})
     for name, premise, data in _hunting():
         files[name] = _text(data)
         manifest.append({"file": name, "template": "hunting", "premise": premise,

@@ -35,6 +35,14 @@ def test_every_premise_has_a_false_certificate_that_names_it():
         names = [p.name for p in premises(_Ones())]
         targeted = [e["premise"] for e in FALSE if e["template"] == template]
         assert sorted(targeted) == sorted(names) and len(names) == count, template
+    # the sup-flow premises only that template has (those it shares with the quadratic one are the quadratic files')
+    from symbolic_friction._certify.self_check import SUP_FLOW_PREMISES
+    from symbolic_friction._certify.sup_flow import SupFlowCertificate, sup_flow_premises
+
+    true = json.loads((DIRECTORY / "true_sup_flow.json").read_text(encoding="utf-8"))
+    names = {p.name for p in sup_flow_premises(SupFlowCertificate.from_dict(true))}
+    assert set(SUP_FLOW_PREMISES) <= names and len(SUP_FLOW_PREMISES) == 10
+    assert sorted(e["premise"] for e in FALSE if e["template"] == "sup-flow") == sorted(SUP_FLOW_PREMISES)
     for e in FALSE:
         assert e["premise"] in e["fails"], e["file"]
     # where the premises are independent, exactly that premise fails
@@ -54,7 +62,7 @@ class _Ones:
 def test_the_self_check_passes_on_this_install():
     result = refuse_false_certificates()
     assert result.ok and result.uncovered == ()
-    assert len(result.refusals) == len(MANIFEST) == 68
+    assert len(result.refusals) == len(MANIFEST) == 79
 
 
 @pytest.mark.parametrize("entry", FALSE, ids=lambda e: e["file"])
@@ -80,7 +88,7 @@ def test_the_sign_premises_are_refused_by_the_verifier_through_the_console_scrip
     import subprocess
     import sys
 
-    assert len(SIGNS) == 16
+    assert len(SIGNS) == 17
     run = subprocess.run([sys.executable, "-m", "symbolic_friction", "verify", *(str(DIRECTORY / e["file"]) for e in SIGNS)],
                          capture_output=True, text=True, timeout=120)
     assert run.returncode == 1 and "MALFORMED" not in run.stdout and "error" not in run.stderr, run.stderr
@@ -94,9 +102,9 @@ def test_the_sign_premises_are_refused_by_the_verifier_through_the_console_scrip
 
 
 def test_the_true_controls_are_proved(capsys):
-    for name in ("true_stability.json", "true_hunting.json", "true_quadratic.json"):
+    for name in ("true_stability.json", "true_hunting.json", "true_quadratic.json", "true_sup_flow.json"):
         assert main(["verify", str(DIRECTORY / name)]) == 0
-    assert capsys.readouterr().out.count("PROVED ") == 3
+    assert capsys.readouterr().out.count("PROVED ") == 4
 
 
 # -- breaking the verifier breaks the self-check ----------------------------------------------------------

@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from symbolic_friction._certify import sup_flow
+from symbolic_friction._certify import sup_flow, sup_flow_enclosure
 from symbolic_friction._certify.sup_flow import SupFlowCertificate, verify_sup_flow
 from symbolic_friction._infra.errors import CertificateFormatError, ParameterError
 
@@ -183,14 +183,14 @@ def test_the_tail_piece_below_the_tail_form_is_refused():
 
 def test_an_undecided_enclosure_is_not_proved(monkeypatch):
     """When the bisection runs out of parts the premise says so and fails: giving up is never *proved*."""
-    monkeypatch.setattr(sup_flow, "MAX_PARTS", 1)
+    monkeypatch.setattr(sup_flow_enclosure, "MAX_PARTS", 1)
     report = _verify(_data())
     assert not report.proved
     assert any("not decided" in c.instance for c in report.failures)
 
 
 def test_one_verification_has_a_budget_of_parts(monkeypatch):
-    monkeypatch.setattr(sup_flow, "MAX_TOTAL_PARTS", 20)
+    monkeypatch.setattr(sup_flow_enclosure, "MAX_TOTAL_PARTS", 20)
     report = _verify(_data())
     assert not report.proved
     assert any("within the 20 parts of one verification" in c.instance for c in report.failures)
@@ -250,13 +250,42 @@ def test_ball_ends_stay_bounded_and_outward():
     import flint
 
     tiny, huge = flint.arb(2) ** -10_000, flint.arb(2) ** 10_000
-    bound = Fraction(1, 2**sup_flow.EXPONENT_LIMIT)
-    assert sup_flow._end(tiny, down=True) == 0 and sup_flow._end(tiny, down=False) == bound
-    assert sup_flow._end(-tiny, down=True) == -bound and sup_flow._end(-tiny, down=False) == 0
-    assert sup_flow._end(flint.arb(3) / 4, down=True) == Fraction(3, 4)
-    with pytest.raises(sup_flow._TooWide):
-        sup_flow._end(huge, down=True)
+    bound = Fraction(1, 2**sup_flow_enclosure.EXPONENT_LIMIT)
+    assert sup_flow_enclosure._end(tiny, down=True) == 0 and sup_flow_enclosure._end(tiny, down=False) == bound
+    assert sup_flow_enclosure._end(-tiny, down=True) == -bound and sup_flow_enclosure._end(-tiny, down=False) == 0
+    assert sup_flow_enclosure._end(flint.arb(3) / 4, down=True) == Fraction(3, 4)
+    with pytest.raises(sup_flow_enclosure._TooWide):
+        sup_flow_enclosure._end(huge, down=True)
     k = ((flint.arb(1), 0, 0), (0, flint.arb(1), 0), (0, 0, flint.arb(1)))
     gram = ((huge, 0 * huge, 0 * huge), (0 * huge, flint.arb(0), flint.arb(0)), (0 * huge, flint.arb(0), flint.arb(0)))
-    assert sup_flow._exit_holds(k, gram)[0] is False  # not proved
-    assert sup_flow._exit_holds(k, gram, end=sup_flow._upper)[0] is True  # and not refuted either
+    assert sup_flow_enclosure._exit_holds(k, gram)[0] is False  # not proved
+    assert sup_flow_enclosure._exit_holds(k, gram, end=sup_flow_enclosure._upper)[0] is True  # and not refuted either
+
+
+@pytest.mark.parametrize("where, key, value, premise", [
+    ("parameters", "k_i", "-4", "k_i > 0"),
+    ("parameters", "k_p", "-3", "k_p > 0"),
+    ("piece", "k22", 2, "piece 3: −(K·B+ + B+ᵀ·K) copositive"),
+    ("piece", "k22", Fraction(101, 100), "piece 3: −(K·B− + B−ᵀ·K) copositive"),
+    ("piece", "k11", -100, "piece 3: band form (s = +1) copositive"),
+    ("piece", "k13", -1, "piece 3: K31 ≥ 0"),
+    ("piece", "k33", Fraction(-1, 10), "piece 3: K33 ≥ 0"),
+])
+def test_every_premise_kind_is_named_when_it_fails(where, key, value, premise):
+    data = _data()
+    if where == "parameters":
+        data["parameters"][key] = value
+        report = _verify(data)
+        # the enclosures need Assumption 1: they are not evaluated, and say so
+        assert all(not c.evaluated for c in report.failures if "U ≥" in c.name or "c2 ≥" in c.name)
+    else:
+        data["pieces"][2][key] = str(Fraction(data["pieces"][2][key]) * value)
+    assert premise in _failed(data)
+
+
+def test_a_single_piece_from_0_to_infinity_has_no_horizon():
+    data = _data()
+    tail = copy.deepcopy(data["pieces"][-1])
+    tail["start"] = "0"
+    data["pieces"] = [tail]
+    assert "T > 0 (the last piece starts after 0)" in _failed(data)
