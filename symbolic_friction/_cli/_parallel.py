@@ -14,6 +14,11 @@ never passes unless decided).
 The child can also take work *ahead* of its sections (``ahead``: named
 functions, e.g. the costliest obligation) so that both cores stay busy; this
 process asks for each result by name when it reaches it (:class:`Inbox`).
+Once its sections are done, the child takes more from the *back* of a list
+of named functions (``tail``) that this process works through from the front;
+each item is claimed under a lock (:class:`Claims`) by whichever process gets
+there first, so the split adapts to how fast each core really is (a busy
+machine, a slower section) and no item is done twice or left out.
 
 ``SYMBOLIC_FRICTION_JOBS=1`` (or one core, or a platform other than Linux,
 where ``fork`` is unavailable or unsafe with system libraries, or a process
@@ -32,7 +37,7 @@ from typing import Any
 
 from ._sections import Section, _crashed
 
-__all__ = ["ENV", "parallel_allowed", "run_sections", "Inbox"]
+__all__ = ["ENV", "parallel_allowed", "run_sections", "Inbox", "Claims"]
 
 ENV = "SYMBOLIC_FRICTION_JOBS"
 
@@ -59,17 +64,53 @@ def _safe(make: Maker, args: argparse.Namespace) -> Section:
         return _crashed(make, exc)
 
 
-def _child(makers: list[Maker], args: argparse.Namespace, send: Any, ahead: dict[str, Callable[[], Any]]) -> None:
+class Claims:
+    """Who does each item of a list: this process claims from the front, the child from the back (under one lock)."""
+
+    def __init__(self, ctx: Any, names: list[str]) -> None:
+        self.names = tuple(names)
+        self.lock = ctx.Lock()
+        self.front = ctx.RawValue("i", 0)  # items before it are this process's
+        self.back = ctx.RawValue("i", len(names))  # items from it on are the child's
+
+    def take_front(self, name: str) -> bool:
+        """Whether this process is to do ``name`` (False: the child has claimed it; ask the inbox)."""
+        k = self.names.index(name)
+        with self.lock:
+            if k < self.back.value:
+                self.front.value = max(self.front.value, k + 1)
+                return True
+            return False
+
+    def take_back(self) -> int | None:
+        """The index of the last unclaimed item, now the child's, or None when none is left."""
+        with self.lock:
+            if self.back.value > self.front.value:
+                self.back.value -= 1
+                return self.back.value
+            return None
+
+
+def _send_result(send: Any, key: str, work: Callable[[], Any]) -> None:
+    try:
+        send.send(("ahead", key, work()))
+    except Exception as exc:  # the parent reports the error where it needed the value
+        send.send(("ahead", key, exc if _picklable(exc) else RuntimeError(repr(exc))))
+
+
+def _child(makers: list[Maker], args: argparse.Namespace, send: Any, ahead: dict[str, Callable[[], Any]],
+           tail: list[tuple[str, Callable[[], Any]]] = (), claims: Claims | None = None) -> None:  # type: ignore[assignment]
     from .._infra.output import set_verbosity
 
     set_verbosity(0)  # no progress bar or note from here: this process's output is the parent's to print
     for key, work in ahead.items():
-        try:
-            send.send(("ahead", key, work()))
-        except Exception as exc:  # the parent reports the error where it needed the value
-            send.send(("ahead", key, exc if _picklable(exc) else RuntimeError(repr(exc))))
-    for make in makers:
-        section = _safe(make, args)
+        _send_result(send, key, work)
+    sections = [(make, _safe(make, args)) for make in makers]
+    # the tail before the sections: a large section could fill the pipe, which the parent reads only when it needs
+    # a value, and the child would then claim nothing while this process does every item itself
+    while claims is not None and (k := claims.take_back()) is not None:
+        _send_result(send, *tail[k])
+    for make, section in sections:
         try:
             send.send(("section", make.__name__, section))
         except Exception as exc:  # an unpicklable result: report it, do not hang the parent
@@ -109,15 +150,19 @@ class Inbox:
 
 
 def run_sections(makers: list[Maker], args: argparse.Namespace, *, parallel: bool | None = None,
-                 ahead: dict[str, Callable[[], Any]] | None = None) -> Iterator[Section]:
+                 ahead: dict[str, Callable[[], Any]] | None = None,
+                 tail: list[tuple[str, Callable[[], Any]]] | None = None) -> Iterator[Section]:
     """Each section of ``makers``, in order (module docstring).
 
     With the child, ``args.inbox`` is an :class:`Inbox` holding the results of
-    ``ahead`` (``None`` when everything runs here: do the work yourself).
+    ``ahead`` and of the items of ``tail`` the child claimed, and ``args.claims``
+    the :class:`Claims` of ``tail`` (both ``None`` when everything runs here: do
+    the work yourself).
     """
     if parallel is None:
         parallel = parallel_allowed()
     args.inbox = None
+    args.claims = None
     if not parallel or len(makers) < 2:
         for make in makers:
             yield _safe(make, args)
@@ -128,11 +173,14 @@ def run_sections(makers: list[Maker], args: argparse.Namespace, *, parallel: boo
     recv, send = ctx.Pipe(duplex=False)
     quiet = copy.copy(args)
     quiet.json = True  # the child streams nothing: this process prints its tables, in order
-    proc = ctx.Process(target=_child, args=(makers[1:], quiet, send, dict(ahead or {})), daemon=True)
+    tail = list(tail or [])
+    claims = Claims(ctx, [name for name, _ in tail]) if tail else None
+    proc = ctx.Process(target=_child, args=(makers[1:], quiet, send, dict(ahead or {}), tail, claims), daemon=True)
     proc.start()
     send.close()
     inbox = Inbox(recv, proc)
     args.inbox = inbox
+    args.claims = claims
     try:
         yield _safe(makers[0], args)
         for make in makers[1:]:
@@ -144,6 +192,7 @@ def run_sections(makers: list[Maker], args: argparse.Namespace, *, parallel: boo
             yield section
     finally:
         args.inbox = None
+        args.claims = None
         recv.close()
         proc.join(timeout=5)
         if proc.is_alive():

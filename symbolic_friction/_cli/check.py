@@ -111,6 +111,9 @@ def obligations_section(args: argparse.Namespace) -> Section:
     inbox = getattr(args, "inbox", None)
     if inbox is not None:  # decided meanwhile on the other core (see run())
         obligations = [_Decided(ob, inbox) if ob.id in OFFLOADED else ob for ob in obligations]
+    claims = getattr(args, "claims", None)
+    if claims is not None:  # the tail: each decided here unless the other core has claimed it
+        obligations = [_Claimed(ob, claims, inbox) if ob.id in claims.names else ob for ob in obligations]
     stream = not getattr(args, "json", False)
     layout = _ObligationLayout()
     if stream:
@@ -205,6 +208,34 @@ class _Decided:
             return self.inbox.get("ahead", self.id)
         except RuntimeError:  # the worker is gone: decide it here
             return self.ob.run()
+
+
+KEPT = ("lemma3.hatV_derivative", "certificate.verifier")
+"""Obligations this process decides: one derivation of Lemma 3's k-conditions serves both (``shared_derivations``)."""
+
+
+class _Claimed(_Decided):
+    """An obligation of the tail: decided here if this process claims it first, else its result is the worker's."""
+
+    def __init__(self, ob: Any, claims: Any, inbox: Any) -> None:
+        super().__init__(ob, inbox)
+        self.claims = claims
+
+    def run(self) -> Any:
+        return self.ob.run() if self.claims.take_front(self.id) else super().run()
+
+
+def _decide_tail() -> list[tuple[str, Callable[[], Any]]]:
+    """``[(id, run it)]`` for the obligations after the last of :data:`OFFLOADED` and :data:`KEPT`, in order.
+
+    The worker takes them from the back once its sections are done, this process from the front
+    (:class:`._parallel.Claims`): the cores then finish together however fast each one is.
+    """
+    from .._obligations import all_obligations, run_checked
+
+    obligations = all_obligations()
+    start = max((i + 1 for i, ob in enumerate(obligations) if ob.id in OFFLOADED + KEPT), default=0)
+    return [(ob.id, (lambda ob=ob: run_checked([ob])[0])) for ob in obligations[start:]]
 
 
 def _decide_offloaded() -> dict[str, Callable[[], Any]]:
@@ -408,7 +439,8 @@ def run(args: argparse.Namespace) -> int:
     from ._parallel import run_sections
 
     ahead = _decide_offloaded() if not only else {}
-    for section in run_sections(list(makers), args, ahead=ahead):  # later sections run on the other core meanwhile
+    tail = _decide_tail() if not only else []
+    for section in run_sections(list(makers), args, ahead=ahead, tail=tail):  # later sections run on the other core meanwhile
         sections.append(gate(section))
         if not as_json:
             if not section.streamed:
