@@ -335,7 +335,9 @@ def _convex_quadratic_minimum(f: sp.Expr, var: sp.Symbol, s: sp.Interval) -> sp.
     quadratic or the vertex's position is not decided.
     """
     try:
-        poly = sp.Poly(f, var)
+        # coefficients as expressions (EX): no polynomial domain of the other symbols to build, and every
+        # decision below is on the coefficients' values (sign_of, cancel), not on their form
+        poly = sp.Poly(f, var, domain=sp.EX)
     except sp.PolynomialError:
         return None
     if poly.degree() != 2:
