@@ -65,29 +65,47 @@ def _safe(make: Maker, args: argparse.Namespace) -> Section:
 
 
 class Claims:
-    """Who does each item of a list: this process claims from the front, the child from the back (under one lock)."""
+    """Who does each item of a list: this process claims from the front, the child from the back (under one lock).
 
-    def __init__(self, ctx: Any, names: list[str]) -> None:
+    Items named together in ``together`` (work they share, such as one derivation) are claimed as one, by the
+    process that reaches any of them first; the other passes over the rest of the group.  The child stops when
+    it reaches the item this process is at, so every item is done exactly once.
+    """
+
+    def __init__(self, ctx: Any, names: list[str], together: tuple[tuple[str, ...], ...] = ()) -> None:
         self.names = tuple(names)
+        self.groups = [tuple(self.names.index(n) for n in group if n in self.names) for group in together]
         self.lock = ctx.Lock()
-        self.front = ctx.RawValue("i", 0)  # items before it are this process's
-        self.back = ctx.RawValue("i", len(names))  # items from it on are the child's
+        self.owner = ctx.RawArray("b", len(names))  # 0 free, 1 this process, 2 the child
+        self.front = ctx.RawValue("i", 0)  # this process has reached the items before it
+        self.back = ctx.RawValue("i", len(names))  # the child looks at the items before it, last first
+
+    def _members(self, k: int) -> tuple[int, ...]:
+        return next((g for g in self.groups if k in g), (k,))
 
     def take_front(self, name: str) -> bool:
         """Whether this process is to do ``name`` (False: the child has claimed it; ask the inbox)."""
         k = self.names.index(name)
         with self.lock:
-            if k < self.back.value:
-                self.front.value = max(self.front.value, k + 1)
-                return True
-            return False
+            self.front.value = max(self.front.value, k + 1)
+            if self.owner[k] == 0:
+                for j in self._members(k):
+                    self.owner[j] = 1
+            return self.owner[k] == 1
 
-    def take_back(self) -> int | None:
-        """The index of the last unclaimed item, now the child's, or None when none is left."""
+    def take_back(self) -> tuple[int, ...] | None:
+        """The indices of the last free item (with the items claimed together with it), now the child's; None
+        once the child has reached the items this process has reached."""
         with self.lock:
-            if self.back.value > self.front.value:
-                self.back.value -= 1
-                return self.back.value
+            while self.back.value > self.front.value:
+                k = self.back.value - 1
+                self.back.value = k
+                if self.owner[k] != 0:  # claimed with an item of its group
+                    continue
+                members = self._members(k)
+                for j in members:
+                    self.owner[j] = 2
+                return members
             return None
 
 
@@ -99,7 +117,10 @@ def _send_result(send: Any, key: str, work: Callable[[], Any]) -> None:
 
 
 def _child(makers: list[Maker], args: argparse.Namespace, send: Any, ahead: dict[str, Callable[[], Any]],
-           tail: list[tuple[str, Callable[[], Any]]] = (), claims: Claims | None = None) -> None:  # type: ignore[assignment]
+           tail: list[tuple[str, Callable[[], Any]]] = (), claims: Claims | None = None,  # type: ignore[assignment]
+           context: Callable[[], Any] | None = None) -> None:
+    import contextlib
+
     from .._infra.output import set_verbosity
 
     set_verbosity(0)  # no progress bar or note from here: this process's output is the parent's to print
@@ -108,8 +129,10 @@ def _child(makers: list[Maker], args: argparse.Namespace, send: Any, ahead: dict
     sections = [(make, _safe(make, args)) for make in makers]
     # the tail before the sections: a large section could fill the pipe, which the parent reads only when it needs
     # a value, and the child would then claim nothing while this process does every item itself
-    while claims is not None and (k := claims.take_back()) is not None:
-        _send_result(send, *tail[k])
+    with context() if context is not None else contextlib.nullcontext():
+        while claims is not None and (taken := claims.take_back()) is not None:
+            for k in taken:
+                _send_result(send, *tail[k])
     for make, section in sections:
         try:
             send.send(("section", make.__name__, section))
@@ -151,13 +174,15 @@ class Inbox:
 
 def run_sections(makers: list[Maker], args: argparse.Namespace, *, parallel: bool | None = None,
                  ahead: dict[str, Callable[[], Any]] | None = None,
-                 tail: list[tuple[str, Callable[[], Any]]] | None = None) -> Iterator[Section]:
+                 tail: list[tuple[str, Callable[[], Any]]] | None = None, together: tuple[tuple[str, ...], ...] = (),
+                 context: Callable[[], Any] | None = None) -> Iterator[Section]:
     """Each section of ``makers``, in order (module docstring).
 
     With the child, ``args.inbox`` is an :class:`Inbox` holding the results of
     ``ahead`` and of the items of ``tail`` the child claimed, and ``args.claims``
     the :class:`Claims` of ``tail`` (both ``None`` when everything runs here: do
-    the work yourself).
+    the work yourself).  Items named in one tuple of ``together`` are claimed
+    as one; the child works through the tail within ``context()`` if given.
     """
     if parallel is None:
         parallel = parallel_allowed()
@@ -174,8 +199,9 @@ def run_sections(makers: list[Maker], args: argparse.Namespace, *, parallel: boo
     quiet = copy.copy(args)
     quiet.json = True  # the child streams nothing: this process prints its tables, in order
     tail = list(tail or [])
-    claims = Claims(ctx, [name for name, _ in tail]) if tail else None
-    proc = ctx.Process(target=_child, args=(makers[1:], quiet, send, dict(ahead or {}), tail, claims), daemon=True)
+    claims = Claims(ctx, [name for name, _ in tail], together) if tail else None
+    proc = ctx.Process(target=_child, args=(makers[1:], quiet, send, dict(ahead or {}), tail, claims, context),
+                       daemon=True)
     proc.start()
     send.close()
     inbox = Inbox(recv, proc)

@@ -192,8 +192,9 @@ def obligations_section(args: argparse.Namespace) -> Section:
     )
 
 
-OFFLOADED = ("model.V_runtime", "claim1.cases", "lemma2.lower_bound")
-"""Obligations the second core decides first, while this process decides the others in order (costliest)."""
+OFFLOADED = ("claim1.cases",)
+"""Obligations the second core decides first, while this process decides the others in order (the costliest, and
+late enough in the order to be ready when this process reaches it)."""
 
 
 class _Decided:
@@ -210,8 +211,8 @@ class _Decided:
             return self.ob.run()
 
 
-KEPT = ("lemma3.hatV_derivative", "certificate.verifier")
-"""Obligations this process decides: one derivation of Lemma 3's k-conditions serves both (``shared_derivations``)."""
+TOGETHER = (("lemma3.hatV_derivative", "certificate.verifier"),)
+"""Obligations one process decides together: one derivation of Lemma 3's k-conditions serves both."""
 
 
 class _Claimed(_Decided):
@@ -226,15 +227,13 @@ class _Claimed(_Decided):
 
 
 def _decide_tail() -> list[tuple[str, Callable[[], Any]]]:
-    """``[(id, run it)]`` for the obligations after the last of :data:`OFFLOADED` and :data:`KEPT`, in order.
-
-    The worker takes them from the back once its sections are done, this process from the front
-    (:class:`._parallel.Claims`): the cores then finish together however fast each one is.
-    """
+    """``[(id, run it)]`` for the obligations after the last of :data:`OFFLOADED`: the worker takes them from the back
+    once its sections are done, this process from the front (:class:`._parallel.Claims`, each group of :data:`TOGETHER`
+    as one), so the cores finish together however fast each one is."""
     from .._obligations import all_obligations, run_checked
 
     obligations = all_obligations()
-    start = max((i + 1 for i, ob in enumerate(obligations) if ob.id in OFFLOADED + KEPT), default=0)
+    start = max((i + 1 for i, ob in enumerate(obligations) if ob.id in OFFLOADED), default=0)
     return [(ob.id, (lambda ob=ob: run_checked([ob])[0])) for ob in obligations[start:]]
 
 
@@ -449,7 +448,9 @@ def run(args: argparse.Namespace) -> int:
     ahead = _decide_offloaded() if not only else {}
     tail = _decide_tail() if not only else []
     _import_shared()
-    for section in run_sections(list(makers), args, ahead=ahead, tail=tail):  # later sections run on the other core meanwhile
+    from .._obligations._derived_k import shared_derivations as shared
+
+    for section in run_sections(list(makers), args, ahead=ahead, tail=tail, together=TOGETHER, context=shared):
         sections.append(gate(section))
         if not as_json:
             if not section.streamed:

@@ -144,11 +144,26 @@ def test_claims_split_a_list_between_its_two_ends():
     import multiprocessing
 
     claims = _parallel.Claims(multiprocessing.get_context("fork"), ["a", "b", "c", "d"])
-    assert claims.take_back() == 3  # the child's: from the back
+    assert claims.take_back() == (3,)  # the child's: from the back
     assert claims.take_front("a") and claims.take_front("b")  # this process's: from the front
-    assert claims.take_back() == 2
+    assert claims.take_back() == (2,)
     assert not claims.take_front("c") and not claims.take_front("d")  # claimed by the child: ask the inbox
-    assert claims.take_back() is None  # nothing left, nothing done twice
+    assert claims.take_back() is None  # it met this process: nothing left, nothing done twice
+
+
+def test_items_claimed_together_go_to_one_process():
+    import multiprocessing
+
+    ctx = multiprocessing.get_context("fork")
+    claims = _parallel.Claims(ctx, ["a", "b", "c", "d", "e"], (("b", "d"),))
+    assert claims.take_back() == (4,) and claims.take_back() == (1, 3)  # d brings b along
+    assert claims.take_front("a") and not claims.take_front("b")
+    assert claims.take_back() == (2,) and claims.take_back() is None  # b is already the child's; a is not
+    claims = _parallel.Claims(ctx, ["a", "b", "c", "d", "e"], (("b", "d"),))
+    assert claims.take_front("a") and claims.take_front("b")  # b brings d along
+    assert claims.take_back() == (4,) and claims.take_back() == (2,)  # the child passes over d, this process's
+    assert not claims.take_front("c") and claims.take_front("d")
+    assert claims.take_back() is None
 
 
 def _tail_user(names, wait_for_child):
@@ -222,3 +237,21 @@ def test_a_tail_obligation_claimed_by_the_worker_is_reported_from_there(monkeypa
     rows = {o["id"]: o for o in json.loads(capsys.readouterr().out)["obligations"]}
     assert list(rows) == ["coordinates", "claim1.cases", "table1"]  # the paper's order, whoever decided them
     assert rows["table1"]["status"] != "holds" and str(parent) not in rows["table1"]["reason"]
+
+
+def test_the_worker_works_through_the_tail_within_the_context(monkeypatch):
+    """``check`` passes ``shared_derivations``: a group the worker claims shares one derivation there too."""
+    import contextlib
+
+    monkeypatch.delenv(_parallel.ENV, raising=False)
+    state = {"inside": False}
+
+    @contextlib.contextmanager
+    def context():
+        state["inside"] = True
+        yield
+        state["inside"] = False
+
+    got = list(_parallel.run_sections([_tail_user(["x"], True), _maker("later")], argparse.Namespace(json=False),
+                                      parallel=True, tail=[("x", lambda: state["inside"])], context=context))
+    assert dict(got[0].rows) == {"x": "True"} and not state["inside"]
