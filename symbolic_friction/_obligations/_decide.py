@@ -5,9 +5,10 @@ that decision sound and deliberately simple:
 
 * :func:`sign_of` decides the sign of a rational function all of whose free
   symbols are declared positive, by a **sign-definite decomposition**: a
-  polynomial is expanded, a rational function split by ``together`` into a
-  numerator and a denominator, and each must have all its coefficients of
-  one sign.  A polynomial with only positive coefficients is positive
+  rational function is written as a reduced fraction of two integer
+  polynomials (python-flint ``fmpz_mpoly``; other expressions are split by
+  ``together``), and the numerator and the denominator must each have all
+  their coefficients of one sign.  A polynomial with only positive coefficients is positive
   wherever its variables are positive, so the answer is correct whenever
   one is given; ``None`` means "not decided" and the obligation then fails
   instead of guessing.
@@ -81,8 +82,9 @@ def _is_rational_function(expr: sp.Expr) -> bool:
 def is_zero(expr: Any) -> bool:
     """Exact identity test ``expr == 0``.
 
-    For a rational function, ``cancel`` gives a canonical numerator, so
-    ``expand(numerator) == 0`` decides the identity; radicals or other
+    For a rational function, the numerator of its fraction of polynomials
+    (:func:`_field_element`) is the zero polynomial exactly when the function
+    is zero, which decides the identity; radicals or other
     functions fall back to ``simplify`` (a ``True`` answer is then still an
     identity, a ``False`` one may only mean "not shown").
     """
@@ -212,8 +214,8 @@ def sign_of(expr: Any) -> int | None:
     """Sign (1, 0 or -1) of ``expr`` on the positive orthant, or ``None`` if not decided.
 
     Every free symbol must be declared positive; otherwise ``None``.  A
-    rational function is written as a reduced fraction ``P/Q`` in
-    ``Q(symbols)`` (sparse polynomials, common factors cancelled: ``P/Q``
+    rational function is written as a reduced fraction ``P/Q`` of integer
+    polynomials (:func:`_field_element`, common factors cancelled: ``P/Q``
     equals ``expr`` wherever ``expr`` is defined); a polynomial whose
     coefficients all share a sign has that sign on the orthant, and ``P = 0``
     means ``expr`` is identically zero.  Other expressions (radicals) are
