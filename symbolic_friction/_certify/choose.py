@@ -1,11 +1,13 @@
 """Which template proves the tightest overshoot bound κ (eq. stabState) for one gain set.
 
-``certify`` can search two templates whose every step ``check`` proves: the
+``certify`` can search three templates whose every step ``check`` proves: the
 paper's (:data:`.pipeline.STABILITY`, the constants of Lemmas 2 and 3, found
-by the closed form of :mod:`.closed_form` or the SDP of :mod:`.search`) and
-the quadratic template beyond the paper (:data:`.quadratic.QUADRATIC`, a free
-``P`` with ``P₁₂ = 0`` and ``U = yᵀKy``, found by the SDP of
-:mod:`.quadratic_search`).  :func:`certify_template` certifies with one of
+by the closed form of :mod:`.closed_form` or the SDP of :mod:`.search`), and
+two beyond the paper: the quadratic template (:data:`.quadratic.QUADRATIC`, a
+free ``P`` with ``P₁₂ = 0`` and ``U = yᵀKy``, found by the SDP of
+:mod:`.quadratic_search`) and the sup-flow template (:data:`.sup_flow.SUP_FLOW`,
+``V_∞`` built on the friction-free flow and time pieces of ``U``, found by
+the SDPs of :mod:`.sup_flow_search`).  :func:`certify_template` certifies with one of
 them, or (``"auto"``) with each and keeps the proved certificate of smallest
 κ.  A template is compared only through a certificate its own exact verifier
 proves (re-decided here, independently of the search that found it); a search
@@ -28,7 +30,7 @@ from ._template import Template
 __all__ = ["TEMPLATE_CHOICES", "searchable_templates", "paper_only_options", "refuse_paper_only", "Attempt", "TemplateChoice",
            "certify_template"]
 
-TEMPLATE_CHOICES: tuple[str, ...] = ("auto", "paper", "quadratic")
+TEMPLATE_CHOICES: tuple[str, ...] = ("auto", "paper", "quadratic", "sup-flow")
 """What ``certify --template`` accepts: a template's name, or ``auto`` (the tightest proved one)."""
 
 
@@ -36,13 +38,14 @@ def searchable_templates() -> dict[str, Template]:
     """The templates ``certify`` can search, by name, in the order ``auto`` tries them (the paper's first).
 
     Each instantiates only obligations that ``check`` proves (their ids:
-    :data:`.certificate.OBLIGATIONS`, :data:`.quadratic.OBLIGATIONS`; a test
-    holds them to the registry of obligations).
+    :data:`.certificate.OBLIGATIONS`, :data:`.quadratic.OBLIGATIONS`,
+    :data:`.sup_flow.OBLIGATIONS`; a test holds them to the registry of obligations).
     """
     from .pipeline import STABILITY
     from .quadratic import QUADRATIC
+    from .sup_flow import SUP_FLOW
 
-    return {t.name: t for t in (STABILITY, QUADRATIC)}
+    return {t.name: t for t in (STABILITY, QUADRATIC, SUP_FLOW)}
 
 
 def paper_only_options(*, mode: str | None = None, margin: object = None, search: str | None = None,
@@ -158,10 +161,14 @@ def _try(template: Template, params: Parameters, *, mode: str | None, margin: ob
 
         certificate = certify(params, mode=mode or "tightest", margin=margin, label=label, physical=physical,
                               search=search or "closed-form")
-    else:
+    elif template.name == "quadratic":
         from .quadratic_search import certify_quadratic
 
         certificate = certify_quadratic(params, label=label)
+    else:
+        from .sup_flow_search import certify_sup_flow
+
+        certificate = certify_sup_flow(params, label=label)
     report = template.verify(certificate, "<certificate>")
     if not report.proved:  # the searches verify too; the choice trusts only this decision
         raise CertificateError(f"the {template.name} certificate does not verify: {template.failure(report)}")
@@ -169,10 +176,10 @@ def _try(template: Template, params: Parameters, *, mode: str | None, margin: ob
 
 
 def refuse_paper_only(template: str, paper_only: list[str]) -> None:
-    """Raise :class:`ParameterError` if ``template`` is ``"quadratic"`` and a paper-only option was given."""
-    if template == "quadratic" and paper_only:
-        raise ParameterError(f"only the paper's template takes {paper_only[0]}: the quadratic template has one "
-                             "search (its SDP), minimises κ and its file records normalised gains only "
+    """Raise :class:`ParameterError` if ``template`` is one beyond the paper and a paper-only option was given."""
+    if template in ("quadratic", "sup-flow") and paper_only:
+        raise ParameterError(f"only the paper's template takes {paper_only[0]}: the {template} template has one "
+                             "search (its SDPs), minimises κ and its file records normalised gains only "
                              "(drop it, give normalised gains, or use --template paper)")
 
 
@@ -186,11 +193,12 @@ def certify_template(
     ----------
     params : Parameters
         Gains satisfying Assumption 1 (``f_s = f_c``).
-    template : {"auto", "paper", "quadratic"}, keyword-only
+    template : {"auto", "paper", "quadratic", "sup-flow"}, keyword-only
         ``paper``: the paper's template (``mode``, ``margin``, ``search`` as
         in :func:`.pipeline.certify`); ``quadratic``: the quadratic template
-        (SDP, exact rounding and verification); ``auto`` (default): both,
-        keeping the proved certificate with the smallest κ.  With ``auto``,
+        (SDP, exact rounding and verification); ``sup-flow``: the sup-flow
+        template (SDPs on adaptive time pieces, exact and arb verification);
+        ``auto`` (default): each, keeping the proved certificate with the smallest κ.  With ``auto``,
         an option only the paper's template takes restricts the choice to it
         (said in :attr:`TemplateChoice.note`).
     mode, margin, search : keyword-only

@@ -43,8 +43,8 @@ __all__ = [
 TABLE_I_LABELS = {"a": "Table I, case (a)", "b": "Table I, case (b)"}
 TABLE_I_FILES: tuple[str, ...] = tuple(f"case_{case}_{mode}.json" for case in TABLE_I_LABELS for mode in MODES)
 """The committed certificates of ``proofs/`` (both cases of Table I, both modes)."""
-QUADRATIC_TABLE_I_FILES: tuple[str, ...] = ("case_a.json", "case_b.json")
-"""Table I's certificates in the quadratic template, under ``proofs/quadratic/``."""
+BEYOND_TABLE_I_FILES: tuple[str, ...] = ("case_a.json", "case_b.json")
+"""Table I's certificates in the templates beyond the paper, under ``proofs/quadratic/`` and ``proofs/sup_flow/``."""
 
 
 SEARCHES: tuple[str, ...] = ("closed-form", "sdp")
@@ -330,11 +330,17 @@ def write_listed_certificates(directory: str | os.PathLike[str], names: Iterable
             fresh = certify(Parameters.table_i(case), mode=mode, label=TABLE_I_LABELS[case])
         if fresh is not None:
             written.extend(write_certificate(fresh, path))
-        elif path.parent == directory / "quadratic" and path.name in QUADRATIC_TABLE_I_FILES:
+        elif path.parent == directory / "quadratic" and path.name in BEYOND_TABLE_I_FILES:
             # Table I in the quadratic template: its gains are known from the name
             from .quadratic import QUADRATIC
             from .quadratic_search import certify_quadratic
 
             case = path.stem[-1]
             written.append(QUADRATIC.write(certify_quadratic(Parameters.table_i(case), label=TABLE_I_LABELS[case]), path))
+        elif path.parent == directory / "sup_flow" and path.name in BEYOND_TABLE_I_FILES:
+            from .sup_flow import SUP_FLOW
+            from .sup_flow_search import certify_sup_flow
+
+            case = path.stem[-1]
+            written.append(SUP_FLOW.write(certify_sup_flow(Parameters.table_i(case), label=TABLE_I_LABELS[case]), path))
     return written

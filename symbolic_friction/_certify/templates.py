@@ -39,8 +39,9 @@ def builtin_templates() -> tuple[Template, ...]:
     from .hunting import HUNTING
     from .pipeline import STABILITY
     from .quadratic import QUADRATIC
+    from .sup_flow import SUP_FLOW
 
-    first = (STABILITY, HUNTING, BOX, QUADRATIC)
+    first = (STABILITY, HUNTING, BOX, QUADRATIC, SUP_FLOW)
     return first + tuple(t for t in registered() if t not in first)
 
 

@@ -57,10 +57,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.formatter_class = argparse.RawDescriptionHelpFormatter
     parser.add_argument(
         "--template",
-        choices=("auto", "paper", "quadratic"),
+        choices=("auto", "paper", "quadratic", "sup-flow"),
         default="auto",
         help="which proof: 'paper' (Lemmas 2 and 3, Table I's constants), 'quadratic' (a free P and U = y'Ky, "
-        "beyond the paper; an SDP), or 'auto' (default): both, keeping the proved certificate with the smallest κ",
+        "beyond the paper; an SDP), 'sup-flow' (the peak of the friction-free flow and time pieces of U, beyond "
+        "the paper; SDPs, about 20 s), or 'auto' (default): each, keeping the proved certificate with the smallest κ",
     )
     parser.add_argument(
         "--mode",
@@ -187,7 +188,7 @@ def run(args: argparse.Namespace) -> int:
 
     from .._certify import MODES, default_stem
     from .._certify.choose import certify_template, paper_only_options, refuse_paper_only
-    from .._certify.pipeline import QUADRATIC_TABLE_I_FILES, TABLE_I_LABELS, table_i_stem
+    from .._certify.pipeline import BEYOND_TABLE_I_FILES, TABLE_I_LABELS, table_i_stem
     from .._certify.search import check_margin
     from .._infra.io import check_stem, ensure_directory
     from .._model.parameters import Parameters
@@ -212,11 +213,12 @@ def run(args: argparse.Namespace) -> int:
             if args.template in ("auto", "paper"):
                 for mode in modes:
                     jobs.append((Parameters.table_i(case), "paper", mode, label, out / f"{table_i_stem(case, mode)}.json"))
-        if args.template == "quadratic" or (args.template == "auto" and not paper_only):
-            # the quadratic template's Table I files, as committed under proofs/quadratic/
-            for name in QUADRATIC_TABLE_I_FILES:
-                case = Path(name).stem[-1]
-                jobs.append((Parameters.table_i(case), "quadratic", None, TABLE_I_LABELS[case], out / "quadratic" / name))
+        for template, directory in (("quadratic", "quadratic"), ("sup-flow", "sup_flow")):
+            if args.template == template or (args.template == "auto" and not paper_only):
+                # the Table I files of the templates beyond the paper, as committed under proofs/<directory>/
+                for name in BEYOND_TABLE_I_FILES:
+                    case = Path(name).stem[-1]
+                    jobs.append((Parameters.table_i(case), template, None, TABLE_I_LABELS[case], out / directory / name))
     else:
         label = args.label or ""
         if len(label) > 1000 or not label.isprintable():
@@ -224,7 +226,7 @@ def run(args: argparse.Namespace) -> int:
         stem = check_stem(args.name) if args.name is not None else None
         jobs.append((params, args.template, args.mode, label, stem))
     for _, template, mode, _, _ in jobs:  # validate before writing anything
-        if template != "quadratic" and args.margin is not None:
+        if template not in ("quadratic", "sup-flow") and args.margin is not None:
             check_margin(args.margin, mode or "tightest")
     ensure_directory(args.out)  # an unusable --out (or an empty one) fails now, not after the search
     for params_j, template, mode, label, path in jobs:
@@ -279,9 +281,9 @@ def _run_box(args: argparse.Namespace) -> int:
     from .._infra.output import emit
     from .._infra.rational import to_rational
 
-    if args.template == "quadratic":
+    if args.template in ("quadratic", "sup-flow"):
         raise ParameterError("a box (intervals LO:HI) is certified with the paper's template only (the closed form at "
-                             "its corners); --template quadratic certifies one gain set")
+                             f"its corners); --template {args.template} certifies one gain set")
     if args.search not in (None, "closed-form"):
         raise ParameterError("a box is certified by the closed form only (--search closed-form)")
     if args.mode not in (None, "tightest"):

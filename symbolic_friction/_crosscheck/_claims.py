@@ -92,7 +92,7 @@ class Claims:
     def from_certificate(cls, certificate: Any, *, label: str | None = None) -> "Claims":
         """Read a certificate (or an altered copy of one) without verifying it.
 
-        A quadratic-template certificate is read by :meth:`from_quadratic`.
+        A certificate of a template beyond the paper (quadratic, sup-flow) is read by :meth:`from_quadratic`.
 
         Raises
         ------
@@ -100,8 +100,9 @@ class Claims:
             If an attribute is missing or not a finite positive number.
         """
         from .._certify.quadratic import QuadraticCertificate
+        from .._certify.sup_flow import SupFlowCertificate
 
-        if isinstance(certificate, QuadraticCertificate):
+        if isinstance(certificate, (QuadraticCertificate, SupFlowCertificate)):
             return cls.from_quadratic(certificate, label=label)
         values: dict[str, float] = {}
         exact: dict[str, Any] = {}
@@ -141,8 +142,12 @@ class Claims:
 
     @classmethod
     def from_quadratic(cls, certificate: Any, *, label: str | None = None) -> "Claims":
-        """Read a quadratic-template certificate (or an altered copy) without verifying it: its gains and κ."""
-        from .._certify.quadratic import TEMPLATE_ID
+        """Read a certificate of a template beyond the paper (quadratic or sup-flow; or an altered copy) without
+        verifying it: its gains and κ."""
+        from .._certify import quadratic, sup_flow
+
+        module = sup_flow if isinstance(certificate, sup_flow.SupFlowCertificate) else quadratic
+        TEMPLATE_ID = module.TEMPLATE_ID
 
         bound = certificate.overshoot_bound
         try:
@@ -151,7 +156,7 @@ class Claims:
             raise CertificateFormatError(f"overshoot_bound must be a number; got {bound!r}") from None
         if label is None:
             label = getattr(certificate.provenance, "label", "") or "<certificate>"
-            label = f"{label} [quadratic]"
+            label = f"{label} [{TEMPLATE_ID.split('/')[0]}]"
         exact = {**certificate.parameters, **certificate.constants, "overshoot_bound": bound}
         nan = math.nan
         return cls(label=label, params=Parameters(**certificate.parameters), **{name: nan for name in _CONSTANTS},

@@ -1,7 +1,7 @@
 """Which certificate files ``crosscheck`` checks when none is given, and which it leaves out and why.
 
 The cross-check's properties instantiate the paper's template (the constants of
-Lemmas 2 and 3) and, for the quadratic template, its bound κ (eq. stabState);
+Lemmas 2 and 3) and, for the quadratic and sup-flow templates, their bound κ (eq. stabState);
 a file of another template is named with the reason it is left out.
 """
 
@@ -9,8 +9,8 @@ from __future__ import annotations
 
 __all__ = ["SKIPPED", "CHECKED", "default_certificate_files", "default_certificate_selection"]
 
-CHECKED = ("lyapunov-pair/v1", "quadratic/v1")
-"""The templates whose certificates ``crosscheck`` tests on trajectories (the paper's, and the quadratic one's κ)."""
+CHECKED = ("lyapunov-pair/v1", "quadratic/v1", "sup-flow/v1")
+"""The templates whose certificates ``crosscheck`` tests on trajectories (the paper's; the quadratic and sup-flow ones' κ)."""
 
 
 SKIPPED = {
@@ -27,7 +27,7 @@ def default_certificate_files() -> list[str]:
 
     The project's configured certificates (``[tool.symbolic-friction]``, as for
     ``check``), else every ``*.json`` under ``proofs/``; the paper's template and
-    the quadratic template (:data:`CHECKED`) are checked on trajectories, hunting
+    the templates beyond it (:data:`CHECKED`) are checked on trajectories, hunting
     and box certificates are left out.
 
     Raises

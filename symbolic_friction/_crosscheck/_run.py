@@ -40,6 +40,7 @@ def _as_claims(items: Iterable[Any], *, require_proved: bool) -> list[tuple[Clai
     """
     from .._certify.certificate import Certificate
     from .._certify.quadratic import QuadraticCertificate
+    from .._certify.sup_flow import SupFlowCertificate
 
     out = []
     for item in items:
@@ -54,13 +55,13 @@ def _as_claims(items: Iterable[Any], *, require_proved: bool) -> list[tuple[Clai
         if isinstance(item, (str, os.PathLike)):
             path = Path(item)
             cert, source, label = _read(item), str(path), path.stem  # the text as given: 'x.json/' is refused
-            if path.parent.name == "quadratic":
-                label = f"quadratic/{label}"  # beside the paper's case_a_tightest etc.
+            if path.parent.name in ("quadratic", "sup_flow"):
+                label = f"{path.parent.name}/{label}"  # beside the paper's case_a_tightest etc.
         else:
             cert, source, label = item, "", None
         proved = None
         if require_proved:
-            if not isinstance(cert, (Certificate, QuadraticCertificate)):
+            if not isinstance(cert, (Certificate, QuadraticCertificate, SupFlowCertificate)):
                 raise UnprovedCertificateError(f"{type(cert).__name__} is not a certificate; it cannot be verified exactly")
             report = _verify(cert, source or "<certificate>")
             if not report.proved:
@@ -74,20 +75,19 @@ def _as_claims(items: Iterable[Any], *, require_proved: bool) -> list[tuple[Clai
 
 
 def _read(path: Any) -> Any:
-    """A certificate file of a template whose bound the trajectories can test (the paper's or the quadratic one).
+    """A certificate file of a template whose bound the trajectories can test (the paper's, quadratic or sup-flow).
 
     Raises
     ------
     CertificateFormatError
         For a file of another template (a box, a hunting cycle), naming why it is not cross-checked.
     """
-    from .._certify.quadratic import QUADRATIC
-    from .._certify.templates import builtin_templates, read_certificate_file
+    from .._certify.templates import read_certificate_file
     from .._infra.errors import CertificateFormatError
-    from ._files import SKIPPED
+    from ._files import CHECKED, SKIPPED
 
     template, certificate = read_certificate_file(path)
-    if template not in (builtin_templates()[0], QUADRATIC):
+    if template.id not in CHECKED:
         raise CertificateFormatError(f"{path}: " + SKIPPED.get(template.id, f"a {template.id} certificate is not "
                                                                           "cross-checked on trajectories"))
     return certificate
@@ -96,10 +96,13 @@ def _read(path: Any) -> Any:
 def _verify(certificate: Any, source: str) -> Any:
     """The exact decision of the certificate's own template."""
     from .._certify.quadratic import QuadraticCertificate, verify_quadratic
+    from .._certify.sup_flow import SupFlowCertificate, verify_sup_flow
     from .._certify.verify import verify_certificate
 
     if isinstance(certificate, QuadraticCertificate):
         return verify_quadratic(certificate, source=source)
+    if isinstance(certificate, SupFlowCertificate):
+        return verify_sup_flow(certificate, source=source)
     return verify_certificate(certificate, source=source)
 
 

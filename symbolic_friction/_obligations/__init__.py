@@ -39,11 +39,12 @@ def obligation_modules() -> tuple[ModuleType, ...]:
         quadratic,
         regularization,
         remark,
+        sup_flow,
         table1,
     )
 
     return (coordinates, regularization, assumption1, equilibria, distance, model, lemma1, lemma2, remark,
-            claim1, prop1, lemma3, cor1, table1, certificate, closed_form, quadratic)
+            claim1, prop1, lemma3, cor1, table1, certificate, closed_form, quadratic, sup_flow)
 
 
 def registry() -> tuple[type[Obligation], ...]:
@@ -82,6 +83,7 @@ def registry() -> tuple[type[Obligation], ...]:
     from .quadratic import QuadraticPStructure, QuadraticStabilityBound, QuadraticUExit, QuadraticURate, QuadraticVDecrease
     from .regularization import Regularization
     from .remark import RemarkArmstrong
+    from .sup_flow import Bounds, Exit, Nonincreasing, RestMinimum, SlipFlow, SupFlowStabilityBound
     from .table1 import TableI
 
     return (
@@ -92,6 +94,7 @@ def registry() -> tuple[type[Obligation], ...]:
         Prop1Invariance, LemmaR, HatVBounds, HatVDerivative, StabilityBound, Inflation, Distances, TableI,
         Assumption1Encoding, CertificateVerifier, VerifierDecision, ClosedFormAllGains, ClosedFormMonotone,
         QuadraticPStructure, QuadraticVDecrease, QuadraticURate, QuadraticUExit, QuadraticStabilityBound,
+        SlipFlow, RestMinimum, Nonincreasing, Bounds, Exit, SupFlowStabilityBound,
     )
 
 

@@ -12,6 +12,8 @@ For each gain set (Routh margin ``k_v·k_p/k_i = 1 + 10⁻⁶``, gain ratios of 
   20,000 intervals (slowly decaying oscillations and slow real modes need more; shown as ``-``);
 * the proven κ of the ``paper`` template (closed form, verified exactly) and of the ``quadratic`` template
   (SDP, rounded, verified exactly), each as a multiple of ``κ_lin``, with the certify time;
+* the proven κ of the ``sup-flow`` template (SDPs on adaptive time pieces, verified in rationals and arb balls),
+  as a multiple of ``κ_lin``, with its certify time (``-`` and the reason where its search gives nothing);
 * ``√γ*``, where ``γ*`` is the smallest ``γ`` with a ``P`` such that ``I ⪯ P ⪯ γI``, ``AᵀP + PA ⪯ 0`` and
   ``P₁₂ = 0`` (the SDP of the quadratic template's linear part alone).  Every quadratic-template
   certificate has ``κ² ≥ λ_max(P) ≥ γ*``, so ``√γ*/κ_lin`` is what no certificate of that template can beat
@@ -73,6 +75,7 @@ def main() -> None:
     from symbolic_friction import Parameters
     from symbolic_friction._certify.pipeline import certify
     from symbolic_friction._certify.quadratic_search import certify_quadratic
+    from symbolic_friction._certify.sup_flow_search import certify_sup_flow
 
     import os
 
@@ -80,7 +83,7 @@ def main() -> None:
     from symbolic_friction._certify.flow_bound import kappa_lin_bound
     from symbolic_friction.errors import ParameterError
 
-    header = f"{'gain set':28s} {'κ_lin':>9s} {'proven':>19s} | {'paper κ':>10s} {'×κ_lin':>9s} | {'quadratic κ':>11s} {'×κ_lin':>8s} {'s':>5s} | {'√γ* P12=0':>10s} {'×':>7s} | {'√γ* free':>9s} {'×':>6s}"
+    header = f"{'gain set':28s} {'κ_lin':>9s} {'proven':>19s} | {'paper κ':>10s} {'×κ_lin':>9s} | {'quadratic κ':>11s} {'×κ_lin':>8s} {'s':>5s} | {'sup-flow κ':>10s} {'×κ_lin':>8s} {'s':>5s} | {'√γ* P12=0':>10s} {'×':>7s} | {'√γ* free':>9s} {'×':>6s}"
     print(header)
     print("-" * len(header))
     for name, gains in CASES.items():
@@ -100,11 +103,21 @@ def main() -> None:
         else:
             why = ""
         seconds = time.perf_counter() - start
+        start = time.perf_counter()
+        try:
+            sup = float(F(certify_sup_flow(p).overshoot_bound))
+        except Exception as exc:  # infeasible or inaccurate: shown, not hidden
+            sup, why_sup = float("nan"), " ".join(str(exc).split())[-90:]
+        else:
+            why_sup = ""
+        sup_seconds = time.perf_counter() - start
         floor0, status0 = quadratic_floor(p, p12_zero=True)
         floor1, status1 = quadratic_floor(p, p12_zero=False)
         print(f"{name:28s} {kl:9.4g} {proven:>19s} | {paper:10.4g} {paper / kl:9.3g} | {quad:11.4g} {quad / kl:8.3g} {seconds:5.1f} | "
+              f"{sup:10.4g} {sup / kl:8.3g} {sup_seconds:5.1f} | "
               f"{floor0:10.4g} {floor0 / kl:7.3g} | {floor1:9.4g} {floor1 / kl:6.3g}"
               + (f"  [quadratic: {why}]" if why else "")
+              + (f"  [sup-flow: {why_sup}]" if why_sup else "")
               + (f"  [floor P12=0: {status0}]" if status0 != "optimal" else "")
               + (f"  [floor free: {status1}]" if status1 != "optimal" else ""))
 

@@ -10,8 +10,11 @@ exact verification) and of the exact verification alone, with the proven κ:
 
 * ``paper`` (the constants of Lemmas 2 and 3), searched by the closed form and by the SDP;
 * ``quadratic`` (beyond the paper: free ``P`` with ``P₁₂ = 0``, ``U = yᵀKy``), searched by an SDP;
-* ``auto`` (what ``certify`` does by default): both templates (the paper's by the closed form), the smallest
-  proved κ kept; its verify column is the chosen template's verifier.
+* ``sup-flow`` (beyond the paper: ``V_∞`` on ``R``, time pieces of ``U`` on ``R̂``), searched by SDPs on adaptive
+  pieces, verified in exact rationals and arb balls (its ``certify`` is timed once: about 20 s);
+* ``auto`` (what ``certify`` does by default): every template (the paper's by the closed form), the smallest
+  proved κ kept; its verify column is the chosen template's verifier (``--auto`` to include it: it runs the
+  sup-flow search again).
 
 The machine's load average is printed before and after (the timings are wall-clock).
 """
@@ -40,12 +43,15 @@ def _time(fn, repeats: int):
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=5)
+    parser.add_argument("--auto", action="store_true", help="also time certify's default (every template)")
     args = parser.parse_args()
 
     from symbolic_friction import Parameters
     from symbolic_friction._certify.pipeline import certify
     from symbolic_friction._certify.quadratic import verify_quadratic
     from symbolic_friction._certify.quadratic_search import certify_quadratic
+    from symbolic_friction._certify.sup_flow import verify_sup_flow
+    from symbolic_friction._certify.sup_flow_search import certify_sup_flow
     from symbolic_friction._certify.verify import verify_certificate
     from symbolic_friction._certify.choose import certify_template
 
@@ -64,7 +70,13 @@ def main() -> None:
         cert, cold, warm = _time(lambda: certify_quadratic(params), args.repeats)
         _, _, verify = _time(lambda: verify_quadratic(cert), args.repeats)
         print(f"({case})   {'quadratic':10s} {'sdp':12s} {cold * 1e3:10.1f} ms {warm * 1e3:10.2f} ms {verify * 1e3:9.2f} ms  {cert.overshoot_bound}")
-        choice, cold, warm = _time(lambda: certify_template(params), args.repeats)
+        cert, cold, _ = _time(lambda: certify_sup_flow(params), 0)
+        _, _, verify = _time(lambda: verify_sup_flow(cert), args.repeats)
+        print(f"({case})   {'sup-flow':10s} {'sdp':12s} {cold * 1e3:10.1f} ms {'-':>13s} {verify * 1e3:9.2f} ms  "
+              f"{cert.overshoot_bound} ({len(cert.pieces)} pieces)")
+        if not args.auto:
+            continue
+        choice, cold, warm = _time(lambda: certify_template(params), 0)
         _, _, verify = _time(lambda: choice.template.verify(choice.certificate, "<bench>"), args.repeats)
         print(f"({case})   {'auto':10s} {'→ ' + choice.template.name:12s} {cold * 1e3:10.1f} ms {warm * 1e3:10.2f} ms "
               f"{verify * 1e3:9.2f} ms  {choice.certificate.overshoot_bound}")

@@ -20,11 +20,13 @@ REPO = Path(__file__).resolve().parents[2]
 def test_no_arguments_regenerates_table_i_in_both_modes_and_every_template(tmp_path, capsys):
     assert main(["certify", "--out", str(tmp_path)]) == 0
     out = capsys.readouterr().out.splitlines()
-    assert len(out) == 6 and all(line.startswith("wrote ") for line in out)
+    assert len(out) == 8 and all(line.startswith("wrote ") for line in out)
     assert "case_a_tightest.json and case_a_tightest.md (tightest) for k_p=3, k_i=4, k_v=32/5, f_c=1: |x(t)|_A <= 3.46703" in out[1]
     assert "quadratic/case_a.json (quadratic template) for k_p=3, k_i=4, k_v=32/5, f_c=1: |x(t)|_A <= 1.80834" in out[4]
-    for name in ("case_a.json", "case_b.json"):  # what `check` verifies under proofs/quadratic/
-        assert (tmp_path / "quadratic" / name).read_bytes() == (REPO / "proofs" / "quadratic" / name).read_bytes()
+    assert "sup_flow/case_a.json (sup-flow template) for k_p=3, k_i=4, k_v=32/5, f_c=1: |x(t)|_A <= 1.44873" in out[6]
+    for directory in ("quadratic", "sup_flow"):  # what `check` verifies under proofs/quadratic/ and proofs/sup_flow/
+        for name in ("case_a.json", "case_b.json"):
+            assert (tmp_path / directory / name).read_bytes() == (REPO / "proofs" / directory / name).read_bytes()
     for name in TABLE_I_FILES:
         assert verify_file(tmp_path / name).proved
         # identical to the committed proofs/ (the CLI is what generated them)

@@ -1,4 +1,4 @@
-"""``symbolic-friction certify --template paper|quadratic|auto`` and the choice behind it (``_certify/choose.py``)."""
+"""``symbolic-friction certify --template paper|quadratic|sup-flow|auto`` and the choice behind it (``_certify/choose.py``)."""
 
 from __future__ import annotations
 
@@ -25,8 +25,9 @@ def _one(tmp_path: Path) -> Path:
 
 def test_templates_know_their_names():
     templates = searchable_templates()
-    assert list(templates) == ["paper", "quadratic"]
+    assert list(templates) == ["paper", "quadratic", "sup-flow"]
     assert templates["paper"].id == "lyapunov-pair/v1" and templates["quadratic"].id == "quadratic/v1"
+    assert templates["sup-flow"].id == "sup-flow/v1"
     assert all(t.name == name for name, t in templates.items())
 
 
@@ -34,39 +35,45 @@ def test_every_searchable_template_instantiates_only_obligations_check_proves():
     """``auto`` chooses among templates ``check`` fully covers: each obligation a file names is one ``check`` runs."""
     from symbolic_friction._certify.certificate import OBLIGATIONS as PAPER
     from symbolic_friction._certify.quadratic import OBLIGATIONS as QUADRATIC
+    from symbolic_friction._certify.sup_flow import OBLIGATIONS as SUP_FLOW
     from symbolic_friction._obligations import registry
 
     ids = {cls.id for cls in registry()}
-    assert set(PAPER) <= ids and set(QUADRATIC) <= ids, (set(PAPER) | set(QUADRATIC)) - ids
-    assert set(searchable_templates()) == {"paper", "quadratic"}  # a new template must be added to this test
+    cited = set(PAPER) | set(QUADRATIC) | set(SUP_FLOW)
+    assert cited <= ids, cited - ids
+    assert set(searchable_templates()) == {"paper", "quadratic", "sup-flow"}  # a new template must be added to this test
 
 
-def test_auto_keeps_the_quadratic_certificate_for_table_i_and_names_the_paper_kappa(tmp_path, capsys):
+def test_auto_keeps_the_sup_flow_certificate_for_table_i_and_names_the_others(tmp_path, capsys):
     assert main(["certify", *CASE_A, "--out", str(tmp_path)]) == 0
     first, wrote = capsys.readouterr().out.splitlines()
-    assert first == "template quadratic (auto: the smallest proved κ): κ 1.80834; paper: κ 3.46703"
-    assert wrote.startswith("wrote ") and "(quadratic template)" in wrote and "<= 1.80834·|x(0)|_A" in wrote
+    assert first == "template sup-flow (auto: the smallest proved κ): κ 1.44873; paper: κ 3.46703; quadratic: κ 1.80834"
+    assert wrote.startswith("wrote ") and "(sup-flow template)" in wrote and "<= 1.44873·|x(0)|_A" in wrote
     path = _one(tmp_path)
-    assert path.name.endswith("_quadratic.json")
-    assert json.loads(path.read_text())["template"] == "quadratic/v1"
+    assert path.name.endswith("_sup-flow.json")
+    committed = json.loads((Path(__file__).resolve().parents[2] / "proofs" / "sup_flow" / "case_a.json").read_text())
+    committed["provenance"]["label"] = ""
+    assert json.loads(path.read_text()) == committed  # the search is deterministic: Table I's committed file, unlabelled
     # verify dispatches on the template the file names
     template, report = verify_template_file(path)
-    assert template.name == "quadratic" and report.proved
+    assert template.name == "sup-flow" and report.proved
     assert main(["verify", str(path)]) == 0
-    assert "all 22 premises of the quadratic template hold" in capsys.readouterr().out
+    assert "premises of the sup-flow template hold" in capsys.readouterr().out
 
 
 def test_auto_falls_back_to_the_paper_when_the_quadratic_sdp_is_infeasible(tmp_path, capsys):
     assert main(["certify", *STIFF, "--out", str(tmp_path)]) == 0
     first, _ = capsys.readouterr().out.splitlines()
     assert first == ("template paper (auto: the smallest proved κ): κ 1414.22; quadratic: no certificate "
-                     "(its SDP is infeasible at every margin tried (4))")
+                     "(its SDP is infeasible at every margin tried (4)); sup-flow: no certificate (the SDP of the "
+                     "piece starting at t = 0 is infeasible at every margin tried)")
     assert read_certificate_file(_one(tmp_path))[0].name == "paper"
     assert main(["certify", *STIFF, "--name", "j", "--json", "--out", str(tmp_path)]) == 0
     payload = json.loads(capsys.readouterr().out)
     assert payload["template"] == "paper" and payload["overshoot_bound"] == "1414.22"
-    assert payload["alternatives"] == [{"template": "quadratic", "overshoot_bound": None,
-                                        "reason": "its SDP is infeasible at every margin tried (4)"}]
+    assert payload["alternatives"][0] == {"template": "quadratic", "overshoot_bound": None,
+                                          "reason": "its SDP is infeasible at every margin tried (4)"}
+    assert payload["alternatives"][1]["template"] == "sup-flow" and payload["alternatives"][1]["overshoot_bound"] is None
 
 
 def test_template_quadratic_writes_a_quadratic_file_and_json(tmp_path, capsys):
@@ -145,8 +152,8 @@ def test_table_i_with_the_quadratic_template_writes_proofs_quadratic(tmp_path, c
 
 def test_the_choice_is_the_smallest_proved_kappa():
     choice = certify_template(Parameters.table_i("b"))
-    assert choice.template.name == "quadratic" and choice.certificate.overshoot_bound == "3.27300"
-    assert [a.describe() for a in choice.others] == ["paper: κ 7.88526"]
+    assert choice.template.name == "sup-flow" and choice.certificate.overshoot_bound == "2.40172"
+    assert [a.describe() for a in choice.others] == ["paper: κ 7.88526", "quadratic: κ 3.27300"]
 
 
 def test_a_quadratic_certificate_its_verifier_refuses_is_never_chosen(monkeypatch):
@@ -172,15 +179,21 @@ class _Refused:
 
 
 def test_a_failing_search_is_a_reason_and_no_template_at_all_is_an_error(monkeypatch):
-    from symbolic_friction._certify import pipeline, quadratic_search
+    from symbolic_friction._certify import pipeline, quadratic_search, sup_flow_search
 
     def no_sdp(params, **_):
         raise CertificateError("no quadratic certificate for X verifies exactly: margin 1e-07: solver status inaccurate")
 
+    def no_pieces(params, **_):
+        raise CertificateError("no sup-flow certificate for X verifies exactly: the SDP of the piece starting at t = 0 "
+                               "is infeasible at every margin tried")
+
     monkeypatch.setattr(quadratic_search, "certify_quadratic", no_sdp)
+    monkeypatch.setattr(sup_flow_search, "certify_sup_flow", no_pieces)
     choice = certify_template(Parameters.table_i("a"))
     assert choice.template.name == "paper"
     assert choice.others[0].reason == "its SDP is inaccurate at every margin tried (1)"
+    assert choice.others[1].reason == "the SDP of the piece starting at t = 0 is infeasible at every margin tried"
 
     def no_paper(params, **_):
         raise CertificateError("the rounded candidate does not verify exactly")
@@ -200,8 +213,10 @@ def test_gains_only_the_paper_can_take_fall_back_to_it_and_bad_gains_keep_their_
 
 
 def test_bad_template_and_options_raise_parameter_errors():
-    with pytest.raises(ParameterError, match="template must be one of auto, paper, quadratic; got 'sup-flow'"):
-        certify_template(Parameters.table_i("a"), template="sup-flow")
+    with pytest.raises(ParameterError, match="template must be one of auto, paper, quadratic, sup-flow; got 'sos'"):
+        certify_template(Parameters.table_i("a"), template="sos")
+    with pytest.raises(ParameterError, match="only the paper's template takes --mode feasible: the sup-flow template"):
+        certify_template(Parameters.table_i("a"), template="sup-flow", mode="feasible")
     with pytest.raises(ParameterError, match="only the paper's template takes --margin"):
         certify_template(Parameters.table_i("a"), template="quadratic", margin="1/1000")
 
@@ -215,5 +230,9 @@ def test_verify_dispatches_on_the_template_a_file_names(tmp_path):
         verify_template_file(tmp_path / "x.json")
     data["template"] = "sup-flow/v1"
     (tmp_path / "y.json").write_text(json.dumps(data))
-    with pytest.raises(CertificateFormatError, match="unknown certificate template 'sup-flow/v1'"):
+    with pytest.raises(CertificateFormatError, match="missing key 'pieces' in certificate"):
         verify_template_file(tmp_path / "y.json")
+    data["template"] = "sos/v1"
+    (tmp_path / "z.json").write_text(json.dumps(data))
+    with pytest.raises(CertificateFormatError, match="unknown certificate template 'sos/v1'"):
+        verify_template_file(tmp_path / "z.json")
