@@ -425,7 +425,8 @@ def _is_bound_of(c: Any, values: Sequence[Any], *, extremum: type, upper: bool) 
     """
     c = sp.sympify(c)
     for v in values:
-        if isinstance(c, extremum) and any(_same(arg, v) for arg in c.args):
+        # an argument that is the value itself first (equal trees differ by 0): the others may need simplify
+        if isinstance(c, extremum) and (v in c.args or any(_same(arg, v) for arg in c.args)):
             continue
         if _same(c, v) or is_nonneg(c - v if upper else v - c):
             continue

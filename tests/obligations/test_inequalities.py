@@ -112,3 +112,12 @@ def test_upper_and_lower_bounds():
 
 def test_label_latex():
     assert label_latex("v > 0, σ < 0, φ < -f_c") == "v > 0,\\  \\sigma  < 0,\\  \\phi  < -f_c"
+
+
+def test_an_extremum_bounds_its_own_argument_without_simplify(monkeypatch):
+    """``Max(m, μ) ≥ μ`` by definition: the argument equal to the value is found before the others are compared
+    with it (a comparison of two radicals falls back to simplify, the costliest step of lemma3's bounds)."""
+    mu = a - sp.sqrt(a**2 + b**2)
+    m = b - sp.sqrt(a**2 + 4 * b**2)
+    monkeypatch.setattr(sp, "simplify", lambda *args, **kw: (_ for _ in ()).throw(AssertionError("simplify called")))
+    assert is_upper_bound_of(sp.Max(m, mu), [mu]) and is_lower_bound_of(sp.Min(m, mu), [mu])
