@@ -14,6 +14,11 @@ never passes unless decided).
 The child can also take work *ahead* of its sections (``ahead``: named
 functions, e.g. the costliest obligation) so that both cores stay busy; this
 process asks for each result by name when it reaches it (:class:`Inbox`).
+Once its sections are done, the child takes more from the *back* of a list
+of named functions (``tail``) that this process works through from the front;
+each item is claimed under a lock (:class:`Claims`) by whichever process gets
+there first, so the split adapts to how fast each core really is (a busy
+machine, a slower section) and no item is done twice or left out.
 
 ``SYMBOLIC_FRICTION_JOBS=1`` (or one core, or a platform other than Linux,
 where ``fork`` is unavailable or unsafe with system libraries, or a process
@@ -32,7 +37,7 @@ from typing import Any
 
 from ._sections import Section, _crashed
 
-__all__ = ["ENV", "parallel_allowed", "run_sections", "Inbox"]
+__all__ = ["ENV", "parallel_allowed", "run_sections", "Inbox", "Claims"]
 
 ENV = "SYMBOLIC_FRICTION_JOBS"
 
@@ -59,17 +64,76 @@ def _safe(make: Maker, args: argparse.Namespace) -> Section:
         return _crashed(make, exc)
 
 
-def _child(makers: list[Maker], args: argparse.Namespace, send: Any, ahead: dict[str, Callable[[], Any]]) -> None:
+class Claims:
+    """Who does each item of a list: this process claims from the front, the child from the back (under one lock).
+
+    Items named together in ``together`` (work they share, such as one derivation) are claimed as one, by the
+    process that reaches any of them first; the other passes over the rest of the group.  The child stops when
+    it reaches the item this process is at, so every item is done exactly once.
+    """
+
+    def __init__(self, ctx: Any, names: list[str], together: tuple[tuple[str, ...], ...] = ()) -> None:
+        self.names = tuple(names)
+        self.groups = [tuple(self.names.index(n) for n in group if n in self.names) for group in together]
+        self.lock = ctx.Lock()
+        self.owner = ctx.RawArray("b", len(names))  # 0 free, 1 this process, 2 the child
+        self.front = ctx.RawValue("i", 0)  # this process has reached the items before it
+        self.back = ctx.RawValue("i", len(names))  # the child looks at the items before it, last first
+
+    def _members(self, k: int) -> tuple[int, ...]:
+        return next((g for g in self.groups if k in g), (k,))
+
+    def take_front(self, name: str) -> bool:
+        """Whether this process is to do ``name`` (False: the child has claimed it; ask the inbox)."""
+        k = self.names.index(name)
+        with self.lock:
+            self.front.value = max(self.front.value, k + 1)
+            if self.owner[k] == 0:
+                for j in self._members(k):
+                    self.owner[j] = 1
+            return self.owner[k] == 1
+
+    def take_back(self) -> tuple[int, ...] | None:
+        """The indices of the last free item (with the items claimed together with it), now the child's; None
+        once the child has reached the items this process has reached."""
+        with self.lock:
+            while self.back.value > self.front.value:
+                k = self.back.value - 1
+                self.back.value = k
+                if self.owner[k] != 0:  # claimed with an item of its group
+                    continue
+                members = self._members(k)
+                for j in members:
+                    self.owner[j] = 2
+                return members
+            return None
+
+
+def _send_result(send: Any, key: str, work: Callable[[], Any]) -> None:
+    try:
+        send.send(("ahead", key, work()))
+    except Exception as exc:  # the parent reports the error where it needed the value
+        send.send(("ahead", key, exc if _picklable(exc) else RuntimeError(repr(exc))))
+
+
+def _child(makers: list[Maker], args: argparse.Namespace, send: Any, ahead: dict[str, Callable[[], Any]],
+           tail: list[tuple[str, Callable[[], Any]]] = (), claims: Claims | None = None,  # type: ignore[assignment]
+           context: Callable[[], Any] | None = None) -> None:
+    import contextlib
+
     from .._infra.output import set_verbosity
 
     set_verbosity(0)  # no progress bar or note from here: this process's output is the parent's to print
     for key, work in ahead.items():
-        try:
-            send.send(("ahead", key, work()))
-        except Exception as exc:  # the parent reports the error where it needed the value
-            send.send(("ahead", key, exc if _picklable(exc) else RuntimeError(repr(exc))))
-    for make in makers:
-        section = _safe(make, args)
+        _send_result(send, key, work)
+    sections = [(make, _safe(make, args)) for make in makers]
+    # the tail before the sections: a large section could fill the pipe, which the parent reads only when it needs
+    # a value, and the child would then claim nothing while this process does every item itself
+    with context() if context is not None else contextlib.nullcontext():
+        while claims is not None and (taken := claims.take_back()) is not None:
+            for k in taken:
+                _send_result(send, *tail[k])
+    for make, section in sections:
         try:
             send.send(("section", make.__name__, section))
         except Exception as exc:  # an unpicklable result: report it, do not hang the parent
@@ -109,15 +173,21 @@ class Inbox:
 
 
 def run_sections(makers: list[Maker], args: argparse.Namespace, *, parallel: bool | None = None,
-                 ahead: dict[str, Callable[[], Any]] | None = None) -> Iterator[Section]:
+                 ahead: dict[str, Callable[[], Any]] | None = None,
+                 tail: list[tuple[str, Callable[[], Any]]] | None = None, together: tuple[tuple[str, ...], ...] = (),
+                 context: Callable[[], Any] | None = None) -> Iterator[Section]:
     """Each section of ``makers``, in order (module docstring).
 
     With the child, ``args.inbox`` is an :class:`Inbox` holding the results of
-    ``ahead`` (``None`` when everything runs here: do the work yourself).
+    ``ahead`` and of the items of ``tail`` the child claimed, and ``args.claims``
+    the :class:`Claims` of ``tail`` (both ``None`` when everything runs here: do
+    the work yourself).  Items named in one tuple of ``together`` are claimed
+    as one; the child works through the tail within ``context()`` if given.
     """
     if parallel is None:
         parallel = parallel_allowed()
     args.inbox = None
+    args.claims = None
     if not parallel or len(makers) < 2:
         for make in makers:
             yield _safe(make, args)
@@ -128,11 +198,15 @@ def run_sections(makers: list[Maker], args: argparse.Namespace, *, parallel: boo
     recv, send = ctx.Pipe(duplex=False)
     quiet = copy.copy(args)
     quiet.json = True  # the child streams nothing: this process prints its tables, in order
-    proc = ctx.Process(target=_child, args=(makers[1:], quiet, send, dict(ahead or {})), daemon=True)
+    tail = list(tail or [])
+    claims = Claims(ctx, [name for name, _ in tail], together) if tail else None
+    proc = ctx.Process(target=_child, args=(makers[1:], quiet, send, dict(ahead or {}), tail, claims, context),
+                       daemon=True)
     proc.start()
     send.close()
     inbox = Inbox(recv, proc)
     args.inbox = inbox
+    args.claims = claims
     try:
         yield _safe(makers[0], args)
         for make in makers[1:]:
@@ -144,6 +218,7 @@ def run_sections(makers: list[Maker], args: argparse.Namespace, *, parallel: boo
             yield section
     finally:
         args.inbox = None
+        args.claims = None
         recv.close()
         proc.join(timeout=5)
         if proc.is_alive():

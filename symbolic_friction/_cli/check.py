@@ -111,6 +111,9 @@ def obligations_section(args: argparse.Namespace) -> Section:
     inbox = getattr(args, "inbox", None)
     if inbox is not None:  # decided meanwhile on the other core (see run())
         obligations = [_Decided(ob, inbox) if ob.id in OFFLOADED else ob for ob in obligations]
+    claims = getattr(args, "claims", None)
+    if claims is not None:  # the tail: each decided here unless the other core has claimed it
+        obligations = [_Claimed(ob, claims, inbox) if ob.id in claims.names else ob for ob in obligations]
     stream = not getattr(args, "json", False)
     layout = _ObligationLayout()
     if stream:
@@ -189,8 +192,9 @@ def obligations_section(args: argparse.Namespace) -> Section:
     )
 
 
-OFFLOADED = ("model.V_runtime", "claim1.cases", "lemma2.lower_bound")
-"""Obligations the second core decides first, while this process decides the others in order (costliest)."""
+OFFLOADED = ("claim1.cases",)
+"""Obligations the second core decides first, while this process decides the others in order (the costliest, and
+late enough in the order to be ready when this process reaches it)."""
 
 
 class _Decided:
@@ -205,6 +209,40 @@ class _Decided:
             return self.inbox.get("ahead", self.id)
         except RuntimeError:  # the worker is gone: decide it here
             return self.ob.run()
+
+
+TOGETHER = (("lemma3.hatV_derivative", "certificate.verifier"),)
+"""Obligations one process decides together: one derivation of Lemma 3's k-conditions serves both."""
+
+
+class _Claimed(_Decided):
+    """An obligation of the tail: decided here if this process claims it first, else its result is the worker's."""
+
+    def __init__(self, ob: Any, claims: Any, inbox: Any) -> None:
+        super().__init__(ob, inbox)
+        self.claims = claims
+
+    def run(self) -> Any:
+        return self.ob.run() if self.claims.take_front(self.id) else super().run()
+
+
+def _decide_tail() -> list[tuple[str, Callable[[], Any]]]:
+    """``[(id, run it)]`` for the obligations after the last of :data:`OFFLOADED`: the worker takes them from the back
+    once its sections are done, this process from the front (:class:`._parallel.Claims`, each group of :data:`TOGETHER`
+    as one), so the cores finish together however fast each one is."""
+    from .._obligations import all_obligations, run_checked
+
+    obligations = all_obligations()
+    start = max((i + 1 for i, ob in enumerate(obligations) if ob.id in OFFLOADED), default=0)
+    return [(ob.id, (lambda ob=ob: run_checked([ob])[0])) for ob in obligations[start:]]
+
+
+def _import_shared() -> None:
+    """Import before the fork what both processes would each import after it (about 0.05 s each): sympy's
+    tensor module, which sympy loads on the first sum it builds, and ``xml.etree`` for every section's JUnit cases."""
+    import sympy.tensor.tensor  # noqa: F401
+
+    from .._infra import junit  # noqa: F401
 
 
 def _decide_offloaded() -> dict[str, Callable[[], Any]]:
@@ -408,7 +446,11 @@ def run(args: argparse.Namespace) -> int:
     from ._parallel import run_sections
 
     ahead = _decide_offloaded() if not only else {}
-    for section in run_sections(list(makers), args, ahead=ahead):  # later sections run on the other core meanwhile
+    tail = _decide_tail() if not only else []
+    _import_shared()
+    from .._obligations._derived_k import shared_derivations as shared
+
+    for section in run_sections(list(makers), args, ahead=ahead, tail=tail, together=TOGETHER, context=shared):
         sections.append(gate(section))
         if not as_json:
             if not section.streamed:

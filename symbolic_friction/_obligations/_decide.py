@@ -5,9 +5,10 @@ that decision sound and deliberately simple:
 
 * :func:`sign_of` decides the sign of a rational function all of whose free
   symbols are declared positive, by a **sign-definite decomposition**: a
-  polynomial is expanded, a rational function split by ``together`` into a
-  numerator and a denominator, and each must have all its coefficients of
-  one sign.  A polynomial with only positive coefficients is positive
+  rational function is written as a reduced fraction of two integer
+  polynomials (python-flint ``fmpz_mpoly``; other expressions are split by
+  ``together``), and the numerator and the denominator must each have all
+  their coefficients of one sign.  A polynomial with only positive coefficients is positive
   wherever its variables are positive, so the answer is correct whenever
   one is given; ``None`` means "not decided" and the obligation then fails
   instead of guessing.
@@ -28,7 +29,7 @@ from __future__ import annotations
 
 import functools
 from collections.abc import Sequence
-from typing import Any
+from typing import Any, NamedTuple
 
 import sympy as sp
 
@@ -81,8 +82,9 @@ def _is_rational_function(expr: sp.Expr) -> bool:
 def is_zero(expr: Any) -> bool:
     """Exact identity test ``expr == 0``.
 
-    For a rational function, ``cancel`` gives a canonical numerator, so
-    ``expand(numerator) == 0`` decides the identity; radicals or other
+    For a rational function, the numerator of its fraction of polynomials
+    (:func:`_field_element`) is the zero polynomial exactly when the function
+    is zero, which decides the identity; radicals or other
     functions fall back to ``simplify`` (a ``True`` answer is then still an
     identity, a ``False`` one may only mean "not shown").
     """
@@ -90,9 +92,8 @@ def is_zero(expr: Any) -> bool:
     if expr == 0:
         return True
     if _is_rational_function(expr):
-        # in the field of rational functions over Q the element is its reduced
-        # P/Q in sparse polynomials: zero iff it is the field's zero
-        return _field_element(expr) == 0
+        # a fraction P/Q of polynomials is the zero function iff P is the zero polynomial
+        return _field_element(expr).numer.is_zero()
     # together() writes a rational function as P/Q with polynomials P, Q; it is
     # identically zero iff the expanded P is (no cancellation needed).
     num = sp.expand(sp.fraction(sp.together(expr))[0])
@@ -103,15 +104,70 @@ def is_zero(expr: Any) -> bool:
     return sp.simplify(num) == 0
 
 
-def _field_element(expr: sp.Expr) -> Any:
-    """``expr`` (a rational function of its free symbols) as an element of ``Q(symbols)``.
+class _Fraction(NamedTuple):
+    """A rational function as ``numer/denom``, two coprime python-flint ``fmpz_mpoly`` (integer coefficients)."""
 
-    The field's arithmetic works on sparse polynomials with cancelled
-    numerator and denominator, much faster than ``together`` on expression
-    trees; the element equals ``expr`` wherever ``expr`` is defined.
+    numer: Any
+    denom: Any
+
+
+def _field_element(expr: sp.Expr) -> _Fraction:
+    """``expr`` (a rational function of its free symbols) as a reduced fraction over ``ℤ[symbols]``.
+
+    Each node of the expression tree becomes a pair ``(numerator, denominator)``
+    of python-flint integer polynomials in the free symbols (sparse, exact;
+    a rational constant ``p/q`` is ``(p, q)``); sums bring their terms to a
+    common denominator, and one ``gcd`` at the end cancels the common factors,
+    so ``numer/denom`` is the reduced fraction of ``Q(symbols)`` up to a
+    constant factor and equals ``expr`` wherever ``expr`` is defined.  A
+    denominator that is the zero polynomial raises :class:`ZeroDivisionError`.
     """
+    import flint
+
     gens = sorted(expr.free_symbols, key=sp.default_sort_key)
-    return sp.QQ.frac_field(*gens).from_sympy(expr) if gens else sp.QQ.from_sympy(expr)
+    # positional names: two symbols with one name (different assumptions) stay two variables
+    ctx = flint.fmpz_mpoly_ctx.get(("x", len(gens)), "lex")
+    one = ctx.constant(1)
+    index = {s: (g, one) for s, g in zip(gens, ctx.gens())}
+    memo: dict[sp.Expr, tuple[Any, Any]] = {}
+
+    def pair(e: sp.Expr) -> tuple[Any, Any]:
+        if e in index:
+            return index[e]
+        if e in memo:
+            return memo[e]
+        if e.is_Rational:
+            out = (ctx.constant(int(e.p)), ctx.constant(int(e.q)))
+        elif e.is_Add:
+            n, d = ctx.constant(0), one
+            for a in e.args:
+                an, ad = pair(a)
+                if ad == d:
+                    n = n + an
+                else:
+                    g = d.gcd(ad)
+                    n, d = n * (ad / g) + an * (d / g), d * (ad / g)
+            out = (n, d)
+        elif e.is_Mul:
+            n, d = one, one
+            for a in e.args:
+                an, ad = pair(a)
+                n, d = n * an, d * ad
+            out = (n, d)
+        elif e.is_Pow and e.exp.is_Integer:
+            bn, bd = pair(e.base)
+            k = int(e.exp)
+            if k < 0 and bn.is_zero():
+                raise ZeroDivisionError(f"{e.base} is identically zero in {e}")
+            out = (bn ** k, bd ** k) if k >= 0 else (bd ** -k, bn ** -k)
+        else:  # _is_rational_function admits nothing else
+            raise TypeError(f"{e} is not a rational function of its symbols")
+        memo[e] = out
+        return out
+
+    numer, denom = pair(expr)
+    g = numer.gcd(denom)
+    return _Fraction(numer / g, denom / g)
 
 
 def _coefficient_sign(coefficients: Sequence[Any]) -> int | None:
@@ -158,8 +214,8 @@ def sign_of(expr: Any) -> int | None:
     """Sign (1, 0 or -1) of ``expr`` on the positive orthant, or ``None`` if not decided.
 
     Every free symbol must be declared positive; otherwise ``None``.  A
-    rational function is written as a reduced fraction ``P/Q`` in
-    ``Q(symbols)`` (sparse polynomials, common factors cancelled: ``P/Q``
+    rational function is written as a reduced fraction ``P/Q`` of integer
+    polynomials (:func:`_field_element`, common factors cancelled: ``P/Q``
     equals ``expr`` wherever ``expr`` is defined); a polynomial whose
     coefficients all share a sign has that sign on the orthant, and ``P = 0``
     means ``expr`` is identically zero.  Other expressions (radicals) are
@@ -177,7 +233,7 @@ def sign_of(expr: Any) -> int | None:
         # numerator and denominator of the reduced fraction in Q(symbols): a
         # polynomial whose coefficients share a sign has that sign on the orthant
         element = _field_element(expr)
-        sn, sd = (_coefficient_sign(list(p.values())) for p in (element.numer, element.denom))
+        sn, sd = (_coefficient_sign(list(p.coeffs())) for p in (element.numer, element.denom))
     elif not _has_denominator(expr):
         return _poly_sign(sp.expand(expr))
     else:
@@ -281,7 +337,9 @@ def _convex_quadratic_minimum(f: sp.Expr, var: sp.Symbol, s: sp.Interval) -> sp.
     quadratic or the vertex's position is not decided.
     """
     try:
-        poly = sp.Poly(f, var)
+        # coefficients as expressions (EX): no polynomial domain of the other symbols to build, and every
+        # decision below is on the coefficients' values (sign_of, cancel), not on their form
+        poly = sp.Poly(f, var, domain=sp.EX)
     except sp.PolynomialError:
         return None
     if poly.degree() != 2:

@@ -41,7 +41,7 @@ from typing import Any
 
 import sympy as sp
 
-from ._decide import is_zero, sign_of
+from ._decide import _has_denominator, is_zero, sign_of
 
 __all__ = [
     "is_nonneg",
@@ -181,7 +181,10 @@ def is_nonneg(expr: Any) -> bool:
         return bool(expr.is_nonnegative)
     if _form_nonneg(expr):
         return True
-    num, den = sp.fraction(sp.together(expr))
+    if _has_denominator(expr):
+        num, den = sp.fraction(sp.together(expr))
+    else:  # a polynomial is its own numerator (together would only regroup it; every test below expands it)
+        num, den = expr, sp.Integer(1)
     den = sp.expand(den)
     if not (den.is_number and den > 0):
         if any(s.is_positive is not True for s in den.free_symbols) or sign_of(den) != 1:
@@ -422,7 +425,8 @@ def _is_bound_of(c: Any, values: Sequence[Any], *, extremum: type, upper: bool) 
     """
     c = sp.sympify(c)
     for v in values:
-        if isinstance(c, extremum) and any(_same(arg, v) for arg in c.args):
+        # an argument that is the value itself first (equal trees differ by 0): the others may need simplify
+        if isinstance(c, extremum) and (v in c.args or any(_same(arg, v) for arg in c.args)):
             continue
         if _same(c, v) or is_nonneg(c - v if upper else v - c):
             continue

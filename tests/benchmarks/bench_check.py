@@ -5,6 +5,7 @@ Run from the repository root with the package installed::
     python tests/benchmarks/bench_check.py             # 3 repetitions
     python tests/benchmarks/bench_check.py --repeat 1  # quicker
     python tests/benchmarks/bench_check.py --against /path/to/old/checkout  # old and new, interleaved
+    python tests/benchmarks/bench_check.py --sides [--against DIR]  # CPU before the fork, of each process, critical path
 
 It prints
 
@@ -61,28 +62,44 @@ def _wall(cwd: str | None = None, pythonpath: str | None = None) -> tuple[float,
 _SIDES = """
 import argparse, contextlib, io, os, resource, sys, time
 start = time.perf_counter()
-from symbolic_friction._cli import check
+from symbolic_friction._cli import _parallel, check
+at_fork = {}
+real = _parallel.run_sections
+def timed(*a, **k):
+    at_fork["cpu"], at_fork["wall"] = time.process_time(), time.perf_counter() - start
+    return real(*a, **k)
+_parallel.run_sections = timed
 args = argparse.Namespace(json=True, write=False, proofs=None, config=None, no_certificates=False, only=None,
                           junit_xml=None)
 with contextlib.redirect_stdout(io.StringIO()):
     code = check.run(args)
 me, worker = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
-print(f"exit {code}: wall {time.perf_counter() - start:.2f} s; CPU: main process {me.ru_utime + me.ru_stime:.2f} s, "
-      f"worker {worker.ru_utime + worker.ru_stime:.2f} s; load {os.getloadavg()[0]:.2f}")
+main, child = me.ru_utime + me.ru_stime, worker.ru_utime + worker.ru_stime
+serial = at_fork["cpu"]
+print(f"exit {code}: wall {time.perf_counter() - start:.2f} s; CPU: {serial:.2f} s before the fork, then main process "
+      f"{main - serial:.2f} s, worker {child:.2f} s; critical path {serial + max(main - serial, child):.2f} s; "
+      f"load {os.getloadavg()[0]:.2f}")
 """
 
 
-def sides(repeat: int) -> None:
-    """CPU seconds of ``check``'s main process and of its worker (on a quiet 2-core machine the wall time is
-    about the larger of the two)."""
+def sides(repeat: int, other: str | None = None) -> None:
+    """CPU seconds of ``check``'s serial start (interpreter, imports, until the fork), then of its main process and
+    of its worker: on a quiet 2-core machine the wall time is about the serial part plus the larger of the two
+    (the critical path), whatever else the machine runs meanwhile.  With ``other``, that checkout's run comes
+    before each of this one's."""
     for _ in range(repeat):
-        out = subprocess.run([sys.executable, "-c", _SIDES], capture_output=True, text=True, check=True)
-        print(out.stdout.strip())
+        for name, where in ([("old", other)] if other else []) + [("new" if other else "", None)]:
+            env = dict(os.environ, PYTHONPATH=where) if where else None
+            out = subprocess.run([sys.executable, "-c", _SIDES], capture_output=True, text=True, check=True, cwd=where,
+                                 env=env)
+            print(f"{name + ': ' if name else ''}{out.stdout.strip()}")
 
 
 def compare(other: str, repeat: int) -> None:
     """This checkout and ``other``, interleaved (module docstring)."""
     print(f"load average before: {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
+    if sys.flags.dont_write_bytecode or os.environ.get("PYTHONDONTWRITEBYTECODE"):
+        print("note: PYTHONDONTWRITEBYTECODE is set: modules without a __pycache__ are compiled on every run")
     new, old = [], []
     for _ in range(repeat):
         old.append(_wall(other, other))
@@ -90,7 +107,7 @@ def compare(other: str, repeat: int) -> None:
     for name, runs in (("old (" + other + ")", old), ("new (this checkout)", new)):
         walls, cpus = [w for w, _ in runs], [c for _, c in runs]
         print(f"{name}: wall min {min(walls):.2f} s, median {statistics.median(walls):.2f} s; "
-              f"CPU median {statistics.median(cpus):.2f} s")
+              f"CPU (user + sys, both processes) min {min(cpus):.2f} s, median {statistics.median(cpus):.2f} s")
     print(f"load average after: {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
 
 
@@ -100,10 +117,10 @@ def main() -> None:
     parser.add_argument("--against", metavar="DIR", default=None,
                         help="also time `check` from the checkout in DIR, interleaved with this one")
     parser.add_argument("--sides", action="store_true",
-                        help="CPU seconds of check's main process and of its worker, per run")
+                        help="CPU seconds of check's serial start, main process and worker, and the critical path, per run")
     args = parser.parse_args()
     if args.sides:
-        sides(args.repeat)
+        sides(args.repeat, args.against)
         return
     if args.against:
         compare(args.against, args.repeat)

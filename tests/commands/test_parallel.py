@@ -138,3 +138,120 @@ def test_a_process_with_other_threads_does_not_fork(monkeypatch):
     monkeypatch.delenv(_parallel.ENV, raising=False)
     monkeypatch.setattr(threading, "active_count", lambda: 2)
     assert not _parallel.parallel_allowed()
+
+
+def test_claims_split_a_list_between_its_two_ends():
+    import multiprocessing
+
+    claims = _parallel.Claims(multiprocessing.get_context("fork"), ["a", "b", "c", "d"])
+    assert claims.take_back() == (3,)  # the child's: from the back
+    assert claims.take_front("a") and claims.take_front("b")  # this process's: from the front
+    assert claims.take_back() == (2,)
+    assert not claims.take_front("c") and not claims.take_front("d")  # claimed by the child: ask the inbox
+    assert claims.take_back() is None  # it met this process: nothing left, nothing done twice
+
+
+def test_items_claimed_together_go_to_one_process():
+    import multiprocessing
+
+    ctx = multiprocessing.get_context("fork")
+    claims = _parallel.Claims(ctx, ["a", "b", "c", "d", "e"], (("b", "d"),))
+    assert claims.take_back() == (4,) and claims.take_back() == (1, 3)  # d brings b along
+    assert claims.take_front("a") and not claims.take_front("b")
+    assert claims.take_back() == (2,) and claims.take_back() is None  # b is already the child's; a is not
+    claims = _parallel.Claims(ctx, ["a", "b", "c", "d", "e"], (("b", "d"),))
+    assert claims.take_front("a") and claims.take_front("b")  # b brings d along
+    assert claims.take_back() == (4,) and claims.take_back() == (2,)  # the child passes over d, this process's
+    assert not claims.take_front("c") and claims.take_front("d")
+    assert claims.take_back() is None
+
+
+def _tail_user(names, wait_for_child):
+    """A first section that works through ``names`` like the obligations: here if claimed first, else the inbox's."""
+    import time
+
+    def first(args):
+        deadline = time.monotonic() + 30
+        while wait_for_child and args.claims.back.value > 0 and args.inbox.proc.is_alive() and time.monotonic() < deadline:
+            time.sleep(0.01)  # let the child claim every item (or die)
+        rows = []
+        for name in names:
+            if args.claims.take_front(name):
+                rows.append((name, str(os.getpid())))
+            else:
+                try:
+                    rows.append((name, str(args.inbox.get("ahead", name))))
+                except RuntimeError as exc:
+                    rows.append((name, f"here: {exc}"))
+        return Section("first", ("item", "by"), rows, {}, True, [], summary="first")
+
+    return first
+
+
+def test_the_worker_takes_the_tail_from_the_back_once_its_sections_are_done(monkeypatch):
+    monkeypatch.delenv(_parallel.ENV, raising=False)
+    names = ["x", "y", "z"]
+    tail = [(name, os.getpid) for name in names]
+    got = list(_parallel.run_sections([_tail_user(names, True), _maker("later")], argparse.Namespace(json=False),
+                                      parallel=True, tail=tail))
+    by = dict(got[0].rows)
+    assert sorted(by) == names and str(os.getpid()) not in by.values() and len(set(by.values())) == 1
+    assert got[1].ok and got[1].rows[0][0] == by["x"]  # the same worker did the sections first
+
+
+def test_a_worker_that_dies_on_a_claimed_item_leaves_it_to_this_process(monkeypatch):
+    monkeypatch.delenv(_parallel.ENV, raising=False)
+    tail = [("x", os.getpid), ("y", lambda: os._exit(7))]
+    got = list(_parallel.run_sections([_tail_user(["x", "y"], True), _maker("later")], argparse.Namespace(json=False),
+                                      parallel=True, tail=tail))
+    by = dict(got[0].rows)
+    assert by["y"].startswith("here:") and "exit code 7" in by["y"]  # the parent's obligation then decides it itself
+    assert got[1].ok and got[1].rows == [(str(os.getpid()),)]  # its sections too
+
+
+def test_a_tail_obligation_claimed_by_the_worker_is_reported_from_there(monkeypatch, tmp_path, capsys):
+    import json
+    import time
+
+    from symbolic_friction import _obligations
+    from symbolic_friction._cli import check
+    from symbolic_friction._obligations._base import Outcome
+    from symbolic_friction._obligations.claim1 import Claim1Cases
+    from symbolic_friction._obligations.coordinates import Coordinates
+    from symbolic_friction._obligations.table1 import TableI
+
+    parent = os.getpid()
+    real = Coordinates.verify
+    monkeypatch.setattr(Coordinates, "verify", lambda self, s: (time.sleep(3), real(self, s))[1])  # the worker gets there first
+    monkeypatch.setattr(TableI, "verify", lambda self, s: Outcome.fail(f"decided in {os.getpid()}"))
+    monkeypatch.setattr(Claim1Cases, "verify", lambda self, s: Outcome(True, "stub"))
+    monkeypatch.delenv(_parallel.ENV, raising=False)
+    monkeypatch.setattr(_parallel, "parallel_allowed", lambda: True)
+    monkeypatch.setattr(_obligations, "all_obligations", lambda: [Coordinates(), Claim1Cases(), TableI()])
+    monkeypatch.setattr(check, "SECTIONS", [check.obligations_section, _maker("later")])
+    monkeypatch.chdir(tmp_path)
+    assert [name for name, _ in check._decide_tail()] == ["table1"]
+    args = argparse.Namespace(json=True, write=False, proofs=str(tmp_path), config=None, no_certificates=True,
+                              only=None, junit_xml=None)
+    assert check.run(args) == 1
+    rows = {o["id"]: o for o in json.loads(capsys.readouterr().out)["obligations"]}
+    assert list(rows) == ["coordinates", "claim1.cases", "table1"]  # the paper's order, whoever decided them
+    assert rows["table1"]["status"] != "holds" and str(parent) not in rows["table1"]["reason"]
+
+
+def test_the_worker_works_through_the_tail_within_the_context(monkeypatch):
+    """``check`` passes ``shared_derivations``: a group the worker claims shares one derivation there too."""
+    import contextlib
+
+    monkeypatch.delenv(_parallel.ENV, raising=False)
+    state = {"inside": False}
+
+    @contextlib.contextmanager
+    def context():
+        state["inside"] = True
+        yield
+        state["inside"] = False
+
+    got = list(_parallel.run_sections([_tail_user(["x"], True), _maker("later")], argparse.Namespace(json=False),
+                                      parallel=True, tail=[("x", lambda: state["inside"])], context=context))
+    assert dict(got[0].rows) == {"x": "True"} and not state["inside"]

@@ -129,6 +129,16 @@ def refuses_a_nonzero_rational_function():
     assert _decide.is_zero(a / (a + b) + b / (a + b) - 1)
 
 
+def adds_fractions_over_a_common_denominator():
+    """The reduced fraction of a rational function: sums, products, negative powers, rational constants, cancelling."""
+    assert not _decide.is_zero(1 / a - 1 / b)  # numerators added without their denominators give 0
+    assert _decide.is_zero(1 / a + 1 / b - (a + b) / (a * b))
+    assert _decide.is_zero((a**2 - b**2) / (a - b) / (a + b) - 1)  # a product's denominators count
+    assert _decide.sign_of(1 / (a + b) - 1 / (a + 2 * b)) == 1  # b/((a + b)(a + 2b)), not (a + b) − (a + 2b)
+    assert _decide.is_zero((a + sp.Rational(1, 2)) ** 2 - a**2 - a - sp.Rational(1, 4))  # p/q is not q/p
+    assert _decide.sign_of((a**2 - b**2) / (a - b)) == 1  # a + b once the common factor a − b is cancelled
+
+
 CASES = [
     refuses_real_symbols,
     refuses_an_and_with_an_undecided_conjunct,
@@ -142,6 +152,7 @@ CASES = [
     refuses_a_piece_whose_membership_in_R_is_undecided,
     finds_the_minimum_of_a_quadratic_wherever_its_vertex_lies,
     refuses_a_nonzero_rational_function,
+    adds_fractions_over_a_common_denominator,
     refuses_a_fraction_with_coefficients_of_both_signs,
 ]
 
@@ -170,10 +181,17 @@ MUTANTS = [
      finds_the_minimum_of_a_quadratic_wherever_its_vertex_lies),
     (_decide, "_convex_quadratic_minimum", [("sp.LessThan(vertex, s.start)", "sp.GreaterThan(vertex, s.start)")],
      finds_the_minimum_of_a_quadratic_wherever_its_vertex_lies),
-    (_decide, "sign_of", [("(_coefficient_sign(list(p.values())) for p in (element.numer, element.denom))",
-                          "(_coefficient_sign(list(map(abs, p.values()))) for p in (element.numer, element.denom))")],
+    (_decide, "sign_of", [("(_coefficient_sign(list(p.coeffs())) for p in (element.numer, element.denom))",
+                          "(_coefficient_sign(list(map(abs, p.coeffs()))) for p in (element.numer, element.denom))")],
      refuses_a_fraction_with_coefficients_of_both_signs),
-    (_decide, "is_zero", [("return _field_element(expr) == 0", "return True")], refuses_a_nonzero_rational_function),
+    (_decide, "is_zero", [("return _field_element(expr).numer.is_zero()", "return True")], refuses_a_nonzero_rational_function),
+    (_decide, "_field_element", [("n * (ad / g) + an * (d / g)", "n + an")], adds_fractions_over_a_common_denominator),
+    (_decide, "_field_element", [("n, d = n * an, d * ad", "n, d = n * an, d")], adds_fractions_over_a_common_denominator),
+    (_decide, "_field_element", [("(bd ** -k, bn ** -k)", "(bn ** -k, bd ** -k)")], adds_fractions_over_a_common_denominator),
+    (_decide, "_field_element", [("(ctx.constant(int(e.p)), ctx.constant(int(e.q)))",
+                                  "(ctx.constant(int(e.q)), ctx.constant(int(e.p)))")], adds_fractions_over_a_common_denominator),
+    (_decide, "_field_element", [("return _Fraction(numer / g, denom / g)", "return _Fraction(numer, denom)")],
+     adds_fractions_over_a_common_denominator),
     (_decide, "sign_of", [("s.is_positive is not True", "s.is_nonnegative is not True")], refuses_real_symbols),
     (_decide, "sign_of", [("s.is_positive is not True", "s.is_real is not True")], refuses_real_symbols),
     (_decide, "decide", [("(None if None in vals else True)", "True")], refuses_an_and_with_an_undecided_conjunct),
@@ -221,10 +239,57 @@ def test_check_runs_the_same_cases_and_a_broken_sympy_fails_them(monkeypatch):
     assert len(cases) == 21 and all(c.ok for c in cases), [(c.name, c.got) for c in cases if not c.ok]
     real = sp.Poly.coeffs
     monkeypatch.setattr(sp.Poly, "coeffs", lambda self, order=None: [abs(c) for c in real(self, order)])
-    # the procedures also read coefficients from sparse polynomials of Q(symbols)
-    from sympy.polys.rings import PolyElement
+    real_terms = sp.Poly.terms
+    monkeypatch.setattr(sp.Poly, "terms", lambda self, order=None: [(m, abs(c)) for m, c in real_terms(self, order)])
+    wrong = [c.name for c in decision_cases() if not c.ok]
+    assert "is_nonneg(−(a + 1)(x² + 1))" in wrong
 
-    real_values = PolyElement.values
-    monkeypatch.setattr(PolyElement, "values", lambda self: [abs(c) for c in real_values(self)])
+
+def _forward(name):
+    def op(self, other):
+        result = getattr(self.p, name)(other.p if isinstance(other, _BrokenPolynomial) else other)
+        return result if isinstance(result, bool) else _BrokenPolynomial(result)
+    return op
+
+
+class _BrokenPolynomial:
+    """A python-flint polynomial whose coefficients all read as positive (a broken or patched install)."""
+
+    def __init__(self, p):
+        self.p = p
+
+    __add__, __mul__, __truediv__, __pow__, __eq__, gcd = map(_forward, ("__add__", "__mul__", "__truediv__", "__pow__",
+                                                                         "__eq__", "gcd"))
+
+    def is_zero(self):
+        return self.p.is_zero()
+
+    def coeffs(self):
+        return [abs(c) for c in self.p.coeffs()]
+
+
+def test_a_broken_python_flint_fails_the_cases_check_runs(monkeypatch):
+    """The rational functions of :func:`_decide.sign_of` are python-flint polynomials: a python-flint whose
+    coefficients all read as positive makes ``sign_of(1/(a − b))`` a proof of a false statement, and ``check`` fails."""
+    import types
+
+    import flint
+
+    from symbolic_friction._obligations._decide_cases import decision_cases
+
+    class Context:
+        def __init__(self, ctx):
+            self.ctx = ctx
+
+        def constant(self, c):
+            return _BrokenPolynomial(self.ctx.constant(c))
+
+        def gens(self):
+            return tuple(_BrokenPolynomial(g) for g in self.ctx.gens())
+
+    fake = types.ModuleType("flint")
+    fake.__dict__.update(vars(flint))
+    fake.fmpz_mpoly_ctx = types.SimpleNamespace(get=lambda *a: Context(flint.fmpz_mpoly_ctx.get(*a)))
+    monkeypatch.setitem(__import__("sys").modules, "flint", fake)
     wrong = [c.name for c in decision_cases() if not c.ok]
     assert "sign_of(1/(a − b))" in wrong

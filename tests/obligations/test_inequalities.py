@@ -43,6 +43,22 @@ def test_is_nonneg_does_not_prove(expr):
     assert not is_nonneg(expr)
 
 
+_POLYNOMIALS = [a * b + n, x**2 * a + y**4, x**2 - 2 * x * y + y**2, sp.expand((x - a) ** 2 * (b + 1)), x / 2 + y**2 / 3,
+                sp.Rational(1, 2) * (x - y) ** 2 - x * y / 3, x * a, a - b, x**2 - 3 * x * y + y**2, sp.sqrt(a) - 1,
+                sp.sqrt(a) * x**2, -(a + 1) * (x**2 + 1)]
+
+
+@pytest.mark.parametrize("expr", _POLYNOMIALS)
+def test_a_polynomial_is_decided_as_its_fraction_would_be(monkeypatch, expr):
+    """Without a denominator, is_nonneg takes the polynomial as its own numerator: the answer is the one
+    ``together``'s numerator and denominator give."""
+    from symbolic_friction._obligations import _inequalities
+
+    fast = is_nonneg(expr)
+    monkeypatch.setattr(_inequalities, "_has_denominator", lambda e: True)
+    assert fast == is_nonneg(expr)
+
+
 def test_is_nonpos():
     assert is_nonpos(-(x**2) - a)
     assert not is_nonpos(x)
@@ -96,3 +112,12 @@ def test_upper_and_lower_bounds():
 
 def test_label_latex():
     assert label_latex("v > 0, σ < 0, φ < -f_c") == "v > 0,\\  \\sigma  < 0,\\  \\phi  < -f_c"
+
+
+def test_an_extremum_bounds_its_own_argument_without_simplify(monkeypatch):
+    """``Max(m, μ) ≥ μ`` by definition: the argument equal to the value is found before the others are compared
+    with it (a comparison of two radicals falls back to simplify, the costliest step of lemma3's bounds)."""
+    mu = a - sp.sqrt(a**2 + b**2)
+    m = b - sp.sqrt(a**2 + 4 * b**2)
+    monkeypatch.setattr(sp, "simplify", lambda *args, **kw: (_ for _ in ()).throw(AssertionError("simplify called")))
+    assert is_upper_bound_of(sp.Max(m, mu), [m, mu]) and is_lower_bound_of(sp.Min(m, mu), [m, mu])
