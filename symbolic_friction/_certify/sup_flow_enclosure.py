@@ -82,14 +82,30 @@ def _flow(cert: Any, a: Fraction, b: Fraction) -> Any:
     """
     import flint
 
-    from .flow_bound import _system
-
-    a_matrix = _system(_Gains(cert))
+    a_matrix = _system_of(cert)
     start = (a_matrix * _arb(a)).exp()
     if a == b:
         return start
     half = _arb((b - a) / 2)
     return start * (a_matrix * flint.arb(half, half)).exp()
+
+
+_SYSTEMS: dict[tuple[Fraction, Fraction, Fraction, int], Any] = {}
+
+
+def _system_of(cert: Any) -> Any:
+    """``A`` of eq. (xDot) as an arb matrix for ``cert``'s gains at the working precision (built once per gains
+    and precision: the same balls every time, and the bisection's many parts do not rebuild it)."""
+    import flint
+
+    from .flow_bound import _system
+
+    key = (cert.k_p, cert.k_i, cert.k_v, flint.ctx.prec)
+    if key not in _SYSTEMS:
+        if len(_SYSTEMS) >= 64:
+            _SYSTEMS.clear()
+        _SYSTEMS[key] = _system(_Gains(cert))
+    return _SYSTEMS[key]
 
 
 class _Gains:
@@ -163,6 +179,8 @@ def _exit_holds(k: Any, gram: Any, *, end: Any = _lower) -> tuple[bool, str]:
 
     for s in (1, -1):
         for plane, form in zip(model.EXIT_PLANES, model.exit_forms(k, gram, _arb(Fraction(s)))):
+            if end is _lower and _lower_ends_clearly_copositive(form):
+                continue  # proved without building Fractions (the common case); anything else is decided exactly
             pick = min if end is _lower else max
             try:
                 off = pick(end(form[0][1]), end(form[1][0]))
@@ -173,6 +191,24 @@ def _exit_holds(k: Any, gram: Any, *, end: Any = _lower) -> tuple[bool, str]:
             if decision.holds is not True:
                 return False, f"{plane}, sign σ = {'+' if s > 0 else '−'}: {decision.reason}"
     return True, ""
+
+
+def _lower_ends_clearly_copositive(form: Any) -> bool:
+    """A sufficient test, in arb, that the 2×2 matrix of the lower ends of ``form``'s balls is copositive.
+
+    With ``a``, ``c`` the diagonal's and ``b`` the smaller off-diagonal lower
+    end (exact points), it asks arb whether ``a ≥ 0``, ``c ≥ 0`` and
+    ``b ≥ 0`` or ``b² ≤ ac`` hold *for certain* (a comparison of balls is True
+    only when it holds for every point in them) — Hadeler's 2×2 criterion,
+    which :func:`.copositive.decide_copositive` decides on the same numbers as
+    Fractions.  True proves the form; False decides nothing (the caller then
+    decides exactly), so a weaker test here costs time, never soundness.
+    """
+    a, c = form[0][0].lower(), form[1][1].lower()
+    b = min(form[0][1].lower(), form[1][0].lower())
+    if not (a.is_finite() and b.is_finite() and c.is_finite()):
+        return False
+    return bool(a >= 0 and c >= 0 and (b >= 0 or b * b <= a * c))
 
 
 def _not(verdict: tuple[bool, str]) -> tuple[bool, str]:

@@ -289,3 +289,30 @@ def test_a_single_piece_from_0_to_infinity_has_no_horizon():
     tail["start"] = "0"
     data["pieces"] = [tail]
     assert "T > 0 (the last piece starts after 0)" in _failed(data)
+
+
+def test_the_arb_shortcut_proves_only_what_the_exact_decision_proves():
+    """The fast test on the lower ends of a 2×2 ball form never says True where decide_copositive would not."""
+    import random
+
+    import flint
+
+    from symbolic_friction._certify.copositive import decide_copositive
+
+    rng = random.Random(7)
+    agree = 0
+    for _ in range(400):
+        a, b, c = (Fraction(rng.randint(-40, 400), rng.randint(1, 50)) for _ in range(3))
+        radius = Fraction(rng.randint(0, 5), 1000)
+        ball = lambda q: flint.arb(sup_flow_enclosure._arb(q), sup_flow_enclosure._arb(radius))  # noqa: E731
+        form = ((ball(a), ball(b)), (ball(b), ball(c)))
+        lows = [sup_flow_enclosure._lower(x) for x in (form[0][0], form[0][1], form[1][1])]
+        exact = decide_copositive(((lows[0], lows[1]), (lows[1], lows[2]))).holds is True
+        fast = sup_flow_enclosure._lower_ends_clearly_copositive(form)
+        assert not fast or exact, (a, b, c, radius)
+        agree += fast == exact
+    assert agree >= 390  # and it decides almost everything the exact test does
+    # b² just above ac: not copositive, and the shortcut must not say it is
+    edge = ((flint.arb(1), flint.arb(-1) - flint.arb(2) ** -100), (flint.arb(-1) - flint.arb(2) ** -100, flint.arb(1)))
+    assert not sup_flow_enclosure._lower_ends_clearly_copositive(edge)
+    assert sup_flow_enclosure._lower_ends_clearly_copositive(((flint.arb(1), flint.arb(-1)), (flint.arb(-1), flint.arb(1))))
