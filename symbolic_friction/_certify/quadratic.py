@@ -31,7 +31,7 @@ import json
 from dataclasses import dataclass, field
 from fractions import Fraction
 from pathlib import Path
-from typing import Any
+from typing import Any, ClassVar
 
 from .._infra.errors import CertificateFormatError
 from .._infra.rational import format_rational as _f
@@ -42,7 +42,7 @@ from .verify import Check, Inequality, Semidefinite, VerificationReport, decide
 
 __all__ = [
     "SCHEMA", "TEMPLATE_ID", "CONSTANTS", "OBLIGATIONS", "QuadraticCertificate", "QuadraticReport",
-    "QuadraticProvenance", "Copositive", "quadratic_premises", "verify_quadratic", "dumps_quadratic", "QUADRATIC",
+    "QuadraticProvenance", "Copositive", "quadratic_premises", "verify_quadratic", "dumps_quadratic", "not_canonical", "read_common", "QUADRATIC",
 ]
 
 SCHEMA = "symbolic-friction/quadratic-certificate/v1"
@@ -64,7 +64,10 @@ _PROVENANCE = ("package", "search", "solver", "solver_status", "margin", "label"
 
 @dataclass(frozen=True)
 class QuadraticProvenance:
-    """How a quadratic certificate was found (informative; never part of the proof)."""
+    """How a certificate of a template beyond the paper was found (informative; never part of the proof).
+
+    The quadratic and the sup-flow templates record the same fields (their searches are SDPs).
+    """
 
     search: str = "sdp"
     solver: str = ""
@@ -148,25 +151,38 @@ class QuadraticCertificate:
 
     @classmethod
     def from_dict(cls, data: object, *, source: str = "<string>") -> "QuadraticCertificate":
-        from .certificate import _check_keys, _decimal_field, _signed_rational_field
+        params, constants, provenance, bound = read_common(data, source, what="quadratic", schema=SCHEMA,
+                                                           template_id=TEMPLATE_ID, top=_TOP, constants=CONSTANTS)
+        return cls(**params, constants=constants, overshoot_bound=bound, provenance=provenance)
 
-        if not isinstance(data, dict):
-            raise CertificateFormatError(f"{source}: a quadratic certificate is a JSON object; got {type(data).__name__}")
-        _check_keys(data, required=_TOP, optional=("provenance",), where="certificate")
-        if data["schema"] != SCHEMA or data["template"] != TEMPLATE_ID:
-            raise CertificateFormatError(f"{source}: schema {data['schema']!r} / template {data['template']!r} is not {SCHEMA} / {TEMPLATE_ID}")
-        for key, names in (("parameters", PARAMETERS), ("constants", CONSTANTS)):
-            if not isinstance(data[key], dict):
-                raise CertificateFormatError(f"{source}: {key} must be a JSON object; got {type(data[key]).__name__}")
-            _check_keys(data[key], required=names, optional=(), where=key)
-        params = {n: _signed_rational_field(data["parameters"][n], f"parameters.{n}") for n in PARAMETERS}
-        constants = {n: _signed_rational_field(data["constants"][n], f"constants.{n}") for n in CONSTANTS}
-        provenance = data.get("provenance", {})
-        if not isinstance(provenance, dict):
-            raise CertificateFormatError(f"{source}: provenance must be a JSON object")
-        _check_keys(provenance, required=(), optional=_PROVENANCE, where="provenance")
-        provenance = QuadraticProvenance(**provenance)
-        return cls(**params, constants=constants, overshoot_bound=_decimal_field(data["overshoot_bound"], "overshoot_bound"), provenance=provenance)
+
+def read_common(data: object, source: str, *, what: str, schema: str, template_id: str, top: tuple[str, ...],
+                constants: tuple[str, ...]) -> tuple[dict[str, Fraction], dict[str, Fraction], QuadraticProvenance, str]:
+    """The members a quadratic or sup-flow file share, read strictly: ``(gains, constants, provenance, bound)``.
+
+    Raises
+    ------
+    CertificateFormatError
+        Naming the member that is missing, unknown, of the wrong type or not an exact rational.
+    """
+    from .certificate import _check_keys, _decimal_field, _signed_rational_field
+
+    if not isinstance(data, dict):
+        raise CertificateFormatError(f"{source}: a {what} certificate is a JSON object; got {type(data).__name__}")
+    _check_keys(data, required=top, optional=("provenance",), where="certificate")
+    if data["schema"] != schema or data["template"] != template_id:
+        raise CertificateFormatError(f"{source}: schema {data['schema']!r} / template {data['template']!r} is not {schema} / {template_id}")
+    for key, names in (("parameters", PARAMETERS), ("constants", constants)):
+        if not isinstance(data[key], dict):
+            raise CertificateFormatError(f"{source}: {key} must be a JSON object; got {type(data[key]).__name__}")
+        _check_keys(data[key], required=names, optional=(), where=key)
+    params = {n: _signed_rational_field(data["parameters"][n], f"parameters.{n}") for n in PARAMETERS}
+    values = {n: _signed_rational_field(data["constants"][n], f"constants.{n}") for n in constants}
+    provenance = data.get("provenance", {})
+    if not isinstance(provenance, dict):
+        raise CertificateFormatError(f"{source}: provenance must be a JSON object")
+    _check_keys(provenance, required=(), optional=_PROVENANCE, where="provenance")
+    return params, values, QuadraticProvenance(**provenance), _decimal_field(data["overshoot_bound"], "overshoot_bound")
 
 
 @dataclass(frozen=True)
@@ -251,10 +267,11 @@ class QuadraticReport(VerificationReport):
     certificate: QuadraticCertificate  # type: ignore[assignment]
     checks: tuple[Check, ...]
     source: str = "<certificate>"
+    template_name: ClassVar[str] = "quadratic"
 
     def summary(self) -> str:
         if self.proved:
-            return (f"PROVED {self.source}: all {len(self.checks)} premises of the quadratic template hold; "
+            return (f"PROVED {self.source}: all {len(self.checks)} premises of the {self.template_name} template hold; "
                     f"|x(t)|_A <= {self.certificate.overshoot_bound}·|x(0)|_A")
         return super().summary()
 
@@ -271,19 +288,24 @@ def dumps_quadratic(certificate: QuadraticCertificate) -> str:
     return json.dumps(certificate.to_dict(), indent=2, sort_keys=True, ensure_ascii=False) + "\n"
 
 
-def _stale(certificate: QuadraticCertificate, path: Path) -> str:
-    """Why the committed ``path`` is not the canonical file of its own numbers (empty if it is).
+def not_canonical(text: str, path: Path) -> str:
+    """Why the committed ``path`` is not ``text``, the canonical file of its own numbers (empty if it is).
 
-    The SDP's rounding may differ between solver versions; that is drift, not a
+    For the templates whose search is an SDP (quadratic, sup-flow): its
+    rounding may differ between solver versions; that is drift, not a
     different statement, so staleness does not re-run the search: the file
-    must be exactly what :func:`dumps_quadratic` writes for the numbers it holds.
+    must be exactly what the template writes for the numbers it holds.
     """
     from .._infra.io import read_limited
     from ._json import MAX_FILE_BYTES
 
-    if read_limited(Path(path), limit=MAX_FILE_BYTES, what="certificate") != dumps_quadratic(certificate).encode("utf-8"):
+    if read_limited(Path(path), limit=MAX_FILE_BYTES, what="certificate") != text.encode("utf-8"):
         return f"{Path(path).name} is not in canonical form (keys sorted, two-space indentation, exact rationals)"
     return ""
+
+
+def _stale(certificate: QuadraticCertificate, path: Path) -> str:
+    return not_canonical(dumps_quadratic(certificate), path)
 
 
 QUADRATIC = register(Template(

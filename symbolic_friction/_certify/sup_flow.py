@@ -40,16 +40,17 @@ import json
 from dataclasses import dataclass, field
 from fractions import Fraction
 from pathlib import Path
-from typing import Any
+from typing import Any, ClassVar
 
 from .._infra.errors import CertificateFormatError
 from .._infra.rational import format_rational as _f
 from .._model import quadratic as quad
 from .._model.lyapunov import lyapunov_matrix_entries
 from ._template import Template, register
-from .quadratic import Copositive, _scaled_identity, _sub, decide_premise
+from .quadratic import (Copositive, QuadraticProvenance, QuadraticReport, _scaled_identity, _sub, decide_premise, not_canonical,
+                        read_common)
 from .sup_flow_enclosure import MAX_PARTS, MAX_TOTAL_PARTS, Budget, FlowExit, FlowNorm, decide_flow
-from .verify import Check, Inequality, Semidefinite, VerificationReport
+from .verify import Check, Inequality, Semidefinite
 
 __all__ = [
     "SCHEMA", "TEMPLATE_ID", "OBLIGATIONS", "MAX_PIECES", "MAX_PARTS", "SupFlowPiece", "SupFlowCertificate",
@@ -77,28 +78,10 @@ OBLIGATIONS = (
 )
 """The proof obligations (ids of ``symbolic-friction check``) a sup-flow certificate instantiates."""
 _TOP = ("schema", "template", "parameters", "constants", "pieces", "overshoot_bound")
-_PROVENANCE = ("package", "search", "solver", "solver_status", "margin", "label")
 
 
-@dataclass(frozen=True)
-class SupFlowProvenance:
-    """How a sup-flow certificate was found (informative; never part of the proof)."""
-
-    search: str = "sdp"
-    solver: str = ""
-    solver_status: str = ""
-    margin: str = ""
-    label: str = ""
-    package: str = "symbolic-friction"
-
-    def __post_init__(self) -> None:
-        for name in _PROVENANCE:
-            value = getattr(self, name)
-            if not isinstance(value, str) or len(value) > 10_000:
-                raise CertificateFormatError(f"provenance.{name} must be a string of at most 10000 characters; got {value!r:.60}")
-
-    def to_dict(self) -> dict[str, str]:
-        return {name: getattr(self, name) for name in _PROVENANCE}
+SupFlowProvenance = QuadraticProvenance
+"""How a sup-flow certificate was found: the quadratic template's fields (informative; never part of the proof)."""
 
 
 def _exact(value: Any, what: str) -> Fraction:
@@ -192,18 +175,11 @@ class SupFlowCertificate:
 
     @classmethod
     def from_dict(cls, data: object, *, source: str = "<string>") -> "SupFlowCertificate":
-        from .certificate import _check_keys, _decimal_field, _signed_rational_field
+        from .certificate import _check_keys, _signed_rational_field
 
-        if not isinstance(data, dict):
-            raise CertificateFormatError(f"{source}: a sup-flow certificate is a JSON object; got {type(data).__name__}")
-        _check_keys(data, required=_TOP, optional=("provenance",), where="certificate")
-        if data["schema"] != SCHEMA or data["template"] != TEMPLATE_ID:
-            raise CertificateFormatError(f"{source}: schema {data['schema']!r} / template {data['template']!r} is not {SCHEMA} / {TEMPLATE_ID}")
-        for key, names in (("parameters", PARAMETERS), ("constants", CONSTANTS)):
-            if not isinstance(data[key], dict):
-                raise CertificateFormatError(f"{source}: {key} must be a JSON object; got {type(data[key]).__name__}")
-            _check_keys(data[key], required=names, optional=(), where=key)
-        raw = data["pieces"]
+        params, constants, provenance, bound = read_common(data, source, what="sup-flow", schema=SCHEMA,
+                                                           template_id=TEMPLATE_ID, top=_TOP, constants=CONSTANTS)
+        raw = data["pieces"]  # type: ignore[index]
         if not isinstance(raw, list) or not 1 <= len(raw) <= MAX_PIECES:
             shown = len(raw) if isinstance(raw, list) else type(raw).__name__
             raise CertificateFormatError(f"{source}: pieces must be a list of 1 to {MAX_PIECES} objects; got {shown}")
@@ -217,16 +193,7 @@ class SupFlowCertificate:
             pieces.append(SupFlowPiece(
                 start=_signed_rational_field(item["start"], f"{where}.start"), end=end,
                 constants={n: _signed_rational_field(item[n], f"{where}.{n}") for n in PIECE_CONSTANTS}))
-        provenance = data.get("provenance", {})
-        if not isinstance(provenance, dict):
-            raise CertificateFormatError(f"{source}: provenance must be a JSON object")
-        _check_keys(provenance, required=(), optional=_PROVENANCE, where="provenance")
-        return cls(
-            **{n: _signed_rational_field(data["parameters"][n], f"parameters.{n}") for n in PARAMETERS},
-            constants={n: _signed_rational_field(data["constants"][n], f"constants.{n}") for n in CONSTANTS},
-            pieces=tuple(pieces), overshoot_bound=_decimal_field(data["overshoot_bound"], "overshoot_bound"),
-            provenance=SupFlowProvenance(**provenance),
-        )
+        return cls(**params, constants=constants, pieces=tuple(pieces), overshoot_bound=bound, provenance=provenance)
 
 
 # -- the premises that need the flow: decided in arb balls, interval by interval ------------------
@@ -294,18 +261,11 @@ def _decide(premise: Any, budget: Budget | None = None) -> Check:
 
 
 @dataclass(frozen=True)
-class SupFlowReport(VerificationReport):
-    """Per-premise verdicts of a sup-flow certificate (proved iff there is a check and every one holds)."""
+class SupFlowReport(QuadraticReport):
+    """Per-premise verdicts of a sup-flow certificate (the quadratic report's rule: proved iff there is a check
+    and every one holds)."""
 
-    certificate: SupFlowCertificate  # type: ignore[assignment]
-    checks: tuple[Check, ...]
-    source: str = "<certificate>"
-
-    def summary(self) -> str:
-        if self.proved:
-            return (f"PROVED {self.source}: all {len(self.checks)} premises of the sup-flow template hold; "
-                    f"|x(t)|_A <= {self.certificate.overshoot_bound}·|x(0)|_A")
-        return super().summary()
+    template_name: ClassVar[str] = "sup-flow"
 
 
 def verify_sup_flow(certificate: SupFlowCertificate, *, source: str = "<certificate>") -> SupFlowReport:
@@ -347,12 +307,7 @@ def dumps_sup_flow(certificate: SupFlowCertificate) -> str:
 
 def _stale(certificate: SupFlowCertificate, path: Path) -> str:
     """Why the committed ``path`` is not the canonical file of its own numbers (empty if it is); no search is re-run."""
-    from .._infra.io import read_limited
-    from ._json import MAX_FILE_BYTES
-
-    if read_limited(Path(path), limit=MAX_FILE_BYTES, what="certificate") != dumps_sup_flow(certificate).encode("utf-8"):
-        return f"{Path(path).name} is not in canonical form (keys sorted, two-space indentation, exact rationals)"
-    return ""
+    return not_canonical(dumps_sup_flow(certificate), path)
 
 
 SUP_FLOW = register(Template(
