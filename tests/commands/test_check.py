@@ -66,7 +66,7 @@ def test_json_schema(full_run):
     assert payload["counts"]["selftest_ok"] == payload["counts"]["selftest_rows"] == 52  # 24 kernel runs + 2 × 14
     assert payload["counts"]["obligations"] == payload["counts"]["obligations_hold"] == len(payload["obligations"])
     assert payload["counts"]["certificates"] == payload["counts"]["certificates_proved"] == 15
-    assert [c["proved"] and not c["stale"] for c in payload["certificates"]] == [True] * 13
+    assert [c["proved"] and not c["stale"] for c in payload["certificates"]] == [True] * 15
     ids = [o["id"] for o in payload["obligations"]]
     assert len(ids) == len(set(ids))
     assert [i for i in ids if i in MY_IDS] == list(MY_IDS)  # all present, in paper order

@@ -46,15 +46,17 @@ def test_default_is_every_committed_certificate(monkeypatch, capsys):
     monkeypatch.chdir(REPO)
     assert main(["crosscheck", "--trajectories", "30", "--no-adversarial", "--samples", "51"]) == 0
     out = capsys.readouterr().out
-    assert "crosscheck: PASSED — 6 certificate(s)" in out.strip().splitlines()[-1]
-    for stem in ("case_a_feasible", "case_a_tightest", "case_b_feasible", "case_b_tightest", "quadratic/case_a",
+    assert "crosscheck: PASSED — 8 certificate(s)" in out.strip().splitlines()[-1]
+    for stem in ("case_a_feasible", "case_a_tightest", "case_b_feasible", "case_b_tightest", "sup_flow/case_a", "quadratic/case_a",
                  "quadratic/case_b"):
         assert stem in out
     # the tightness of each committed certificate, per template
     table = out[out.index("tightness per certificate"):].splitlines()
-    assert [row.split()[:2] for row in table[2:8]] == [  # by gain set: the certificates sharing trajectories
+    assert [row.split()[:2] for row in table[2:10]] == [  # by gain set: the certificates sharing trajectories
         ["case_a_feasible", "paper"], ["case_a_tightest", "paper"], ["quadratic/case_a", "quadratic"],
-        ["case_b_feasible", "paper"], ["case_b_tightest", "paper"], ["quadratic/case_b", "quadratic"]]
+        ["sup_flow/case_a", "sup-flow"],
+        ["case_b_feasible", "paper"], ["case_b_tightest", "paper"], ["quadratic/case_b", "quadratic"],
+        ["sup_flow/case_b", "sup-flow"]]
 
 
 def test_unproved_certificate_is_refused_with_the_inequality_named(tmp_path, capsys):
