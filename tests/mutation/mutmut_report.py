@@ -28,7 +28,7 @@ ROOT = Path(__file__).resolve().parents[2]
 if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
 
-from tests.mutation.mutmut_equivalent import EQUIVALENT, SCOPE  # noqa: E402
+from tests.mutation.mutmut_equivalent import EQUIVALENT, PENDING, SCOPE  # noqa: E402
 
 _LINE = re.compile(r"^\s*(?P<name>\S+): (?P<status>.+?)\s*$")
 
@@ -56,17 +56,25 @@ def in_scope(name: str) -> bool:
     return any(fnmatch.fnmatchcase(name, pattern) for pattern in SCOPE)
 
 
+def pending(name: str, status: str) -> bool:
+    """In scope but not run yet (:data:`PENDING`): counted, listed apart, never called killed or equivalent."""
+    return status == "not checked" and any(fnmatch.fnmatchcase(name, pattern) for pattern in PENDING)
+
+
 def render(found: dict[str, str]) -> tuple[str, bool]:
     per: dict[str, Counter] = defaultdict(Counter)
     out_of_scope: dict[str, Counter] = defaultdict(Counter)
+    not_run: dict[str, Counter] = defaultdict(Counter)
     survivors = []
     for name, status in sorted(found.items()):
         target = per if in_scope(name) else out_of_scope
         target[module_of(name)][status] += 1
+        if in_scope(name) and pending(name, status):
+            not_run[module_of(name)][function_of(name)] += 1
         # a timeout is a mutant whose tests did not finish: it did not pass them
-        if in_scope(name) and status not in ("killed", "timeout"):
+        elif in_scope(name) and status not in ("killed", "timeout"):
             survivors.append((name, status))
-    statuses = ["killed", "survived", "timeout", "no tests", "suspicious", "segfault", "skipped"]
+    statuses = ["killed", "survived", "timeout", "no tests", "suspicious", "segfault", "skipped", "not checked"]
     rows = ["| module | mutants | " + " | ".join(statuses) + " |", "|---|---:|" + "---:|" * len(statuses)]
     for mod in sorted(per):
         c = per[mod]
@@ -85,6 +93,10 @@ def render(found: dict[str, str]) -> tuple[str, bool]:
             ok = False
             why = "OPEN (neither killed nor argued equivalent yet)"
         lines.append(f"- `{name}` ({status}): {why}")
+    if not_run:
+        lines += ["", "## In scope, not run yet (`not checked`: neither killed nor argued)", ""]
+        for mod in sorted(not_run):
+            lines.append(f"- `{mod}`: " + ", ".join(f"{fn} {n}" for fn, n in sorted(not_run[mod].items())))
     oos = ["", "## Out of scope (counted, not required to be killed)", ""]
     for mod in sorted(out_of_scope):
         c = out_of_scope[mod]

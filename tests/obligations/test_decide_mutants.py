@@ -416,3 +416,29 @@ def test_minimum_on_drops_stationary_points_outside_the_interval():
     assert minimum_on(x**4 - 2 * x**2, x, sp.Interval(2, 3)) == 8
     assert minimum_on(x**3 - 3 * x, x, sp.Interval(2, 3)) == 2
     assert minimum_on(x**3 - 3 * x, x, sp.Interval(0, 3)) == -2
+
+
+# -- the fraction of integer polynomials (python-flint) ---------------------------------------------
+
+
+def test_the_fraction_refuses_a_negative_power_of_a_zero_polynomial_naming_it():
+    base = (a + 1) ** 2 - a**2 - 2 * a - 1  # the zero polynomial, not zero as a tree
+    with pytest.raises(ZeroDivisionError, match=r"is identically zero in"):
+        D._field_element(base**-1)
+
+
+def test_the_fraction_refuses_what_is_not_a_rational_function():
+    with pytest.raises(TypeError, match="sqrt\\(a\\) is not a rational function of its symbols"):
+        D._field_element(sp.sqrt(a))
+
+
+def test_negative_powers_invert_numerator_and_denominator_each_to_the_power():
+    assert is_zero((a + 1) ** -2 - 1 / (a**2 + 2 * a + 1))  # a polynomial base: (1, (a + 1)²)
+    assert is_zero((1 + 1 / a) ** -2 - a**2 / (a + 1) ** 2)  # a fraction base: (a², (a + 1)²)
+    assert sign_of((1 + 1 / a) ** -2 - 1) == -1
+
+
+def test_sums_bring_each_term_to_the_common_denominator_it_shares():
+    # the first two denominators share the factor a: the common one is a·b·c, not a²·b·c
+    assert is_zero(1 / a + 1 / (a * b) + 1 / (a * c) - (b * c + b + c) / (a * b * c))
+    assert not is_zero(1 / a + 1 / (a * b) + 1 / (a * c) - (b * c + b + c) / (a * b * c) - 1 / (a * b * c))

@@ -121,3 +121,32 @@ def test_an_extremum_bounds_its_own_argument_without_simplify(monkeypatch):
     m = b - sp.sqrt(a**2 + 4 * b**2)
     monkeypatch.setattr(sp, "simplify", lambda *args, **kw: (_ for _ in ()).throw(AssertionError("simplify called")))
     assert is_upper_bound_of(sp.Max(m, mu), [m, mu]) and is_lower_bound_of(sp.Min(m, mu), [m, mu])
+
+
+def test_a_bound_must_bound_every_value_not_only_the_first():
+    from symbolic_friction._obligations._decide import pos
+    from symbolic_friction._obligations._inequalities import is_lower_bound_of, is_upper_bound_of
+
+    a, b = pos("a"), pos("b")
+    assert is_upper_bound_of(a, [a, a + 1]) is False  # the first is the bound itself, the second is above it
+    assert is_upper_bound_of(sp.Max(a, b), [a, b + 1]) is False  # the first is an argument of the max
+    assert is_upper_bound_of(sp.Max(a, b), [a, b]) is True
+
+
+def test_a_bound_compares_in_its_own_direction():
+    from symbolic_friction._obligations._decide import pos
+    from symbolic_friction._obligations._inequalities import is_lower_bound_of, is_upper_bound_of
+
+    a = pos("a")
+    assert is_lower_bound_of(a + 1, [a]) is False and is_lower_bound_of(a, [a + 1]) is True
+    assert is_upper_bound_of(a, [a + 1]) is False and is_upper_bound_of(a + 1, [a]) is True
+    assert is_upper_bound_of(a - 1, [a]) is False  # a is an argument of a − 1, which is no maximum
+
+
+def test_an_argument_of_the_extremum_equal_only_as_a_value_is_found():
+    from symbolic_friction._obligations._decide import pos
+    from symbolic_friction._obligations._inequalities import is_upper_bound_of
+
+    a, b = pos("a"), pos("b")
+    assert is_upper_bound_of(sp.Max((a + 1) ** 2, b), [a**2 + 2 * a + 1]) is True
+
