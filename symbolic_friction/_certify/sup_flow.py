@@ -36,7 +36,6 @@ Format (``schema`` ``symbolic-friction/sup-flow-certificate/v1``, ``template``
 
 from __future__ import annotations
 
-import json
 from dataclasses import dataclass, field
 from fractions import Fraction
 from pathlib import Path
@@ -47,7 +46,7 @@ from .._infra.rational import format_rational as _f
 from .._model import quadratic as quad
 from .._model.lyapunov import lyapunov_matrix_entries
 from ._template import Template, register
-from .quadratic import (Copositive, QuadraticProvenance, QuadraticReport, _scaled_identity, _sub, decide_premise, not_canonical,
+from .quadratic import (Copositive, dumps_quadratic, QuadraticProvenance, QuadraticReport, _scaled_identity, _sub, decide_premise, not_canonical,
                         read_common)
 from .sup_flow_enclosure import MAX_PARTS, MAX_TOTAL_PARTS, Budget, FlowExit, FlowNorm, decide_flow
 from .verify import Check, Inequality, Semidefinite
@@ -301,8 +300,8 @@ def load_sup_flow(path: str | Path) -> SupFlowCertificate:
 
 
 def dumps_sup_flow(certificate: SupFlowCertificate) -> str:
-    """The file's bytes: sorted keys, two-space indentation, trailing newline."""
-    return json.dumps(certificate.to_dict(), indent=2, sort_keys=True, ensure_ascii=False) + "\n"
+    """The file's bytes: the quadratic template's canonical JSON (sorted keys, two-space indentation, trailing newline)."""
+    return dumps_quadratic(certificate)
 
 
 def _stale(certificate: SupFlowCertificate, path: Path) -> str:

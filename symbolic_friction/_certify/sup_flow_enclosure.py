@@ -104,15 +104,8 @@ def _system_of(cert: Any) -> Any:
     if key not in _SYSTEMS:
         if len(_SYSTEMS) >= 64:
             _SYSTEMS.clear()
-        _SYSTEMS[key] = _system(_Gains(cert))
+        _SYSTEMS[key] = _system(cert)  # it reads the gains k_p, k_i, k_v, which a certificate has
     return _SYSTEMS[key]
-
-
-class _Gains:
-    """The gains of ``cert`` in the shape :func:`.flow_bound._system` reads."""
-
-    def __init__(self, cert: Any) -> None:
-        self.k_p, self.k_i, self.k_v = cert.k_p, cert.k_i, cert.k_v
 
 
 def _rows(m: Any) -> tuple[tuple[Any, ...], ...]:
