@@ -75,19 +75,26 @@ def sqrt_up(q: Fraction, digits: int = SQRT_DIGITS) -> Fraction:
         raise ValueError(f"sqrt_up needs q ≥ 0; got {q}")
     if q == 0:
         return Fraction(0)
-    # scale so that √(q·10^(2e)) has about `digits` integer digits
-    magnitude = (len(str(q.numerator)) - len(str(q.denominator))) // 2
-    e = digits - magnitude
-    scale = Fraction(10) ** (2 * e)
-    target = q * scale
-    n = math.isqrt(math.ceil(target))
-    if n * n < target:
+    num, den = q.numerator, q.denominator
+    # scale so that √(q·10^(2e)) has about `digits` integer digits; the target num/den·10^(2e) in integers
+    e = digits - (len(str(num)) - len(str(den))) // 2
+    if e >= 0:
+        num *= 10 ** (2 * e)
+    else:
+        den *= 10 ** (-2 * e)
+    n = math.isqrt(-(-num // den))  # ⌊√⌈target⌉⌋
+    if n * n * den < num:
         n += 1
-    return Fraction(n) / Fraction(10) ** e
+    return Fraction(n, 10**e) if e >= 0 else Fraction(n * 10 ** (-e))
 
 
 class ExactOps:
     """The choices of :func:`closed_form_formulas` made in exact rationals.
+
+    The arithmetic is the arguments' own: :class:`~fractions.Fraction`, or
+    python-flint's ``fmpq`` (the same exact values, several times faster),
+    which :func:`closed_form_constants` uses; square roots and rounding are
+    taken through ``Fraction`` and returned in the arguments' type.
 
     The symbolic proof (obligation ``closed_form.all_gains``) passes its own
     operations instead: a case of its split decides which argument of each
@@ -98,19 +105,31 @@ class ExactOps:
     def __init__(self, digits: int = SQRT_DIGITS) -> None:
         self.digits = digits
 
-    def max(self, name: str, x: Fraction, y: Fraction) -> Fraction:
+    def max(self, name: str, x: Any, y: Any) -> Any:
         return max(x, y)
 
-    def min(self, name: str, x: Fraction, y: Fraction) -> Fraction:
+    def min(self, name: str, x: Any, y: Any) -> Any:
         return min(x, y)
 
-    def sqrt_up(self, name: str, q: Fraction) -> Fraction:
-        return sqrt_up(q, self.digits)
+    def sqrt_up(self, name: str, q: Any) -> Any:
+        return _like(q, sqrt_up(_as_fraction(q), self.digits))
 
-    def round_down(self, name: str, q: Fraction) -> Fraction:
+    def round_down(self, name: str, q: Any) -> Any:
         from .rounding import round_significant
 
-        return round_significant(q, self.digits, direction="down")
+        return _like(q, round_significant(_as_fraction(q), self.digits, direction="down"))
+
+
+def _as_fraction(q: Any) -> Fraction:
+    """An exact rational (``Fraction``, ``fmpq`` or int) as a ``Fraction``."""
+    return q if type(q) is Fraction else Fraction(int(q.numerator), int(q.denominator))
+
+
+def _like(model: Any, q: Fraction) -> Any:
+    """``q`` in the type of ``model``: ``fmpq`` if ``model`` is one, else ``Fraction``."""
+    from flint import fmpq
+
+    return fmpq(q.numerator, q.denominator) if type(model) is fmpq else q
 
 
 def closed_form_formulas(a_lo: Any, a_hi: Any, kp_lo: Any, kp_hi: Any, mu: Any, ops: Any) -> dict[str, Any]:
@@ -202,12 +221,16 @@ def closed_form_constants(
         raise ValueError(f"the margin μ must be positive (with μ = 0 the strict conditions hold with equality); got {mu}")
     if not a_lo * kp_lo > 1:
         raise ValueError(f"Assumption 1 needs k_v·k_p > k_i, i.e. a·k_p > 1; got {a_lo}·{kp_lo} ≤ 1")
+    from flint import fmpq
+
     ops = ExactOps(digits)
-    c = closed_form_formulas(a_lo, a_hi, kp_lo, kp_hi, mu, ops)
+    # in FLINT's exact rationals (the same values as Fraction's, a gain map builds one set per point)
+    q = [fmpq(x.numerator, x.denominator) for x in (a_lo, a_hi, kp_lo, kp_hi, mu)]
+    c = closed_form_formulas(*q, ops)
     if loose:
-        c["c1"] = ops.round_down("c1", c["c1"] / (1 + mu))
-        c["c2"] = c["c2"] * (1 + mu)
-    return ClosedFormConstants(mu=mu, **c)
+        c["c1"] = ops.round_down("c1", c["c1"] / (1 + q[4]))
+        c["c2"] = c["c2"] * (1 + q[4])
+    return ClosedFormConstants(mu=mu, **{name: _as_fraction(value) for name, value in c.items()})
 
 
 def closed_form_certificate(params: Any, *, mode: str, margin: Fraction, label: str = "") -> Any:

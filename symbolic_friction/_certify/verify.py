@@ -2,7 +2,10 @@
 instantiated with the certificate's numbers, decided in rational arithmetic.
 
 This is the only place where a certificate is called *proved*.  It uses
-:class:`fractions.Fraction` arithmetic only (no floats, no solver), and it
+exact rational arithmetic only (no floats, no solver): the certificate's
+:class:`fractions.Fraction` numbers are decided as python-flint ``fmpq``
+rationals, the same values in FLINT's arithmetic, several times faster than
+``Fraction``'s (a gain map verifies a certificate per point), and it
 shares no code with the search (:mod:`._certify.search`,
 :mod:`._certify.rounding`): the matrices come from the model's own entry
 functions (:func:`~symbolic_friction._model.lyapunov.lyapunov_matrix_entries`,
@@ -53,11 +56,13 @@ from fractions import Fraction
 from pathlib import Path
 from typing import Any, Sequence
 
+from flint import fmpq
+
 from .._infra.errors import CertificateError
 from .._model.kconditions import CONDITION_NAMES, k_conditions
 from .._model.lyapunov import lyapunov_matrix_entries, vhat_matrix_entries
-from .._infra.rational import format_rational as _f
-from .certificate import Certificate, kappa_squared, load
+from .._infra.rational import format_rational
+from .certificate import CONSTANT_NAMES, PARAMETER_NAMES, Certificate, kappa_squared, load
 
 __all__ = ["Check", "VerificationReport", "Inequality", "Semidefinite", "Undefined", "premises", "decide", "verify_certificate", "verify_file"]
 
@@ -202,6 +207,16 @@ class Undefined:
     reason: str
 
 
+def _fraction(value: Any) -> Any:
+    """``value`` as a Fraction when it is an ``fmpq`` (for the file format's writer), else unchanged."""
+    return Fraction(int(value.p), int(value.q)) if type(value) is fmpq else value
+
+
+def _f(value: Any) -> str:
+    """The file format's text of an exact rational, ``fmpq`` or ``Fraction``."""
+    return format_rational(_fraction(value))
+
+
 def _is_zero(value: Any) -> bool:
     """True for an exact zero (a sympy symbol compares structurally, so it is never zero here)."""
     return bool(value == 0)
@@ -216,6 +231,9 @@ def _det(m: Sequence[Sequence[Any]]) -> Any:
         return m[0][0]
     if n == 2:  # written out: the verifier decides thousands of these per gain map
         return m[0][0] * m[1][1] - m[0][1] * m[1][0]
+    if n == 3:  # the cofactor expansion below along the first row, written out (and for the same reason)
+        (a, b, c), (d, e, f), (g, h, i) = m
+        return a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)
     total = 0
     for j in range(n):
         if m[0][j] == 0:
@@ -257,7 +275,7 @@ def premises(cert: Any) -> list[Inequality | Semidefinite | Undefined]:
     # k_i/k_v: with k_v = 0 Assumption 1 fails ("k_v·k_p > k_i" or "k_i > 0"); the conditions without k_v are still
     # decided, on the model's list built with a stand-in k_v = 1 whose conditions that divide by k_v are then replaced
     no_k_v = _is_zero(k_v)
-    for cond in k_conditions(k_p, k_i, 1 if no_k_v else k_v, cert.k1, cert.k2, cert.k3, cert.k4):
+    for cond in k_conditions(k_p, k_i, zero + 1 if no_k_v else k_v, cert.k1, cert.k2, cert.k3, cert.k4):
         # k1·k4 > k3² is the paper's route to K ≻ 0 (eq. hatVandHatR); the rest come from eq. (hatVdot)
         obligation = "lemma3.hatV_bounds" if cond.kind == "definiteness" else "lemma3.hatV_derivative"
         if no_k_v and cond.name in DIVIDE_BY_K_V:
@@ -304,19 +322,21 @@ _DECIDE = {">": lambda m: m > 0, ">=": lambda m: m >= 0, "==": lambda m: m == 0}
 _SYMBOL = {">": ">", ">=": "≥", "<=": "≤", "==": "="}
 
 
-def _exact(value: Any, what: str) -> Fraction:
-    if type(value) is Fraction:  # the common case, without a copy
+def _exact(value: Any, what: str) -> fmpq:
+    """``value`` as an ``fmpq``; anything but an int or a rational (``Fraction``, ``fmpq``) is refused."""
+    kind = type(value)
+    if kind is fmpq:  # the common case, without a copy
         return value
-    if isinstance(value, bool) or not isinstance(value, (int, Fraction)):
-        raise CertificateError(f"{what}: the verifier decides exact rationals only; got {type(value).__name__} {value!r}")
-    return Fraction(value)
+    if kind is Fraction or (isinstance(value, (int, Fraction)) and not isinstance(value, bool)):
+        return fmpq(value.numerator, value.denominator)
+    raise CertificateError(f"{what}: the verifier decides exact rationals only; got {kind.__name__} {value!r}")
 
 
-def _text(q: Fraction) -> str:
-    """``format_rational(q)``; ``str`` gives the same text, faster, for integers of up to about 3,000 digits."""
-    if q.numerator.bit_length() < 10_000 and q.denominator.bit_length() < 10_000:
-        return str(q)
-    return _f(q)
+def _text(q: Any) -> str:
+    """``format_rational(q)``, from FLINT's decimal digits (exact at any size, and faster than ``str(fmpq)``)."""
+    q = _exact(q, "a number to write")
+    num = q.p.str()
+    return num if q.q == 1 else f"{num}/{q.q.str()}"
 
 
 def _matrix_text(m: Sequence[Sequence[Fraction]]) -> str:
@@ -436,14 +456,12 @@ def provenance_checks(certificate: Certificate, proved: Sequence[Check]) -> tupl
 
 
 class _Exact:
-    """A certificate's numbers as the premises read them (``kappa`` exact from its decimal string)."""
+    """A certificate's numbers as the premises read them: ``fmpq`` (``kappa`` exact from its decimal string)."""
 
     def __init__(self, cert: Certificate) -> None:
-        self._cert = cert
-        self.kappa = Fraction(cert.overshoot_bound)
-
-    def __getattr__(self, name: str) -> Any:
-        return getattr(self._cert, name)
+        for name in (*PARAMETER_NAMES, *CONSTANT_NAMES):
+            setattr(self, name, _exact(getattr(cert, name), name))
+        self.kappa = _exact(Fraction(cert.overshoot_bound), "overshoot_bound")
 
 
 def verify_file(path: str | os.PathLike[str]) -> VerificationReport:
