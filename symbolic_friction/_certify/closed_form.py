@@ -29,6 +29,10 @@ the whole box: ``c₁`` from ``(a_lo, kp_lo)``, ``c₂`` from ``(a_hi, kp_hi)``,
 ``ρ`` from ``a_lo`` and ``k₄`` from ``kp_hi``.  A point is the box with equal
 ends.
 
+For a single gain set, :func:`balanced` then trades ``k₁ = 2`` for
+``k₁ = k₄ ≈ √(1+μ)·k₃`` where that is allowed (small ``k_p`` and ``k_i/k_v``)
+and lowers ``ĉ₂``: the point the SDP's ``feasible`` search finds there.
+
 This is *search*: nothing here is called proved.  The verifier
 (:mod:`._certify.verify`) decides the result, as for any other certificate.
 """
@@ -46,6 +50,7 @@ __all__ = [
     "closed_form_formulas",
     "closed_form_constants",
     "closed_form_certificate",
+    "balanced",
     "sqrt_up",
     "DEFAULT_MU",
     "SQRT_DIGITS",
@@ -233,11 +238,39 @@ def closed_form_constants(
     return ClosedFormConstants(mu=mu, **{name: _as_fraction(value) for name, value in c.items()})
 
 
+def balanced(c: ClosedFormConstants, a: Fraction, k_p: Fraction, *, digits: int = SQRT_DIGITS) -> ClosedFormConstants | None:
+    """The closed form with ``k₁ = k₄ = T`` instead of ``k₁ = 2``, where that is allowed and lowers ``ĉ₂``; else None.
+
+    With ``k₂ = 2`` and ``k₃`` as in the closed form, ``k₁k₄ ≥ (1+μ)k₃²`` at the
+    smallest ``λ_max(K)`` is met by ``k₁ = k₄``: ``T`` is a rational with
+    ``T² ≥ (1+μ)k₃²`` (``T ≈ √(1+μ)·k₃``), and then ``λ_max(K)/2 = (T + k₃)/2``
+    exactly, so ``ĉ₂ = (T + k₃)/2`` needs no square root.  The other
+    k-conditions hold with the same margin ``μ`` where ``T ≥ (1+μ)·2k_p`` and
+    ``(1+μ)·T/a ≤ k₃`` (small ``k_p`` and ``k_i/k_v``, e.g. Table I case (b)):
+    ``k₃ > (k_i/k_v)k₁``, ``k₄ > k_p k₂`` by those, ``k₄ = T > k₃ ≥ (k_i/k_v)k₃``
+    because ``a > 1`` there, and ``ĉ₁ = 1 ≤ T/2``.  ``P``'s constants are
+    unchanged.  This is the point that the SDP's ``feasible`` search finds
+    (its margins, its trace objective), which the ``k₁ = 2`` family cannot
+    reach: in Table I case (b) at ``μ = 1/100`` it gives κ ≤ 8.01380 where
+    ``k₁ = 2`` gives 8.01425.  Search only: the verifier decides it like any
+    other certificate (``closed_form.all_gains`` is about ``k₁ = 2``).
+    """
+    mu = c.mu
+    T = sqrt_up((1 + mu) * c.k3 * c.k3, digits)
+    if not (T >= (1 + mu) * 2 * k_p and (1 + mu) * T <= c.k3 * a):
+        return None
+    c2_hat = (T + c.k3) / 2
+    if not c2_hat < c.c2_hat:
+        return None
+    return ClosedFormConstants(k1=T, k2=c.k2, k3=c.k3, k4=T, c1=c.c1, c2=c.c2, c1_hat=c.c1_hat, c2_hat=c2_hat, mu=mu)
+
+
 def closed_form_certificate(params: Any, *, mode: str, margin: Fraction, label: str = "") -> Any:
     """The closed-form certificate of one gain set (not yet verified: pass it to the verifier).
 
     ``mode`` ``"tightest"`` uses ``margin`` on the strict k-conditions only;
     ``"feasible"`` also moves ``c₁``, ``c₂`` outward by ``1 + margin``.
+    Where :func:`balanced` applies, its constants are used (a smaller ``ĉ₂``).
     """
     from .. import __version__
     from .certificate import OBLIGATIONS, Certificate, Provenance
@@ -245,6 +278,7 @@ def closed_form_certificate(params: Any, *, mode: str, margin: Fraction, label: 
 
     a = params.k_v / params.k_i
     c = closed_form_constants(a, a, params.k_p, params.k_p, mu=margin, loose=mode == "feasible")
+    c = balanced(c, a, params.k_p) or c
     provenance = Provenance(
         mode=mode, margin=margin, solver="none", solver_status="exact", package_version=__version__,
         obligations=OBLIGATIONS, label=label, search=SEARCH,

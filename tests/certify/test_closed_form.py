@@ -63,6 +63,58 @@ def test_table_i_kappa_is_the_sdp_tightest():
         assert certify(Parameters.table_i(case)).overshoot_bound == kappa
 
 
+def test_table_i_keeps_the_sdp_s_kappa_in_both_modes():
+    """The committed Table I certificates were the SDP's: the closed form reproduces all four κ (case (b)
+    feasible through the balanced k₁ = k₄, which the k₁ = 2 family cannot reach: 8.01425)."""
+    for case, mode, kappa, k1_is_2 in (("a", "tightest", "3.46703", True), ("a", "feasible", "3.51842", True),
+                                       ("b", "tightest", "7.88526", False), ("b", "feasible", "8.01380", False)):
+        cert = certify(Parameters.table_i(case), mode=mode)
+        assert (cert.overshoot_bound, cert.k1 == 2) == (kappa, k1_is_2)
+        assert verify_certificate(cert).proved
+
+
+@st.composite
+def balanced_gains(draw) -> Parameters:
+    """Gains where k₁ = k₄ applies: k_p ≲ 1 and k_i/k_v ≲ 1 (and beyond, to its boundary)."""
+    k_v = draw(_scaled(-6, 6))
+    k_i = k_v * draw(st.fractions(min_value=F(1, 10**9), max_value=F(99, 100), max_denominator=10**9))
+    k_p = k_i / k_v * draw(st.one_of(st.just(1 + F(1, 10**30)), st.builds(lambda q: 1 + q, _scaled(-9, 3))))
+    return Parameters(k_p=k_p, k_i=k_i, k_v=k_v, f_c=draw(_scaled(-3, 3)))
+
+
+@settings(max_examples=200, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(balanced_gains(), st.sampled_from([("tightest", F(1, 10**6)), ("feasible", F(1, 100)), ("tightest", F(1, 3))]))
+def test_the_balanced_constants_verify_and_never_raise_kappa(params, mode_margin):
+    from symbolic_friction._certify.closed_form import closed_form_certificate
+
+    mode, margin = mode_margin
+    a = params.k_v / params.k_i
+    cert = closed_form_certificate(params, mode=mode, margin=margin)
+    report = verify_certificate(cert)
+    assert report.proved, report.summary()
+    base = closed_form_constants(a, a, params.k_p, params.k_p, mu=margin, loose=mode == "feasible")
+    assert cert.kappa_squared <= base.kappa_squared
+    assert (cert.k1 == cert.k4) or (cert.k1, cert.k4) == (base.k1, base.k4)
+
+
+@pytest.mark.parametrize("case, premise", [("a", "k4 > k_p·k2"), ("large r", "k3 > (k_i/k_v)·k1")])
+def test_each_condition_of_the_balanced_constants_guards_a_premise(case, premise):
+    """Outside its two conditions the balanced form is not used, and forced there the verifier refuses it."""
+    from dataclasses import replace
+
+    from symbolic_friction._certify.closed_form import balanced, closed_form_certificate
+
+    params = Parameters.table_i("a") if case == "a" else Parameters(k_p=F(3), k_i=F(4), k_v=F(2), f_c=1)
+    a = params.k_v / params.k_i
+    base = closed_form_constants(a, a, params.k_p, params.k_p, mu=F(1, 100))
+    assert balanced(base, a, params.k_p) is None
+    T = sqrt_up(F(101, 100) * base.k3**2)
+    cert = closed_form_certificate(params, mode="tightest", margin=F(1, 100))
+    forced = replace(cert, k1=T, k4=T, c2_hat=(T + base.k3) / 2)
+    failures = [c.name for c in verify_certificate(forced).failures]
+    assert premise in failures
+
+
 def test_without_margin_the_closed_form_is_refused():
     with pytest.raises(ValueError, match="the margin μ must be positive"):
         closed_form_constants(F(8, 5), F(8, 5), F(3), F(3), mu=F(0))

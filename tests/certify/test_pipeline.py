@@ -85,7 +85,7 @@ def test_check_detects_a_valid_but_stale_certificate(table_dir, tmp_path):
     data["overshoot_bound"] = "100.000"
     path.write_text(json.dumps(data, indent=2, sort_keys=True) + "\n", encoding="utf-8")
     result = {r.path.name: r for r in check_committed_certificates(work)}["case_b_feasible.json"]
-    assert result.ok and "c2 100 → " in result.drift and "κ 100.000 → 8.01425 (better)" in result.drift
+    assert result.ok and "c2 100 → " in result.drift and "κ 100.000 → 8.01380 (better)" in result.drift
     result = {r.path.name: r for r in check_committed_certificates(work, strict=True)}["case_b_feasible.json"]
     assert result.proved and result.stale and "c2 100 → " in result.reason
 
