@@ -39,6 +39,7 @@ This is *search*: nothing here is called proved.  The verifier
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 from fractions import Fraction
@@ -51,6 +52,9 @@ __all__ = [
     "closed_form_constants",
     "closed_form_certificate",
     "balanced",
+    "balanced_conditions",
+    "balanced_formulas",
+    "balanced_radicand",
     "sqrt_up",
     "DEFAULT_MU",
     "SQRT_DIGITS",
@@ -238,6 +242,21 @@ def closed_form_constants(
     return ClosedFormConstants(mu=mu, **{name: _as_fraction(value) for name, value in c.items()})
 
 
+def balanced_radicand(k3: Any, mu: Any) -> Any:
+    """``(1+μ)k₃²``: the number whose rational upper root ``T`` is ``k₁ = k₄`` of :func:`balanced`."""
+    return (1 + mu) * k3 * k3
+
+
+def balanced_conditions(a: Any, k_p: Any, k3: Any, mu: Any, T: Any) -> tuple[tuple[str, Any], ...]:
+    """Where :func:`balanced` applies: ``(name, m)`` with the condition ``m ≥ 0``, in any arithmetic."""
+    return (("T ≥ (1+μ)·2k_p", T - (1 + mu) * 2 * k_p), ("(1+μ)·T ≤ k₃·a", k3 * a - (1 + mu) * T))
+
+
+def balanced_formulas(k3: Any, T: Any) -> dict[str, Any]:
+    """The constants :func:`balanced` changes: ``k₁ = k₄ = T`` and ``ĉ₂ = λ_max(K)/2 = (T + k₃)/2``."""
+    return {"k1": T, "k4": T, "c2_hat": (T + k3) / 2}
+
+
 def balanced(c: ClosedFormConstants, a: Fraction, k_p: Fraction, *, digits: int = SQRT_DIGITS) -> ClosedFormConstants | None:
     """The closed form with ``k₁ = k₄ = T`` instead of ``k₁ = 2``, where that is allowed and lowers ``ĉ₂``; else None.
 
@@ -245,24 +264,22 @@ def balanced(c: ClosedFormConstants, a: Fraction, k_p: Fraction, *, digits: int 
     smallest ``λ_max(K)`` is met by ``k₁ = k₄``: ``T`` is a rational with
     ``T² ≥ (1+μ)k₃²`` (``T ≈ √(1+μ)·k₃``), and then ``λ_max(K)/2 = (T + k₃)/2``
     exactly, so ``ĉ₂ = (T + k₃)/2`` needs no square root.  The other
-    k-conditions hold with the same margin ``μ`` where ``T ≥ (1+μ)·2k_p`` and
-    ``(1+μ)·T/a ≤ k₃`` (small ``k_p`` and ``k_i/k_v``, e.g. Table I case (b)):
-    ``k₃ > (k_i/k_v)k₁``, ``k₄ > k_p k₂`` by those, ``k₄ = T > k₃ ≥ (k_i/k_v)k₃``
-    because ``a > 1`` there, and ``ĉ₁ = 1 ≤ T/2``.  ``P``'s constants are
-    unchanged.  This is the point that the SDP's ``feasible`` search finds
-    (its margins, its trace objective), which the ``k₁ = 2`` family cannot
-    reach: in Table I case (b) at ``μ = 1/100`` it gives κ ≤ 8.01380 where
-    ``k₁ = 2`` gives 8.01425.  Search only: the verifier decides it like any
-    other certificate (``closed_form.all_gains`` is about ``k₁ = 2``).
+    k-conditions hold where ``T ≥ (1+μ)·2k_p`` and ``(1+μ)·T ≤ k₃·a``
+    (:func:`balanced_conditions`; small ``k_p`` and ``k_i/k_v``, e.g. Table I
+    case (b)).  ``P``'s constants are unchanged.  Obligation
+    ``closed_form.balanced`` proves, for all gains, that these constants
+    satisfy every premise of the verifier wherever the conditions hold.
+    This is the point that the SDP's ``feasible`` search finds (its margins,
+    its trace objective), which the ``k₁ = 2`` family cannot reach: in Table I
+    case (b) at ``μ = 1/100`` it gives κ ≤ 8.01380 where ``k₁ = 2`` gives 8.01425.
     """
-    mu = c.mu
-    T = sqrt_up((1 + mu) * c.k3 * c.k3, digits)
-    if not (T >= (1 + mu) * 2 * k_p and (1 + mu) * T <= c.k3 * a):
+    T = sqrt_up(balanced_radicand(c.k3, c.mu), digits)
+    if any(m < 0 for _, m in balanced_conditions(a, k_p, c.k3, c.mu, T)):
         return None
-    c2_hat = (T + c.k3) / 2
-    if not c2_hat < c.c2_hat:
+    changed = balanced_formulas(c.k3, T)
+    if not changed["c2_hat"] < c.c2_hat:
         return None
-    return ClosedFormConstants(k1=T, k2=c.k2, k3=c.k3, k4=T, c1=c.c1, c2=c.c2, c1_hat=c.c1_hat, c2_hat=c2_hat, mu=mu)
+    return dataclasses.replace(c, **changed)
 
 
 def closed_form_certificate(params: Any, *, mode: str, margin: Fraction, label: str = "") -> Any:

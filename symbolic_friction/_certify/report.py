@@ -148,8 +148,9 @@ def render_markdown(report: VerificationReport, *, name: str = "certificate.json
             f"relative margin {format_rational(prov.margin)} on the strict inequalities",
             (f"- numerical search: {prov.solver}, status `{prov.solver_status}` (a candidate only; "
              "the verdict above comes from the exact check)") if prov.search == "sdp" else
-            ("- search: the closed form of every gain set (no solver; obligation `closed_form.all_gains` proves it "
-             "for all gains; the verdict above comes from the exact check)"),
+            ("- search: the closed form of every gain set (no solver; obligations `closed_form.all_gains` and, "
+             "for its k₁ = k₄ variant, `closed_form.balanced` prove it for all gains; the verdict above comes "
+             "from the exact check)"),
             f"- proof obligations instantiated: {', '.join(f'`{o}`' for o in prov.obligations)}",
             *([f"- label: {prov.label}"] if prov.label else []),
             "",

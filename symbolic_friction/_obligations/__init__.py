@@ -27,6 +27,7 @@ def obligation_modules() -> tuple[ModuleType, ...]:
         certificate,
         claim1,
         closed_form,
+        closed_form_balanced,
         coordinates,
         cor1,
         distance,
@@ -44,7 +45,7 @@ def obligation_modules() -> tuple[ModuleType, ...]:
     )
 
     return (coordinates, regularization, assumption1, equilibria, distance, model, lemma1, lemma2, remark,
-            claim1, prop1, lemma3, cor1, table1, certificate, closed_form, quadratic, sup_flow)
+            claim1, prop1, lemma3, cor1, table1, certificate, closed_form, closed_form_balanced, quadratic, sup_flow)
 
 
 def registry() -> tuple[type[Obligation], ...]:
@@ -54,12 +55,14 @@ def registry() -> tuple[type[Obligation], ...]:
     test, equilibria, distance), the binding obligations, Lemma 1, Lemma 2 and
     its Remark, Claim 1, Proposition 1's attractivity, Lemma 3, Proposition 1's
     stability bound, Corollary 1, Table I, the verifier's bindings, and last the closed-form
-    certificate for all gains and the monotonicity that box certificates rest on.
+    certificate for all gains, the monotonicity that box certificates rest on and the closed form's
+    ``k₁ = k₄`` variant.
     """
     from .assumption1 import Assumption1Encoding, Assumption1Routh
     from .certificate import CertificateVerifier, VerifierDecision
     from .claim1 import Claim1Cases
     from .closed_form import ClosedFormAllGains, ClosedFormMonotone
+    from .closed_form_balanced import ClosedFormBalanced
     from .coordinates import Coordinates
     from .cor1 import Distances, Inflation
     from .distance import Distance
@@ -92,7 +95,7 @@ def registry() -> tuple[type[Obligation], ...]:
         MatricesRuntime, ModesRuntime, PNormRuntime,
         Lemma1Uniqueness, Lemma2P, Lemma2LowerBound, Lemma2dVdt, RemarkArmstrong, Claim1Cases,
         Prop1Invariance, LemmaR, HatVBounds, HatVDerivative, StabilityBound, Inflation, Distances, TableI,
-        Assumption1Encoding, CertificateVerifier, VerifierDecision, ClosedFormAllGains, ClosedFormMonotone,
+        Assumption1Encoding, CertificateVerifier, VerifierDecision, ClosedFormAllGains, ClosedFormMonotone, ClosedFormBalanced,
         QuadraticPStructure, QuadraticVDecrease, QuadraticURate, QuadraticUExit, QuadraticStabilityBound,
         SlipFlow, RestMinimum, Nonincreasing, Bounds, Exit, SupFlowStabilityBound,
     )

@@ -19,7 +19,7 @@ import sympy as sp
 
 from ._decide import is_zero
 
-__all__ = ["BASE", "SLACK", "K_SYMBOLS", "P_SYMBOLS", "p_cases", "k_cases", "evaluate", "frac_sign", "decide_in", "decide_group"]
+__all__ = ["BASE", "SLACK", "K_SYMBOLS", "P_SYMBOLS", "p_cases", "k_cases", "balanced_cases", "evaluate", "frac_sign", "decide_in", "decide_group", "decide_cases"]
 
 BASE = {n: sp.Symbol(n, positive=True) for n in ("a", "k_p", "k_i", "f_c", "mu", "S", "R", "eps", "eps_kappa")}
 SLACK = {n: sp.Symbol(n, positive=True) for n in ("p", "tau", "x", "h", "b", "s", "t", "u", "w")}
@@ -169,6 +169,32 @@ def k_cases(rho_branch: int, k4_branch: int) -> list[_Case]:
     return out
 
 
+@functools.lru_cache(maxsize=None)
+def balanced_cases(rho_branch: int) -> list[_Case]:
+    """Cases of the closed form with ``k₁ = k₄ = T`` (``T`` is the generator ``R``, ``T² = (1+μ)k₃² + v``).
+
+    ``rho_branch`` 1 (``ρ = 1``, ``k₃ = 2(1+μ)``): the set where both conditions of
+    :func:`~.._certify.closed_form.balanced_conditions` hold, exactly: ``k_p = T/(2(1+μ)(1+α))``
+    and ``a = T(1+β)/2`` with ``α, β, v ≥ 0`` (each ``= 0`` or ``> 0``; the inverse is
+    ``α = T/(2(1+μ)k_p) − 1``, ``β = 2a/T − 1``, ``v = T² − (1+μ)k₃²``).  ``rho_branch`` 0
+    (``r > 1``): ``a = 1/(1+t)`` and any ``k_p > 0``, where the conditions must fail.
+    """
+    F, g = _field()
+    T, mu = g["R"], g["mu"]
+    v_shapes = (("T² = (1+μ)k₃²", F(0)), ("T² > (1+μ)k₃²", g["u"]))
+    out = []
+    if rho_branch == 0:
+        for vlabel, v in v_shapes:
+            out.append(_Case(f"r > 1, {vlabel}", "K", _with_base({BASE["a"]: 1 / (1 + g["t"]), BASE["k_p"]: g["s"]}), v))
+        return out
+    for alabel, alpha in (("T = (1+μ)·2k_p", F(0)), ("T > (1+μ)·2k_p", g["h"])):
+        for blabel, beta in (("(1+μ)·T = k₃·a", F(0)), ("(1+μ)·T < k₃·a", g["b"])):
+            for vlabel, v in v_shapes:
+                values = {BASE["a"]: T * (1 + beta) / 2, BASE["k_p"]: T / (2 * (1 + mu) * (1 + alpha))}
+                out.append(_Case(f"{alabel}, {blabel}, {vlabel}", "K", _with_base(values), v))
+    return out
+
+
 # -- deciding -------------------------------------------------------------------------------
 
 def evaluate(expr: Any, values: dict, memo: dict | None = None) -> Any:
@@ -217,11 +243,27 @@ def frac_sign(frac: Any) -> int | None:
     return sn * sd
 
 
+def _without_root_power(frac: Any, iR: int) -> Any:
+    """``frac`` with a denominator ``R^m·D`` (``D`` free of ``R``) replaced by ``numer/D``: the same sign, as ``R > 0``.
+
+    None if the denominator's terms have different powers of ``R`` (then no sign is read from it).
+    """
+    powers = {monom[iR] for monom in frac.denom.monoms()}
+    if powers == {0}:
+        return frac
+    if len(powers) != 1:
+        return None
+    ctx = frac.denom.context()
+    terms = {tuple(0 if i == iR else e for i, e in enumerate(monom)): c for monom, c in zip(frac.denom.monoms(), frac.denom.coeffs())}
+    return _Frac(frac.numer, ctx.from_dict(terms))
+
+
 def _root_sign(frac: Any, radicand: Any) -> int | None:
     """A certified lower sign of ``frac`` (1: > 0, 0: ≥ 0) where the generator ``R`` is ``√radicand``, or None."""
     F, g = _field()
     iR = _GENS.index("R")
-    if frac.denom.degrees()[iR] > 0 or _coefficient_sign(frac.denom) not in (1, -1):
+    frac = _without_root_power(frac, iR)
+    if frac is None or _coefficient_sign(frac.denom) not in (1, -1):
         return None
     if _coefficient_sign(frac.denom) == -1:
         frac = _Frac(-frac.numer, -frac.denom)
@@ -271,6 +313,11 @@ def _decide_cases(expr: Any, kind: str, cases: list[_Case], radicand: Any = None
         if not _holds(lower, kind):
             return case.label
     return ""
+
+
+def decide_cases(expr: Any, kind: str, cases: list, radicand: Any) -> str:
+    """Decide ``expr kind 0`` in every case of ``cases`` (the generator ``R`` being ``√(radicand + extra)``)."""
+    return _decide_cases(sp.sympify(expr), kind, cases, radicand)
 
 
 def decide_in(expr: Any, kind: str, cases_p: list, cases_k: list, radicand: Any) -> str:
