@@ -63,6 +63,7 @@ _C = "symbolic_friction._cli.check."
 _E = "symbolic_friction._certify.sup_flow_enclosure."
 _S = "symbolic_friction._certify.sup_flow."
 _M = "symbolic_friction._model.sup_flow."
+_I = "symbolic_friction._obligations._inequalities."
 EQUIVALENT: dict[str, str] = {
     _V + "x_decide__mutmut_22": "minors of the entries themselves instead of their Fraction copies: _exact has refused every "
     "entry that is not an int or a Fraction, and Fraction(x) == x for those, so every minor has the same value",
@@ -143,4 +144,9 @@ EQUIVALENT: dict[str, str] = {
     "before it is read",
     _C + "x_run__mutmut_25": "as_json is read only by truth value (if, not, and emit's err=, which picks the stream by it): None is False",
     _C + "x_run__mutmut_136": "json reads ensure_ascii only by truth value (if self.ensure_ascii: …): None is False",
+    _I + "x_is_nonneg__mutmut_23": "a polynomial's denominator 2 for 1: den is read only by the test den > 0, which 2 "
+    "passes as 1 does",
+    _I + "x_is_nonneg__mutmut_29": "for a number 0 < den ≤ 1 the mutant asks sign_of(den), i.e. den.is_positive, which sympy "
+    "decides from den's evalf as it decides den > 0 (where it cannot, the original's comparison raises and the mutant "
+    "refuses: neither proves)",
 }
