@@ -669,3 +669,29 @@ def test_at_most_64_systems_are_kept(monkeypatch):
     assert len(E._SYSTEMS) == 64
     E._system_of(SimpleNamespace(k_p=Fraction(3), k_i=Fraction(4), k_v=Fraction(100)))
     assert len(E._SYSTEMS) == 1  # the 65th clears the others
+
+
+def test_exit_holds_decides_the_other_plane_after_the_shortcut_proves_one():
+    # σ > 0: the form on v = 0 is clearly copositive, the one on φ = f_c has the diagonal entry 1 − 2 < 0
+    k = _arbs(((1, 0, 0), (0, 1, 0), (0, 0, 1)))
+    gram = _arbs(((0, 0, 0), (0, 0, 0), (0, 0, 2)))
+    holds, why = E._exit_holds(k, gram)
+    assert holds is False and why.startswith("φ = f_c, sign σ = +: "), why
+
+
+def test_the_shortcut_spares_the_exact_decision_of_a_clearly_copositive_form(monkeypatch):
+    from symbolic_friction._certify import copositive
+
+    def exact(rows):
+        raise AssertionError("decided exactly")
+
+    monkeypatch.setattr(copositive, "decide_copositive", exact)
+    k = _arbs(((2, 0, 0), (0, 2, 0), (0, 0, 2)))
+    assert E._exit_holds(k, _arbs(((0, 0, 0), (0, 0, 0), (0, 0, 0)))) == (True, "")
+
+
+def test_the_reader_names_its_source_in_the_shared_checks_and_defaults_to_string():
+    _refused(lambda: SupFlowCertificate.from_dict([], source="f.json"), "f.json: a sup-flow certificate is a JSON object; got list")
+    _refused(lambda: SupFlowCertificate.from_dict([]), "<string>: a sup-flow certificate is a JSON object; got list")
+    _refused(lambda: SupFlowCertificate.from_dict({**_case_a(), "pieces": []}),
+             "<string>: pieces must be a list of 1 to 256 objects; got 0")
