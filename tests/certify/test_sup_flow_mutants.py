@@ -408,3 +408,290 @@ def test_exit_map_refuses_an_unknown_plane_naming_the_planes():
 
     with pytest.raises(ValueError, match=r"exit plane must be one of \('v = 0', 'φ = f_c'\); got 'v = 1'"):
         model.exit_map("v = 1", 1)
+
+
+# -- the reader: SupFlowPiece, SupFlowCertificate, from_dict, load_sup_flow ------------------------------
+# Each validation refuses a bad value with the message naming it, and accepts the good value at its boundary.
+
+import dataclasses  # noqa: E402
+
+from symbolic_friction._certify.sup_flow import (  # noqa: E402
+    CONSTANTS, MAX_PIECES, PARAMETERS, PIECE_CONSTANTS, SupFlowPiece, load_sup_flow)
+from symbolic_friction._infra.errors import CertificateFormatError  # noqa: E402
+
+_K = {"k11": 2, "k13": -1, "k22": 2, "k23": Fraction(1, 3), "k33": 1, "gamma": 3}
+_ALLOWED = "start, end, k11, k13, k22, k23, k33, gamma"
+
+
+def _piece(**fields):
+    args = {"start": Fraction(0), "end": None, "constants": dict(_K)}
+    args.update(fields)
+    return SupFlowPiece(**args)
+
+
+def _refused(build, message):
+    with pytest.raises(CertificateFormatError) as caught:
+        build()
+    assert str(caught.value) == message
+
+
+def test_a_piece_holds_fractions_of_the_ints_it_is_given():
+    piece = _piece(start=1, end=2, constants=dict(reversed(list(_K.items()))))
+    assert (piece.start, piece.end) == (1, 2) and type(piece.start) is Fraction and type(piece.end) is Fraction
+    assert list(piece.constants) == list(PIECE_CONSTANTS)  # in the format's order, whatever order was given
+    assert piece.constants == {n: Fraction(_K[n]) for n in PIECE_CONSTANTS}
+    assert all(type(v) is Fraction for v in piece.constants.values())
+    assert _piece().end is None  # ∞
+    assert _piece(start=Fraction(-1, 3)).start == Fraction(-1, 3)  # any sign: the order of pieces is a premise
+
+
+@pytest.mark.parametrize("value", ["0", 0.5, True, None])
+def test_a_piece_start_must_be_an_exact_rational(value):
+    _refused(lambda: _piece(start=value), f"piece start must be an exact rational; got {value!r}")
+
+
+@pytest.mark.parametrize("value", ["1/2", 0.5, False])
+def test_a_piece_end_must_be_an_exact_rational_or_none(value):
+    _refused(lambda: _piece(end=value), f"piece end must be an exact rational; got {value!r}")
+
+
+@pytest.mark.parametrize("name", PIECE_CONSTANTS)
+def test_each_piece_constant_must_be_an_exact_rational(name):
+    _refused(lambda: _piece(constants={**_K, name: "1"}), f"piece {name} must be an exact rational; got '1'")
+
+
+def test_a_piece_has_exactly_its_six_constants():
+    missing = {n: v for n, v in _K.items() if n != "gamma"}
+    _refused(lambda: _piece(constants=missing),
+             "a piece's constants must be exactly k11, k13, k22, k23, k33, gamma; got k11, k13, k22, k23, k33")
+    _refused(lambda: _piece(constants={**_K, "k12": 0}),
+             "a piece's constants must be exactly k11, k13, k22, k23, k33, gamma; got gamma, k11, k12, k13, k22, k23, k33")
+
+
+def test_a_certificate_holds_fractions_of_the_ints_it_is_given():
+    cert = _certificate()
+    made = dataclasses.replace(cert, k_p=3, k_i=4, k_v=Fraction(32, 5), f_c=1, constants={"p": 1, "c2": 2},
+                               pieces=list(cert.pieces))
+    assert made.parameters == {"k_p": 3, "k_i": 4, "k_v": Fraction(32, 5), "f_c": 1}
+    assert all(type(getattr(made, n)) is Fraction for n in PARAMETERS)
+    assert list(made.constants) == list(CONSTANTS) and made.constants == {"c2": 2, "p": 1}
+    assert all(type(v) is Fraction for v in made.constants.values())
+    assert made.pieces == cert.pieces and type(made.pieces) is tuple
+    negative = dataclasses.replace(cert, k_i=-4, constants={"c2": -1, "p": 0})  # signs are premises, not format
+    assert (negative.k_i, negative.constants) == (-4, {"c2": -1, "p": 0})
+
+
+@pytest.mark.parametrize("name", PARAMETERS)
+def test_each_gain_must_be_an_exact_rational(name):
+    _refused(lambda: dataclasses.replace(_certificate(), **{name: "3"}), f"parameters.{name} must be an exact rational; got '3'")
+
+
+def test_the_constants_are_exactly_c2_and_p_each_exact():
+    cert = _certificate()
+    _refused(lambda: dataclasses.replace(cert, constants={"c2": 2}), "constants must be exactly c2, p; got c2")
+    _refused(lambda: dataclasses.replace(cert, constants={"c2": 2, "p": 1, "q": 0}),
+             "constants must be exactly c2, p; got c2, p, q")
+    _refused(lambda: dataclasses.replace(cert, constants={"c2": 0.5, "p": 1}), "constants.c2 must be an exact rational; got 0.5")
+    _refused(lambda: dataclasses.replace(cert, constants={"c2": 2, "p": "1"}), "constants.p must be an exact rational; got '1'")
+
+
+def test_a_certificate_has_1_to_max_pieces_pieces():
+    cert = _certificate()
+    piece = cert.pieces[-1]
+    assert len(dataclasses.replace(cert, pieces=(piece,)).pieces) == 1
+    assert len(dataclasses.replace(cert, pieces=(piece,) * MAX_PIECES).pieces) == MAX_PIECES == 256
+    _refused(lambda: dataclasses.replace(cert, pieces=()), "a sup-flow certificate has 1 to 256 pieces; got 0")
+    _refused(lambda: dataclasses.replace(cert, pieces=(piece,) * 257), "a sup-flow certificate has 1 to 256 pieces; got 257")
+    _refused(lambda: dataclasses.replace(cert, pieces=(piece, piece.to_dict())),
+             "a sup-flow certificate has 1 to 256 pieces; got 2")
+
+
+def _case_a():
+    return json.loads((PROOFS / "case_a.json").read_text(encoding="utf-8"))
+
+
+def test_the_reader_reads_every_number_of_the_file():
+    data = _case_a()
+    cert = SupFlowCertificate.from_dict(data)
+    assert cert.parameters == {n: Fraction(data["parameters"][n]) for n in PARAMETERS}
+    assert cert.constants == {n: Fraction(data["constants"][n]) for n in CONSTANTS}
+    assert len(cert.pieces) == len(data["pieces"]) == 33
+    for piece, item in zip(cert.pieces, data["pieces"]):
+        assert piece.start == Fraction(item["start"])
+        assert piece.end == (None if item["end"] == "inf" else Fraction(item["end"]))
+        assert piece.constants == {n: Fraction(item[n]) for n in PIECE_CONSTANTS}
+    assert cert.pieces[-1].end is None and cert.pieces[-2].end == cert.pieces[-1].start == 32
+    assert cert.overshoot_bound == data["overshoot_bound"] and cert.provenance.to_dict() == data["provenance"]
+    assert SupFlowCertificate.from_dict(cert.to_dict()) == cert
+
+
+def _from(edit, source="f.json"):
+    data = _case_a()
+    edit(data)
+    return lambda: SupFlowCertificate.from_dict(data, source=source)
+
+
+def test_the_reader_takes_1_to_max_pieces_pieces():
+    one = SupFlowCertificate.from_dict({**_case_a(), "pieces": _case_a()["pieces"][-1:]})
+    assert len(one.pieces) == 1 and one.pieces[0].end is None
+    many = SupFlowCertificate.from_dict({**_case_a(), "pieces": _case_a()["pieces"][-1:] * MAX_PIECES})
+    assert len(many.pieces) == MAX_PIECES
+    message = "f.json: pieces must be a list of 1 to 256 objects; got {}"
+    _refused(_from(lambda d: d.update(pieces=[])), message.format(0))
+    _refused(_from(lambda d: d.update(pieces=d["pieces"][-1:] * 257)), message.format(257))
+    _refused(_from(lambda d: d.update(pieces={"0": d["pieces"][0]})), message.format("dict"))
+    _refused(_from(lambda d: d.update(pieces="pieces"), source="g.json"),
+             "g.json: pieces must be a list of 1 to 256 objects; got str")
+
+
+def test_each_piece_must_be_an_object_with_exactly_its_keys():
+    _refused(_from(lambda d: d["pieces"].__setitem__(1, "piece")), "f.json: pieces[1] must be a JSON object; got str")
+    _refused(_from(lambda d: d["pieces"][1].pop("k23")), f"missing key 'pieces[1].k23' in pieces[1] (required: {_ALLOWED})")
+    _refused(_from(lambda d: d["pieces"][1].pop("start")), f"missing key 'pieces[1].start' in pieces[1] (required: {_ALLOWED})")
+    _refused(_from(lambda d: d["pieces"][1].pop("end")), f"missing key 'pieces[1].end' in pieces[1] (required: {_ALLOWED})")
+    _refused(_from(lambda d: d["pieces"][1].update(k12="0")), f"unknown key 'k12' in pieces[1] (allowed: {_ALLOWED})")
+
+
+@pytest.mark.parametrize("key", ["start", "end", *PIECE_CONSTANTS])
+def test_each_piece_value_is_an_exact_rational_string_named_by_its_place(key):
+    shape = "must be an exact rational string such as '32/5' or '4' (ASCII digits, no decimals, no spaces)"
+    _refused(_from(lambda d: d["pieces"][1].update({key: "1.5"})), f"pieces[1].{key} {shape}; got '1.5'")
+    _refused(_from(lambda d: d["pieces"][2].update({key: 2})),
+             f"pieces[2].{key} must be a string holding an exact rational such as '32/5' or '4'; got the int 2")
+    if key != "end":
+        _refused(_from(lambda d: d["pieces"][1].update({key: "inf"})), f"pieces[1].{key} {shape}; got 'inf'")
+
+
+def test_only_the_end_reads_inf_as_infinity_and_only_spelled_inf():
+    cert = SupFlowCertificate.from_dict(_case_a())
+    assert [p.end is None for p in cert.pieces] == [False] * 32 + [True]
+    shape = "must be an exact rational string such as '32/5' or '4' (ASCII digits, no decimals, no spaces)"
+    _refused(_from(lambda d: d["pieces"][-1].update(end="Inf")), f"pieces[32].end {shape}; got 'Inf'")
+
+
+def test_load_reads_the_file_and_names_it(tmp_path):
+    good = tmp_path / "case_a.json"
+    good.write_text((PROOFS / "case_a.json").read_text(encoding="utf-8"), encoding="utf-8")
+    assert load_sup_flow(good) == load_sup_flow(str(good)) == SupFlowCertificate.from_dict(_case_a())
+    bad = tmp_path / "bad.json"
+    bad.write_text(json.dumps({**_case_a(), "pieces": []}), encoding="utf-8")
+    _refused(lambda: load_sup_flow(bad), f"{bad}: pieces must be a list of 1 to 256 objects; got 0")
+
+
+# -- _lower_ends_clearly_copositive: the arb shortcut proves a form only where the exact decision does ---
+
+
+def _form(rows):
+    import flint
+
+    return tuple(tuple(x if isinstance(x, flint.arb) else flint.arb(Fraction(x).numerator) / Fraction(x).denominator
+                       for x in row) for row in rows)
+
+
+def _exact_lower_ends(form):
+    from symbolic_friction._certify.copositive import decide_copositive
+
+    off = min(E._lower(form[0][1]), E._lower(form[1][0]))  # as _exit_holds builds the symmetric matrix
+    return decide_copositive(((E._lower(form[0][0]), off), (off, E._lower(form[1][1])))).holds
+
+
+@pytest.mark.parametrize("rows", [
+    [[0, 1], [1, 1]],  # a = 0 is on the boundary of a ≥ 0
+    [[1, 1], [1, 0]],  # c = 0
+    [[Fraction(1, 4), Fraction(1, 2)], [Fraction(1, 2), Fraction(1, 4)]],  # 0 ≤ b < 1 with b² > ac
+    [[1, -1], [-1, 4]],  # b < 0 with b² = 1 ≤ ac = 4 (but > a/c)
+    [[1, 0], [0, 1]],
+])
+def test_the_shortcut_proves_copositive_lower_ends_at_the_boundaries(rows):
+    form = _form(rows)
+    assert _exact_lower_ends(form) is True
+    assert E._lower_ends_clearly_copositive(form) is True
+
+
+@pytest.mark.parametrize("rows", [
+    [[1, 1], [1, "wide"]],  # c's lower end is −2, its upper end 2
+    [[1, "wide"], [1, 1]],  # the (1,2) entry reaches −2 (its upper end does not)
+    [[1, 1], ["wide", 1]],  # the (2,1) entry reaches −2
+    [[1, -2], [1, 1]],  # b is the smaller off-diagonal end, not the diagonal c
+    [[1, 1], [-2, 1]],
+    [[16, -3], [-3, Fraction(1, 4)]],  # b² = 9 > ac = 4 (though ≤ a/c = 64)
+])
+def test_the_shortcut_does_not_prove_what_the_exact_decision_refutes(rows):
+    import flint
+
+    form = _form([[flint.arb(0, 2) if x == "wide" else x for x in row] for row in rows])
+    assert _exact_lower_ends(form) is False
+    assert E._lower_ends_clearly_copositive(form) is False
+
+
+@pytest.mark.parametrize("where", [(0, 0), (0, 1), (1, 1)])
+def test_the_shortcut_proves_nothing_with_an_infinite_end(where):
+    import flint
+
+    rows = [[1, 0], [0, 1]]
+    rows[where[0]][where[1]] = flint.arb(float("inf"))
+    if where == (0, 1):
+        rows[1][0] = flint.arb(float("inf"))
+    form = _form(rows)
+    assert form[where[0]][where[1]].lower() >= 0  # +∞: "nonnegative", but no number the exact decision can take
+    assert E._lower_ends_clearly_copositive(form) is False
+
+
+# -- _system_of: A built once per gains and precision, at most 64 kept ---------------------------------
+
+
+def _entries_text(m):
+    return [str(m[i, j]) for i in range(3) for j in range(3)]
+
+
+def test_the_system_is_the_one_of_its_own_gains_and_built_once(monkeypatch):
+    import flint
+
+    from symbolic_friction._certify.flow_bound import _system
+
+    monkeypatch.setattr(E, "_SYSTEMS", {})
+    other = SimpleNamespace(k_p=Fraction(3), k_i=Fraction(4), k_v=Fraction(7))  # only k_v differs
+    old = flint.ctx.prec
+    try:
+        flint.ctx.prec = 200
+        first = E._system_of(GAINS)
+        assert E._system_of(GAINS) is first  # the same balls every time
+        assert _entries_text(E._system_of(other)) == _entries_text(_system(other)) != _entries_text(first)
+        assert _entries_text(first) == _entries_text(_system(GAINS))
+    finally:
+        flint.ctx.prec = old
+
+
+def test_at_most_64_systems_are_kept(monkeypatch):
+    monkeypatch.setattr(E, "_SYSTEMS", {})
+    for k_v in range(10, 10 + 64):
+        E._system_of(SimpleNamespace(k_p=Fraction(3), k_i=Fraction(4), k_v=Fraction(k_v)))
+    assert len(E._SYSTEMS) == 64
+    E._system_of(SimpleNamespace(k_p=Fraction(3), k_i=Fraction(4), k_v=Fraction(100)))
+    assert len(E._SYSTEMS) == 1  # the 65th clears the others
+
+
+def test_exit_holds_decides_the_other_plane_after_the_shortcut_proves_one():
+    # σ > 0: the form on v = 0 is clearly copositive, the one on φ = f_c has the diagonal entry 1 − 2 < 0
+    k = _arbs(((1, 0, 0), (0, 1, 0), (0, 0, 1)))
+    gram = _arbs(((0, 0, 0), (0, 0, 0), (0, 0, 2)))
+    holds, why = E._exit_holds(k, gram)
+    assert holds is False and why.startswith("φ = f_c, sign σ = +: "), why
+
+
+def test_the_shortcut_spares_the_exact_decision_of_a_clearly_copositive_form(monkeypatch):
+    from symbolic_friction._certify import copositive
+
+    def exact(rows):
+        raise AssertionError("decided exactly")
+
+    monkeypatch.setattr(copositive, "decide_copositive", exact)
+    k = _arbs(((2, 0, 0), (0, 2, 0), (0, 0, 2)))
+    assert E._exit_holds(k, _arbs(((0, 0, 0), (0, 0, 0), (0, 0, 0)))) == (True, "")
+
+
+def test_the_reader_names_its_source_in_the_shared_checks_and_defaults_to_string():
+    _refused(lambda: SupFlowCertificate.from_dict([], source="f.json"), "f.json: a sup-flow certificate is a JSON object; got list")
+    _refused(lambda: SupFlowCertificate.from_dict([]), "<string>: a sup-flow certificate is a JSON object; got list")
+    _refused(lambda: SupFlowCertificate.from_dict({**_case_a(), "pieces": []}),
+             "<string>: pieces must be a list of 1 to 256 objects; got 0")

@@ -150,3 +150,53 @@ def test_an_argument_of_the_extremum_equal_only_as_a_value_is_found():
     a, b = pos("a"), pos("b")
     assert is_upper_bound_of(sp.Max((a + 1) ** 2, b), [a**2 + 2 * a + 1]) is True
 
+
+
+@pytest.mark.parametrize(
+    "expr",
+    [
+        (y + sp.Piecewise((x, x > 0))) ** 2,  # undefined (nan) for x ≤ 0, though a square by its form
+        sp.Abs(sp.Symbol("z")) ** 2,  # |z|² of a complex z: sympy keeps it, and Abs is real
+        sp.sign(x) ** 2,
+        sp.Max(0, x) ** 2,
+        sp.Min(0, x) ** 2,
+    ],
+)
+def test_is_nonneg_certifies_rational_functions_only(expr):
+    """A Piecewise, Abs, sign, Max or Min is split into cases first (``resolve_piecewise``, ``line_cases``): is_nonneg
+    refuses it even where its written form is an even power of a real expression, each of the five on its own."""
+    assert is_nonneg(expr) is False
+
+
+def test_is_nonneg_does_not_certify_an_undefined_piecewise():
+    expr = (y + sp.Piecewise((x, x > 0))) ** 2
+    assert expr.subs({x: -1, y: 0}) is sp.nan and is_nonneg(expr) is False
+
+
+def test_a_number_denominator_must_be_positive_not_only_nonnegative():
+    zero = (1 + sp.sqrt(2)) * (sp.sqrt(2) - 1) - 1  # 0, visible only once expanded
+    assert sp.expand(zero) == 0
+    assert is_nonneg(x**2 / zero) is False  # x²/0 is no certificate
+    assert is_nonneg(x**2 / (sp.sqrt(2) - 1)) is True  # a positive number below 1 is a positive denominator
+
+
+def test_a_positive_symbol_denominator_is_accepted():
+    """``(x − y)²/a`` expanded: not nonnegative by its written form (−2xy), so the denominator ``a`` (positive,
+    sign 1) is checked and the numerator's Gram matrix proves it."""
+    assert is_nonneg((x**2 - 2 * x * y + y**2) / a) is True
+    assert is_nonneg((x**2 - 2 * x * y + y**2) / (a - b)) is False  # a − b has no sign
+
+
+def test_is_nonneg_refuses_radicals_of_a_real_symbol():
+    """``(x^{1/3} − 1)²`` expanded factors as a square over the radical, but sympy's x^{1/3} is the principal root:
+    at x = −1 the value is −1/2 − (√3/2)i, not a nonnegative number."""
+    expr = x ** sp.Rational(2, 3) - 2 * x ** sp.Rational(1, 3) + 1
+    assert sp.expand_complex(expr.subs(x, -1)) == -sp.Rational(1, 2) - sp.sqrt(3) * sp.I / 2
+    assert is_nonneg(expr) is False
+
+
+def test_nonnegative_monomials_alone_prove_a_polynomial():
+    """``(n + 1)(n² − n + 1) = n³ + 1``: not by its written form (−n), no Gram matrix (degree 3) and its factor
+    ``n² − n + 1`` has no sign by its monomials; the expanded monomials alone prove it."""
+    n3 = (n + 1) * (n**2 - n + 1)
+    assert is_nonneg(n3) is True
