@@ -324,17 +324,15 @@ _SYMBOL = {">": ">", ">=": "≥", "<=": "≤", "==": "="}
 
 def _exact(value: Any, what: str) -> fmpq:
     """``value`` as an ``fmpq``; anything but an int or a rational (``Fraction``, ``fmpq``) is refused."""
-    kind = type(value)
-    if kind is fmpq:  # the common case, without a copy
+    if type(value) is fmpq:  # the common case, without a copy
         return value
-    if kind is Fraction or (isinstance(value, (int, Fraction)) and not isinstance(value, bool)):
-        return fmpq(value.numerator, value.denominator)
-    raise CertificateError(f"{what}: the verifier decides exact rationals only; got {kind.__name__} {value!r}")
+    if isinstance(value, bool) or not isinstance(value, (int, Fraction)):
+        raise CertificateError(f"{what}: the verifier decides exact rationals only; got {type(value).__name__} {value!r}")
+    return fmpq(value.numerator, value.denominator)
 
 
-def _text(q: Any) -> str:
+def _text(q: fmpq) -> str:
     """``format_rational(q)``, from FLINT's decimal digits (exact at any size, and faster than ``str(fmpq)``)."""
-    q = _exact(q, "a number to write")
     num = q.p.str()
     return num if q.q == 1 else f"{num}/{q.q.str()}"
 
@@ -459,9 +457,12 @@ class _Exact:
     """A certificate's numbers as the premises read them: ``fmpq`` (``kappa`` exact from its decimal string)."""
 
     def __init__(self, cert: Certificate) -> None:
+        # a Certificate holds Fractions only (checked on construction), so each is taken to fmpq as it is
         for name in (*PARAMETER_NAMES, *CONSTANT_NAMES):
-            setattr(self, name, _exact(getattr(cert, name), name))
-        self.kappa = _exact(Fraction(cert.overshoot_bound), "overshoot_bound")
+            q = getattr(cert, name)
+            setattr(self, name, fmpq(q.numerator, q.denominator))
+        kappa = Fraction(cert.overshoot_bound)
+        self.kappa = fmpq(kappa.numerator, kappa.denominator)
 
 
 def verify_file(path: str | os.PathLike[str]) -> VerificationReport:

@@ -27,7 +27,6 @@ def obligation_modules() -> tuple[ModuleType, ...]:
         certificate,
         claim1,
         closed_form,
-        closed_form_balanced,
         coordinates,
         cor1,
         distance,
@@ -45,7 +44,7 @@ def obligation_modules() -> tuple[ModuleType, ...]:
     )
 
     return (coordinates, regularization, assumption1, equilibria, distance, model, lemma1, lemma2, remark,
-            claim1, prop1, lemma3, cor1, table1, certificate, closed_form, closed_form_balanced, quadratic, sup_flow)
+            claim1, prop1, lemma3, cor1, table1, certificate, closed_form, quadratic, sup_flow)
 
 
 def registry() -> tuple[type[Obligation], ...]:
@@ -61,8 +60,7 @@ def registry() -> tuple[type[Obligation], ...]:
     from .assumption1 import Assumption1Encoding, Assumption1Routh
     from .certificate import CertificateVerifier, VerifierDecision
     from .claim1 import Claim1Cases
-    from .closed_form import ClosedFormAllGains, ClosedFormMonotone
-    from .closed_form_balanced import ClosedFormBalanced
+    from .closed_form import ClosedFormAllGains, ClosedFormBalanced, ClosedFormMonotone
     from .coordinates import Coordinates
     from .cor1 import Distances, Inflation
     from .distance import Distance

@@ -35,6 +35,19 @@
   ``⪯ 0``, all principal minors).  So the least margin over a box
   ``[a_lo, a_hi] × [kp_lo, kp_hi]`` is at one of its four corners, and a box
   certificate that holds at the four corners holds on the whole box.
+* ``closed_form.balanced`` — the variant
+  :func:`~symbolic_friction._certify.closed_form.balanced` (``k₁ = k₄ = T``,
+  ``ĉ₂ = (T + k₃)/2``, ``T² ≥ (1+μ)k₃²``) where the two conditions of
+  :func:`~symbolic_friction._certify.closed_form.balanced_conditions` hold:
+  those functions and ``premises`` run on symbols; for ``r = k_i/k_v > 1`` the
+  second condition fails (so ``ρ = 1`` wherever the variant applies, and the
+  code's ``max(r, 1)`` picks 1 there); where they hold, parametrised exactly by
+  :func:`._closed_form_cases.balanced_cases` (boundaries as their own cases),
+  every premise holds: a row equal to the ``k₁ = 2`` form's (those on ``P``,
+  ``c₁``, ``c₂``, which the variant does not change) is
+  ``closed_form.all_gains``'; every other row is decided here, ``T`` entering
+  as ``A + B·T`` with ``T² = (1+μ)k₃² + v``; and the numeric builder gives
+  these constants at sample gains.
 """
 
 from __future__ import annotations
@@ -48,17 +61,27 @@ import sympy as sp
 
 from .._certify import verify as _verify
 from .._certify.certificate import kappa_squared
-from .._certify.closed_form import closed_form_constants, closed_form_formulas
+from .._certify.closed_form import (
+    balanced,
+    balanced_conditions,
+    balanced_formulas,
+    balanced_radicand,
+    closed_form_constants,
+    closed_form_formulas,
+)
 from ._base import Obligation, Outcome
 from ._decide import is_zero, sign_of
 from .certificate import SymbolicCertificate
 
-__all__ = ["OBLIGATIONS", "ClosedFormAllGains", "ClosedFormMonotone", "AllGainsSubject", "MonotoneSubject"]
+__all__ = ["OBLIGATIONS", "ClosedFormAllGains", "ClosedFormMonotone", "ClosedFormBalanced", "AllGainsSubject", "MonotoneSubject"]
 
+from ._closed_form_balanced import BALANCED_SAMPLES, BalancedSubject, stated_mismatch
 from ._closed_form_cases import (
     K_SYMBOLS,
     BASE,
     P_SYMBOLS,
+    balanced_cases,
+    decide_cases,
     decide_group,
     decide_in,
     evaluate,
@@ -338,4 +361,87 @@ class ClosedFormMonotone(Obligation):
                        (("\\text{premises}", str(len(subject.rows))),))
 
 
-OBLIGATIONS: tuple[type[Obligation], ...] = (ClosedFormAllGains, ClosedFormMonotone)
+class ClosedFormBalanced(Obligation):
+    id = "closed_form.balanced"
+    paper = "Lemma 3 (k₁ … k₄), Lemma 2, Proposition 1; the exact verifier's premises"
+    statement = (
+        "for all gains with k_v·k_p > k_i > 0, f_c > 0, all μ > 0 and all T ≥ 0 with T² ≥ (1+μ)k₃²: where "
+        "T ≥ (1+μ)·2k_p and (1+μ)·T ≤ k₃·a, the closed form with k₁ = k₄ = T, ĉ₂ = (T + k₃)/2 satisfies every premise "
+        "of the exact verifier; for k_i/k_v > 1 those conditions never hold"
+    )
+    method = (
+        "balanced_formulas, balanced_conditions and verify.premises run on symbols; the conditions' set "
+        "parametrised exactly (k_p = T/(2(1+μ)(1+α)), a = T(1+β)/2, T² = (1+μ)k₃² + v, each slack = 0 or > 0); "
+        "rows unchanged from the k₁ = 2 form are closed_form.all_gains'; the others decided as A + B·T"
+    )
+
+    def derive(self) -> BalancedSubject:
+        a, k_p, mu, T = BASE["a"], BASE["k_p"], BASE["mu"], BASE["R"]
+        rows = []
+        region: tuple = ()
+        rho_pick = radicand = sp.Integer(0)
+        for c1_choice in (0, 1):
+            ops = _SymOps({"rho": 1, "k4": 0, "c1": c1_choice})
+            base = closed_form_formulas(a, a, k_p, k_p, mu, ops)
+            constants = {**base, **balanced_formulas(base["k3"], T)}
+            rows.append((c1_choice, _rows(_verify.premises(_certificate(constants))), _rows(_verify.premises(_certificate(base)))))
+            region = tuple((n, sp.sympify(m)) for n, m in balanced_conditions(a, k_p, base["k3"], mu, T))
+            rho_pick = next(chosen - other for name, _, chosen, other in ops.picks if name == "rho")
+            radicand = sp.sympify(balanced_radicand(base["k3"], mu))
+        ops = _SymOps({"rho": 0, "k4": 0, "c1": 0})
+        base = closed_form_formulas(a, a, k_p, k_p, mu, ops)
+        above = tuple((n, sp.sympify(m)) for n, m in balanced_conditions(a, k_p, base["k3"], mu, T))
+        samples = []
+        for a_, kp, mu_, loose in BALANCED_SAMPLES:
+            c = closed_form_constants(a_, a_, kp, kp, mu=mu_, loose=loose)
+            samples.append((a_, kp, mu_, loose, c, balanced(c, a_, kp)))
+        return BalancedSubject(tuple(rows), region, sp.sympify(rho_pick), radicand, above,
+                               sp.sympify(balanced_radicand(base["k3"], mu)), tuple(samples))
+
+    def verify(self, subject: BalancedSubject) -> Outcome:
+        if not subject.rows or not subject.region or not subject.samples:
+            return Outcome.fail("the subject has no premise rows, no conditions or no numeric samples")
+        # the cases are written for the stated conditions: the code's must be those, or the cases would not cover them
+        a, k_p, mu, T = BASE["a"], BASE["k_p"], BASE["mu"], BASE["R"]
+        stated = (T - (1 + mu) * 2 * k_p, 2 * (1 + mu) * a - (1 + mu) * T)  # k₃ = 2(1+μ) where ρ = 1
+        if len(subject.region) != 2 or any(not is_zero(m - want) for (_, m), want in zip(subject.region, stated)):
+            return Outcome.fail("the code's conditions are not the stated T ≥ (1+μ)·2k_p and (1+μ)·T ≤ k₃·a: "
+                                + "; ".join(f"{n}: {m} ≥ 0" for n, m in subject.region))
+        cases, cases_above = balanced_cases(1), balanced_cases(0)
+        # r > 1: the second condition (1+μ)·T ≤ k₃·a fails, so the form never applies there
+        name, margin = subject.above[-1]
+        why = decide_cases(-margin, ">", cases_above, subject.radicand_above)
+        if why:
+            return Outcome.fail(f"for r > 1 the condition {name} is not shown to fail in the case {why}")
+        # ρ = 1: the cases lie in the conditions' set, and the code's max(r, 1) picks 1 there
+        for name, margin in subject.region:
+            why = decide_cases(margin, ">=", cases, subject.radicand)
+            if why:
+                return Outcome.fail(f"the case {why} is not inside the condition {name}")
+        why = decide_cases(subject.rho_pick, ">=", cases, subject.radicand)
+        if why:
+            return Outcome.fail(f"ρ = max(r, 1) does not pick 1 in the case {why}")
+        decided = kept = 0
+        for c1_choice, rows, base_rows in subject.rows:
+            same = {(n, k): m for n, m, k in base_rows}
+            cases_p = p_cases(c1_choice)
+            for name, margin, kind in rows:
+                if BASE["R"] not in margin.free_symbols and (name, kind) in same and is_zero(margin - same[(name, kind)]):
+                    kept += 1  # the k₁ = 2 form's own row: closed_form.all_gains
+                    continue
+                decided += 1
+                why = decide_in(margin, kind, cases_p, cases, subject.radicand)
+                if why:
+                    return Outcome.fail(f"premise {name} ({kind} 0) is not proved in the case {why} (c₁ choice {c1_choice + 1})")
+        if not decided:
+            return Outcome.fail("no premise row differs from the k₁ = 2 form: nothing was decided")
+        for a_, kp, mu_, loose, base, got in subject.samples:
+            why = stated_mismatch(base, got)
+            if why:
+                return Outcome.fail(f"balanced() at a = {a_}, k_p = {kp}, μ = {mu_} differs from the stated form in {why}")
+        return Outcome(True, f"{decided} premise rows decided over {len(cases)} cases of the conditions' set, "
+                             f"{kept} unchanged from closed_form.all_gains; for r > 1 the conditions fail "
+                             f"({len(cases_above)} cases); the numeric builder is the stated form at {len(subject.samples)} gains")
+
+
+OBLIGATIONS: tuple[type[Obligation], ...] = (ClosedFormAllGains, ClosedFormMonotone, ClosedFormBalanced)

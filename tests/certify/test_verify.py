@@ -201,37 +201,6 @@ def test_exact_determinant():
     assert _det([]) == 1
 
 
-@pytest.mark.parametrize("n", [1, 2, 3, 4])
-def test_determinant_of_every_size_is_sympys_in_fractions_and_fmpq(n):
-    """Every entry counts, at every size the verifier meets (4×4 for the sup-flow template's forms)."""
-    import random
-
-    import sympy as sp
-    from flint import fmpq
-
-    rng = random.Random(n)
-    for _ in range(40):
-        m = [[F(rng.randint(-9, 9), rng.randint(1, 5)) for _ in range(n)] for _ in range(n)]
-        want = F(str(sp.Matrix([[sp.Rational(x.numerator, x.denominator) for x in row] for row in m]).det()))
-        assert _det(m) == want
-        got = _det([[fmpq(x.numerator, x.denominator) for x in row] for row in m])
-        assert type(got) is fmpq and (got.p, got.q) == (want.numerator, want.denominator)
-
-
-def test_exact_takes_ints_and_rationals_to_fmpq_and_refuses_the_rest():
-    from flint import fmpq
-
-    from symbolic_friction._certify.verify import _exact
-
-    for value in (3, F(-7, 4), fmpq(5, 6), 10**400 + 1):
-        q = _exact(value, "x")
-        assert type(q) is fmpq and (q.p, q.q) == (F(value).numerator if not isinstance(value, fmpq) else 5,
-                                                   F(value).denominator if not isinstance(value, fmpq) else 6)
-    for bad in (True, 0.5, "1/2", None, complex(1, 0)):
-        with pytest.raises(CertificateError, match=f"x: the verifier decides exact rationals only; got {type(bad).__name__}"):
-            _exact(bad, "x")
-
-
 # -- independence from the search ----------------------------------------------------------------
 def test_verifier_shares_no_code_with_the_search_and_uses_no_floats():
     tree = ast.parse(inspect.getsource(verify_module))

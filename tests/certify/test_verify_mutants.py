@@ -280,11 +280,49 @@ def test_a_non_strict_k_condition_is_decided_as_non_strict(monkeypatch):
 
 def test_text_of_rationals_past_pythons_digit_limit():
     """A numerator or a denominator of 20,000 bits (over 4,300 digits: ``str`` refuses it) is still written exactly."""
+    from flint import fmpq
+
     from symbolic_friction._certify.verify import _matrix_text, _text
     from symbolic_friction._infra.rational import format_rational
 
+    def q(x: F) -> fmpq:
+        return fmpq(x.numerator, x.denominator)
+
     huge = 2**20_000 + 1
-    for q in (F(1, huge), F(huge, 3), F(-huge, huge + 2), F(3, 7), F(-5)):
-        assert _text(q) == format_rational(q)
-    assert _text(F(1, huge)).startswith("1/3980276840") and len(_text(F(1, huge))) == 2 + 6021
-    assert _matrix_text([[F(1, 2), F(huge)]]) == f"[1/2, {format_rational(F(huge))}]"
+    for x in (F(1, huge), F(huge, 3), F(-huge, huge + 2), F(3, 7), F(-5), F(0), F(12)):
+        assert _text(q(x)) == format_rational(x)
+    assert _text(q(F(1, huge))).startswith("1/3980276840") and len(_text(q(F(1, huge)))) == 2 + 6021
+    assert _matrix_text([[q(F(1, 2)), q(F(huge))]]) == f"[1/2, {format_rational(F(huge))}]"
+
+
+@pytest.mark.parametrize("n", [1, 2, 3, 4])
+def test_determinant_of_every_size_is_sympys_in_fractions_and_fmpq(n):
+    """Every entry counts, at every size the verifier meets (4×4 for the sup-flow template's forms)."""
+    import random
+
+    import sympy as sp
+    from flint import fmpq
+
+    from symbolic_friction._certify.verify import _det
+
+    rng = random.Random(n)
+    for _ in range(40):
+        m = [[F(rng.randint(-9, 9), rng.randint(1, 5)) for _ in range(n)] for _ in range(n)]
+        want = F(str(sp.Matrix([[sp.Rational(x.numerator, x.denominator) for x in row] for row in m]).det()))
+        assert _det(m) == want
+        got = _det([[fmpq(x.numerator, x.denominator) for x in row] for row in m])
+        assert type(got) is fmpq and (got.p, got.q) == (want.numerator, want.denominator)
+
+
+def test_exact_takes_ints_and_rationals_to_fmpq_and_refuses_the_rest():
+    from flint import fmpq
+
+    from symbolic_friction._certify.verify import _exact
+
+    for value in (3, F(-7, 4), fmpq(5, 6), 10**400 + 1):
+        q = _exact(value, "x")
+        assert type(q) is fmpq and (q.p, q.q) == (F(value).numerator if not isinstance(value, fmpq) else 5,
+                                                   F(value).denominator if not isinstance(value, fmpq) else 6)
+    for bad in (True, 0.5, "1/2", None, complex(1, 0)):
+        with pytest.raises(CertificateError, match=f"x: the verifier decides exact rationals only; got {type(bad).__name__}"):
+            _exact(bad, "x")

@@ -12,9 +12,9 @@ import dataclasses
 import sympy as sp
 
 import symbolic_friction._certify.closed_form as closed_form_module
-import symbolic_friction._obligations.closed_form_balanced as ob_module
+import symbolic_friction._obligations.closed_form as ob_module
 from symbolic_friction._obligations import registry
-from symbolic_friction._obligations.closed_form_balanced import ClosedFormBalanced
+from symbolic_friction._obligations.closed_form import ClosedFormBalanced
 
 from ._helpers import assert_fails, assert_holds, obligation_fixture
 
