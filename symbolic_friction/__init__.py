@@ -59,7 +59,7 @@ from ._infra.errors import SymbolicFrictionError
 from ._infra.rational import format_rational, to_rational
 from ._model.parameters import TABLE_I, Parameters
 
-__version__ = "0.2.0"
+__version__ = "0.3.0"
 
 # name -> private module that defines it (imported lazily on first access)
 _LAZY: dict[str, str] = {
