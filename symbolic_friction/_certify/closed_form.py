@@ -273,6 +273,10 @@ def balanced(c: ClosedFormConstants, a: Fraction, k_p: Fraction, *, digits: int 
     its trace objective), which the ``k₁ = 2`` family cannot reach: in Table I
     case (b) at ``μ = 1/100`` it gives κ ≤ 8.01380 where ``k₁ = 2`` gives 8.01425.
     """
+    # k₃ ≤ T ≤ 2(1+μ)k₃ (T is √(1+μ)·k₃ rounded up by far less than a factor 2), so the conditions need
+    # k_p ≤ k₃ and a ≥ 1 + μ: most gain sets are turned away here, before the square root
+    if k_p > c.k3 or a < 1 + c.mu:
+        return None
     T = sqrt_up(balanced_radicand(c.k3, c.mu), digits)
     if any(m < 0 for _, m in balanced_conditions(a, k_p, c.k3, c.mu, T)):
         return None
