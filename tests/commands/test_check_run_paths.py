@@ -225,15 +225,15 @@ def test_run_takes_a_namespace_without_the_optional_attributes(monkeypatch, tmp_
     assert capsys.readouterr().out.rstrip().splitlines()[-1] == "check: PASSED — one summary"
 
 
-def test_the_costly_obligations_go_to_the_other_core_unless_only_is_given(monkeypatch, tmp_path):
-    """Without --only, run_sections gets the offloaded obligations (decided ahead on the second core); with it, none."""
+def _run_sections_calls(monkeypatch, tmp_path) -> list[dict]:
+    """The keyword arguments ``check`` gives ``run_sections``: without ``--only``, then with it."""
     from symbolic_friction._cli import _parallel
 
     seen = []
     real = _parallel.run_sections
 
     def spy(makers, args, **kw):
-        seen.append(None if kw.get("ahead") is None else sorted(kw["ahead"]))
+        seen.append(kw)
         return real(makers, args, **kw)
 
     monkeypatch.setattr(_parallel, "run_sections", spy)
@@ -241,33 +241,28 @@ def test_the_costly_obligations_go_to_the_other_core_unless_only_is_given(monkey
     monkeypatch.setattr(check, "obligations_section", _section("only", True))
     assert _run(monkeypatch, tmp_path, [_section("one", True)]) == 0
     assert _run(monkeypatch, tmp_path, [_section("one", True)], "--only", "lemma3") == 0
-    assert seen == [sorted(check.OFFLOADED), []]
+    return seen
 
+
+def test_the_costly_obligations_go_to_the_other_core_unless_only_is_given(monkeypatch, tmp_path):
+    """Without --only, run_sections gets the offloaded obligations (decided ahead on the second core); with it, none."""
+    seen = _run_sections_calls(monkeypatch, tmp_path)
+    assert [None if kw.get("ahead") is None else sorted(kw["ahead"]) for kw in seen] == [sorted(check.OFFLOADED), []]
 
 
 def test_the_tail_is_shared_in_its_groups_within_the_shared_derivations_unless_only_is_given(monkeypatch, tmp_path):
     """Without --only, run_sections gets the obligations after the offloaded ones (the tail both processes claim, from
     either end), the groups of TOGETHER (claimed as one) and the shared derivations the worker decides them within;
     with --only, an empty tail."""
-    from symbolic_friction._cli import _parallel
     from symbolic_friction._obligations._derived_k import shared_derivations
 
-    seen = []
-    real = _parallel.run_sections
-
-    def spy(makers, args, **kw):
-        tail = kw.get("tail")
-        seen.append((None if tail is None else [name for name, _ in tail], kw.get("together"), kw.get("context")))
-        return real(makers, args, **kw)
-
-    monkeypatch.setattr(_parallel, "run_sections", spy)
-    monkeypatch.setenv(_parallel.ENV, "1")
-    monkeypatch.setattr(check, "obligations_section", _section("only", True))
-    assert _run(monkeypatch, tmp_path, [_section("one", True)]) == 0
-    assert _run(monkeypatch, tmp_path, [_section("one", True)], "--only", "lemma3") == 0
+    seen = _run_sections_calls(monkeypatch, tmp_path)
     tail = [name for name, _ in check._decide_tail()]
     assert tail and not set(tail) & set(check.OFFLOADED)
-    assert seen == [(tail, check.TOGETHER, shared_derivations), ([], check.TOGETHER, shared_derivations)]
+    got = [(None if kw.get("tail") is None else [name for name, _ in kw["tail"]], kw.get("together"), kw.get("context"))
+           for kw in seen]
+    assert got == [(tail, check.TOGETHER, shared_derivations), ([], check.TOGETHER, shared_derivations)]
+
 
 class _Pipe:
     """stdout as a pipe buffers it (written out on flush); stderr is unbuffered: both merge into one log."""
