@@ -18,16 +18,21 @@ from __future__ import annotations
 
 import os
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 from .._infra.errors import CertificateFormatError
 
-__all__ = ["Template", "register", "unregister", "registered", "template_for", "TEMPLATE_KEY"]
+__all__ = ["Template", "every_failure", "register", "unregister", "registered", "template_for", "TEMPLATE_KEY"]
 
 TEMPLATE_KEY = "template"
 """The member of a certificate file that names its template."""
+
+
+def every_failure(report: Any) -> str:
+    """Every failed check's message, joined by ``"; "`` (the default :attr:`Template.failure`)."""
+    return "; ".join(check.message for check in report.failures)
 
 
 @dataclass(frozen=True, eq=False)
@@ -57,10 +62,11 @@ class Template:
         would be written now although it proves the same statement (a newer
         solver or package rounds differently); empty when it does not.
         Reported; a failure only under ``check --strict``.
-    failure : callable
-        ``failure(report) -> str``: why a report that is not proved fails.
     claim : callable
         ``claim(certificate) -> str``: what a proved file shows, for ``check``'s line.
+    failure : callable
+        ``failure(report) -> str``: why a report that is not proved fails;
+        default :func:`every_failure`.
     default : bool
         Whether a file of ``schema`` without a ``template`` member is read
         with this template.
@@ -80,8 +86,8 @@ class Template:
     verify: Callable[[Any, str], Any]
     dumps: Callable[[Any], str]
     stale: Callable[[Any, Path], str]
-    failure: Callable[[Any], str]
     claim: Callable[[Any], str]
+    failure: Callable[[Any], str] = field(default_factory=lambda: every_failure)
     default: bool = False
     drift: Callable[[Any, Path], str] | None = None
     regenerate: Callable[[Any], Any] | None = None

@@ -287,7 +287,6 @@ STABILITY = register(Template(
     verify=lambda certificate, source: verify_certificate(certificate, source=source),
     dumps=dumps,
     stale=stability_staleness,
-    failure=lambda report: "; ".join(check.message for check in report.failures),
     claim=lambda certificate: f"κ ≤ {certificate.overshoot_bound}",
     default=True,
     drift=stability_drift,

@@ -28,6 +28,7 @@ Format (``schema`` ``symbolic-friction/quadratic-certificate/v1``, ``template``
 from __future__ import annotations
 
 import json
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from fractions import Fraction
 from pathlib import Path
@@ -42,7 +43,7 @@ from .verify import Check, Inequality, Semidefinite, VerificationReport, decide
 
 __all__ = [
     "SCHEMA", "TEMPLATE_ID", "CONSTANTS", "OBLIGATIONS", "QuadraticCertificate", "QuadraticReport",
-    "QuadraticProvenance", "Copositive", "quadratic_premises", "verify_quadratic", "dumps_quadratic", "not_canonical", "read_common", "QUADRATIC",
+    "QuadraticProvenance", "Copositive", "quadratic_premises", "verify_quadratic", "dumps_quadratic", "not_canonical", "canonical_staleness", "read_common", "QUADRATIC",
 ]
 
 SCHEMA = "symbolic-friction/quadratic-certificate/v1"
@@ -304,8 +305,9 @@ def not_canonical(text: str, path: Path) -> str:
     return ""
 
 
-def _stale(certificate: QuadraticCertificate, path: Path) -> str:
-    return not_canonical(dumps_quadratic(certificate), path)
+def canonical_staleness(dumps: Callable[[Any], str]) -> Callable[[Any, Path], str]:
+    """A template's ``stale``: the committed file must be ``dumps`` of its own numbers (:func:`not_canonical`)."""
+    return lambda certificate, path: not_canonical(dumps(certificate), path)
 
 
 QUADRATIC = register(Template(
@@ -314,8 +316,7 @@ QUADRATIC = register(Template(
     read=lambda data, source: QuadraticCertificate.from_dict(data, source=source),
     verify=lambda certificate, source: verify_quadratic(certificate, source=source),
     dumps=dumps_quadratic,
-    stale=_stale,
-    failure=lambda report: "; ".join(check.message for check in report.failures),
+    stale=canonical_staleness(dumps_quadratic),
     claim=lambda certificate: f"κ ≤ {certificate.overshoot_bound} (quadratic template)",
     default=True,
 ))

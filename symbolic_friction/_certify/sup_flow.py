@@ -46,7 +46,7 @@ from .._infra.rational import format_rational as _f
 from .._model import quadratic as quad
 from .._model.lyapunov import lyapunov_matrix_entries
 from ._template import Template, register
-from .quadratic import (Copositive, dumps_quadratic, QuadraticProvenance, QuadraticReport, _scaled_identity, _sub, decide_premise, not_canonical,
+from .quadratic import (Copositive, dumps_quadratic, QuadraticProvenance, QuadraticReport, _scaled_identity, _sub, decide_premise, canonical_staleness,
                         read_common)
 from .sup_flow_enclosure import MAX_PARTS, MAX_TOTAL_PARTS, Budget, FlowExit, FlowNorm, decide_flow
 from .verify import Check, Inequality, Semidefinite
@@ -304,19 +304,13 @@ def dumps_sup_flow(certificate: SupFlowCertificate) -> str:
     return dumps_quadratic(certificate)
 
 
-def _stale(certificate: SupFlowCertificate, path: Path) -> str:
-    """Why the committed ``path`` is not the canonical file of its own numbers (empty if it is); no search is re-run."""
-    return not_canonical(dumps_sup_flow(certificate), path)
-
-
 SUP_FLOW = register(Template(
     id=TEMPLATE_ID,
     schema=SCHEMA,
     read=lambda data, source: SupFlowCertificate.from_dict(data, source=source),
     verify=lambda certificate, source: verify_sup_flow(certificate, source=source),
     dumps=dumps_sup_flow,
-    stale=_stale,
-    failure=lambda report: "; ".join(check.message for check in report.failures),
+    stale=canonical_staleness(dumps_sup_flow),
     claim=lambda certificate: f"κ ≤ {certificate.overshoot_bound} (sup-flow template)",
     default=True,
 ))

@@ -378,16 +378,15 @@ class ClosedFormBalanced(Obligation):
     def derive(self) -> BalancedSubject:
         a, k_p, mu, T = BASE["a"], BASE["k_p"], BASE["mu"], BASE["R"]
         rows = []
-        region: tuple = ()
-        rho_pick = radicand = sp.Integer(0)
-        for c1_choice in (0, 1):
+        for c1_choice in (0, 1):  # c₁'s choice changes only rows of P, which the variant keeps
             ops = _SymOps({"rho": 1, "k4": 0, "c1": c1_choice})
             base = closed_form_formulas(a, a, k_p, k_p, mu, ops)
             constants = {**base, **balanced_formulas(base["k3"], T)}
             rows.append((c1_choice, _rows(_verify.premises(_certificate(constants))), _rows(_verify.premises(_certificate(base)))))
-            region = tuple((n, sp.sympify(m)) for n, m in balanced_conditions(a, k_p, base["k3"], mu, T))
-            rho_pick = next(chosen - other for name, _, chosen, other in ops.picks if name == "rho")
-            radicand = sp.sympify(balanced_radicand(base["k3"], mu))
+        # k₃ and the ρ pick do not depend on c₁'s choice: read them from the last
+        region = tuple((n, sp.sympify(m)) for n, m in balanced_conditions(a, k_p, base["k3"], mu, T))
+        rho_pick = next(chosen - other for name, _, chosen, other in ops.picks if name == "rho")
+        radicand = sp.sympify(balanced_radicand(base["k3"], mu))
         ops = _SymOps({"rho": 0, "k4": 0, "c1": 0})
         base = closed_form_formulas(a, a, k_p, k_p, mu, ops)
         above = tuple((n, sp.sympify(m)) for n, m in balanced_conditions(a, k_p, base["k3"], mu, T))
