@@ -43,7 +43,7 @@ from .verify import Check, Inequality, Semidefinite, VerificationReport, decide
 
 __all__ = [
     "SCHEMA", "TEMPLATE_ID", "CONSTANTS", "OBLIGATIONS", "QuadraticCertificate", "QuadraticReport",
-    "QuadraticProvenance", "Copositive", "quadratic_premises", "verify_quadratic", "dumps_quadratic", "not_canonical", "canonical_staleness", "read_common", "QUADRATIC",
+    "QuadraticProvenance", "Copositive", "quadratic_premises", "verify_quadratic", "dumps_quadratic", "not_canonical", "canonical_staleness", "GainsAndBound", "PARAMETERS", "read_common", "QUADRATIC",
 ]
 
 SCHEMA = "symbolic-friction/quadratic-certificate/v1"
@@ -87,8 +87,40 @@ class QuadraticProvenance:
         return {name: getattr(self, name) for name in _PROVENANCE}
 
 
+class GainsAndBound:
+    """What a certificate of the templates beyond the paper says of its gains and bound (no fields of its own).
+
+    A subclass has the gains ``k_p, k_i, k_v, f_c`` and ``overshoot_bound`` (decimal text).
+    """
+
+    @property
+    def parameters(self) -> dict[str, Fraction]:
+        """The gains, by name."""
+        return {name: getattr(self, name) for name in PARAMETERS}
+
+    def gains_text(self) -> str:
+        """``"k_p=3, k_i=4, k_v=32/5, f_c=1"``."""
+        return ", ".join(f"{name}={_f(value)}" for name, value in self.parameters.items())
+
+    @property
+    def kappa(self) -> Fraction:
+        """The overshoot bound as an exact number."""
+        return Fraction(self.overshoot_bound)  # type: ignore[attr-defined]
+
+    def common_dict(self, schema: str, template_id: str, constants: tuple[str, ...]) -> dict[str, Any]:
+        """The members :func:`read_common` reads, as the file writes them."""
+        return {
+            "schema": schema,
+            "template": template_id,
+            "parameters": {name: _f(getattr(self, name)) for name in PARAMETERS},
+            "constants": {name: _f(self.constants[name]) for name in constants},  # type: ignore[attr-defined]
+            "overshoot_bound": self.overshoot_bound,  # type: ignore[attr-defined]
+            "provenance": self.provenance.to_dict(),  # type: ignore[attr-defined]
+        }
+
+
 @dataclass(frozen=True)
-class QuadraticCertificate:
+class QuadraticCertificate(GainsAndBound):
     """Gains, the constants of ``P``, ``U`` and the bound, and how they were found (informative only).
 
     Every number is an exact rational of any sign (``overshoot_bound`` a plain
@@ -118,20 +150,6 @@ class QuadraticCertificate:
             if isinstance(value, bool) or not isinstance(value, (int, Fraction)):
                 raise CertificateFormatError(f"constants.{name} must be an exact rational; got {value!r}")
 
-    @property
-    def parameters(self) -> dict[str, Fraction]:
-        """The gains, by name."""
-        return {name: getattr(self, name) for name in PARAMETERS}
-
-    def gains_text(self) -> str:
-        """``"k_p=3, k_i=4, k_v=32/5, f_c=1"``."""
-        return ", ".join(f"{name}={_f(value)}" for name, value in self.parameters.items())
-
-    @property
-    def kappa(self) -> Fraction:
-        """The overshoot bound as an exact number."""
-        return Fraction(self.overshoot_bound)
-
     def p_matrix(self) -> tuple[tuple[Fraction, ...], ...]:
         c = self.constants
         return model.quadratic_p_entries(self.k_p, self.k_i, self.k_v, c["p11"], c["p22"], c["p33"])
@@ -141,14 +159,7 @@ class QuadraticCertificate:
         return model.u_matrix_entries(c["k11"], c["k13"], c["k22"], c["k23"], c["k33"])
 
     def to_dict(self) -> dict[str, Any]:
-        return {
-            "schema": SCHEMA,
-            "template": TEMPLATE_ID,
-            "parameters": {name: _f(getattr(self, name)) for name in PARAMETERS},
-            "constants": {name: _f(self.constants[name]) for name in CONSTANTS},
-            "overshoot_bound": self.overshoot_bound,
-            "provenance": self.provenance.to_dict(),
-        }
+        return self.common_dict(SCHEMA, TEMPLATE_ID, CONSTANTS)
 
     @classmethod
     def from_dict(cls, data: object, *, source: str = "<string>") -> "QuadraticCertificate":

@@ -46,8 +46,19 @@ from .._infra.rational import format_rational as _f
 from .._model import quadratic as quad
 from .._model.lyapunov import lyapunov_matrix_entries
 from ._template import Template, register
-from .quadratic import (Copositive, dumps_quadratic, QuadraticProvenance, QuadraticReport, _scaled_identity, _sub, decide_premise, canonical_staleness,
-                        read_common)
+from .quadratic import (
+    PARAMETERS,
+    Copositive,
+    GainsAndBound,
+    QuadraticProvenance,
+    QuadraticReport,
+    _scaled_identity,
+    _sub,
+    canonical_staleness,
+    decide_premise,
+    dumps_quadratic,
+    read_common,
+)
 from .sup_flow_enclosure import MAX_PARTS, MAX_TOTAL_PARTS, Budget, FlowExit, FlowNorm, decide_flow
 from .verify import Check, Inequality, Semidefinite
 
@@ -58,7 +69,6 @@ __all__ = [
 
 SCHEMA = "symbolic-friction/sup-flow-certificate/v1"
 TEMPLATE_ID = "sup-flow/v1"
-PARAMETERS = ("k_p", "k_i", "k_v", "f_c")
 CONSTANTS = ("c2", "p")
 PIECE_CONSTANTS = ("k11", "k13", "k22", "k23", "k33", "gamma")
 INFINITY = "inf"
@@ -121,7 +131,7 @@ class SupFlowPiece:
 
 
 @dataclass(frozen=True)
-class SupFlowCertificate:
+class SupFlowCertificate(GainsAndBound):
     """Gains, ``c₂``, ``p``, the pieces and the bound; every number an exact rational of any sign.
 
     The signs, the order of the pieces and every bound are premises of
@@ -149,28 +159,8 @@ class SupFlowCertificate:
             raise CertificateFormatError(f"a sup-flow certificate has 1 to {MAX_PIECES} pieces; got {len(pieces)}")
         object.__setattr__(self, "pieces", pieces)
 
-    @property
-    def parameters(self) -> dict[str, Fraction]:
-        return {name: getattr(self, name) for name in PARAMETERS}
-
-    def gains_text(self) -> str:
-        """``"k_p=3, k_i=4, k_v=32/5, f_c=1"``."""
-        return ", ".join(f"{name}={_f(value)}" for name, value in self.parameters.items())
-
-    @property
-    def kappa(self) -> Fraction:
-        return Fraction(self.overshoot_bound)
-
     def to_dict(self) -> dict[str, Any]:
-        return {
-            "schema": SCHEMA,
-            "template": TEMPLATE_ID,
-            "parameters": {name: _f(getattr(self, name)) for name in PARAMETERS},
-            "constants": {name: _f(self.constants[name]) for name in CONSTANTS},
-            "pieces": [piece.to_dict() for piece in self.pieces],
-            "overshoot_bound": self.overshoot_bound,
-            "provenance": self.provenance.to_dict(),
-        }
+        return {**self.common_dict(SCHEMA, TEMPLATE_ID, CONSTANTS), "pieces": [piece.to_dict() for piece in self.pieces]}
 
     @classmethod
     def from_dict(cls, data: object, *, source: str = "<string>") -> "SupFlowCertificate":
