@@ -108,12 +108,12 @@ class GainsAndBound:
         return Fraction(self.overshoot_bound)  # type: ignore[attr-defined]
 
     def common_dict(self, schema: str, template_id: str, constants: tuple[str, ...]) -> dict[str, Any]:
-        """The members :func:`read_common` reads, as the file writes them."""
+        """The members :func:`read_common` reads, as the file writes them (``constants``: those the certificate has)."""
         return {
             "schema": schema,
             "template": template_id,
             "parameters": {name: _f(getattr(self, name)) for name in PARAMETERS},
-            "constants": {name: _f(self.constants[name]) for name in constants},  # type: ignore[attr-defined]
+            "constants": {name: _f(self.constants[name]) for name in constants if name in self.constants},  # type: ignore[attr-defined]
             "overshoot_bound": self.overshoot_bound,  # type: ignore[attr-defined]
             "provenance": self.provenance.to_dict(),  # type: ignore[attr-defined]
         }
@@ -169,7 +169,8 @@ class QuadraticCertificate(GainsAndBound):
 
 
 def read_common(data: object, source: str, *, what: str, schema: str, template_id: str, top: tuple[str, ...],
-                constants: tuple[str, ...]) -> tuple[dict[str, Fraction], dict[str, Fraction], QuadraticProvenance, str]:
+                constants: tuple[str, ...], optional_constants: tuple[str, ...] = ()
+                ) -> tuple[dict[str, Fraction], dict[str, Fraction], QuadraticProvenance, str]:
     """The members a quadratic or sup-flow file share, read strictly: ``(gains, constants, provenance, bound)``.
 
     Raises
@@ -184,12 +185,13 @@ def read_common(data: object, source: str, *, what: str, schema: str, template_i
     _check_keys(data, required=top, optional=("provenance",), where="certificate")
     if data["schema"] != schema or data["template"] != template_id:
         raise CertificateFormatError(f"{source}: schema {data['schema']!r} / template {data['template']!r} is not {schema} / {template_id}")
-    for key, names in (("parameters", PARAMETERS), ("constants", constants)):
+    for key, names, optional in (("parameters", PARAMETERS, ()), ("constants", constants, optional_constants)):
         if not isinstance(data[key], dict):
             raise CertificateFormatError(f"{source}: {key} must be a JSON object; got {type(data[key]).__name__}")
-        _check_keys(data[key], required=names, optional=(), where=key)
+        _check_keys(data[key], required=names, optional=optional, where=key)
     params = {n: _signed_rational_field(data["parameters"][n], f"parameters.{n}") for n in PARAMETERS}
-    values = {n: _signed_rational_field(data["constants"][n], f"constants.{n}") for n in constants}
+    values = {n: _signed_rational_field(data["constants"][n], f"constants.{n}") for n in (*constants, *optional_constants)
+              if n in data["constants"]}
     provenance = data.get("provenance", {})
     if not isinstance(provenance, dict):
         raise CertificateFormatError(f"{source}: provenance must be a JSON object")

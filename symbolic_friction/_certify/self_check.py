@@ -14,10 +14,12 @@ breaks and the exact set of checks that fail:
   sign: the file format reads it, and the verifier must refuse it like any
   other premise;
 * sup-flow certificates, one per premise only that template has (its pieces'
-  order and horizon, ``p``, ``c₂`` against the flow, the exits of ``R̂`` on a
-  finite piece and past ``T``, ``K₁ − I``), on a small true certificate with
-  room (the premises it shares with the quadratic template are decided by the
-  same functions, and broken by the quadratic files);
+  order and horizon, ``p``, the tail's own ``P`` below ``pI`` or not a Lyapunov
+  matrix, ``c₂`` against the flow, the exits of ``R̂`` on a finite piece and
+  past ``T``, ``K₁ − I``), on a small true certificate with room (the premises
+  it shares with the quadratic template are decided by the same functions, and
+  broken by the quadratic files), and two true ones: five pieces, and one
+  piece ``[0, ∞)`` closed by the tail at ``T = 0``;
 * hunting certificates: a box around a later zero of ``v``, a box that
   holds no zero, boxes shifted so that the zero lies just outside each end
   in ``σ`` and in ``τ`` (the Krawczyk inclusion, both ends), ``σ_lo = 0``, a
@@ -47,7 +49,7 @@ from typing import Any
 __all__ = ["DIRECTORY", "SUP_FLOW_PREMISES", "Refusal", "SelfCheck", "refuse_false_certificates", "expected_failures", "named_failures"]
 
 DIRECTORY = Path(__file__).with_name("false_certificates")
-"""Where the known-false (and the two true) certificates are shipped."""
+"""Where the known-false (and the true) certificates are shipped."""
 
 
 @dataclass(frozen=True)
@@ -108,7 +110,8 @@ def named_failures(report: Any) -> list[str]:
 
 SUP_FLOW_PREMISES: tuple[str, ...] = (
     "the first piece starts at t = 0", "piece 3 starts where piece 2 ends", "the last piece ends at ∞",
-    "T > 0 (the last piece starts after 0)", "p > 0", "P − p·I ⪰ 0 (the paper's P)", "c2 ≥ ‖e^(At)‖² for every t ≥ 0",
+    "T ≥ 0 (the last piece starts at or after 0)", "p > 0", "P − p·I ⪰ 0 (the paper's P)", "P − p·I ⪰ 0 (the tail's P)",
+    "−(AᵀP + PA) ⪰ 0 (the tail's P)", "c2 ≥ ‖e^(At)‖² for every t ≥ 0",
     "K1 − I copositive (piece 1)", "piece 2: U ≥ |e^(At)w|² on the exits of R̂ for t in [2, 4)",
     "piece 5: U ≥ |e^(At)w|² on the exits of R̂ for t in [8, ∞)",
 )

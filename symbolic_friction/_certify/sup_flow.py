@@ -11,7 +11,10 @@ balls, outward rounding, :mod:`._certify.flow_bound`'s enclosure of
 
 * Assumption 1 and ``f_c > 0``; the pieces start at 0, follow each other and
   end at ``∞``; ``p > 0``, ``P − pI ⪰ 0`` and ``−(AᵀP + PA) ⪰ 0`` for the
-  paper's ``P`` (the tail past ``T``, the last piece's start);
+  tail's ``P`` (past ``T ≥ 0``, the last piece's start: any such ``P`` bounds
+  the friction-free flow, so the file may give its own, ``tail_p11`` …
+  ``tail_p33`` among the constants; without them, the paper's ``P`` of eq.
+  (lyapLikeP));
 * ``c₂ ≥ ‖e^{At}‖₂²`` for every ``t ≥ 0`` (:class:`FlowNorm`): ``V_∞ ≤ c₂|x|²_𝒜`` on ``R``;
 * ``K₀ − I`` copositive: ``U ≥ |x|²_𝒜`` on ``R̂``;
 * for every piece, ``U_i`` nonincreasing on ``R̂`` (the quadratic template's
@@ -28,7 +31,7 @@ is refuted there, and what is not decided within :data:`MAX_PARTS` parts is
 Format (``schema`` ``symbolic-friction/sup-flow-certificate/v1``, ``template``
 ``sup-flow/v1``; keys sorted, exact rational strings, no timings)::
 
-    {"constants": {"c2": …, "p": …}, "overshoot_bound": "1.44500", "parameters": {…},
+    {"constants": {"c2": …, "p": …, "tail_p11": …, …, "tail_p33": …}, "overshoot_bound": "1.44500", "parameters": {…},
      "pieces": [{"end": "1/8", "gamma": …, "k11": …, "k13": …, "k22": …, "k23": …, "k33": …, "start": "0"},
                 …, {"end": "inf", …, "start": "12"}],
      "provenance": {…}, "schema": "symbolic-friction/sup-flow-certificate/v1", "template": "sup-flow/v1"}
@@ -64,12 +67,14 @@ from .verify import Check, Inequality, Semidefinite
 
 __all__ = [
     "SCHEMA", "TEMPLATE_ID", "OBLIGATIONS", "MAX_PIECES", "MAX_PARTS", "SupFlowPiece", "SupFlowCertificate",
-    "SupFlowProvenance", "MAX_TOTAL_PARTS", "FlowNorm", "FlowExit", "sup_flow_premises", "verify_sup_flow", "load_sup_flow", "dumps_sup_flow", "SUP_FLOW",
+    "SupFlowProvenance", "TAIL_CONSTANTS", "MAX_TOTAL_PARTS", "FlowNorm", "FlowExit", "sup_flow_premises", "verify_sup_flow", "load_sup_flow", "dumps_sup_flow", "SUP_FLOW",
 ]
 
 SCHEMA = "symbolic-friction/sup-flow-certificate/v1"
 TEMPLATE_ID = "sup-flow/v1"
 CONSTANTS = ("c2", "p")
+TAIL_CONSTANTS = ("tail_p11", "tail_p12", "tail_p13", "tail_p22", "tail_p23", "tail_p33")
+"""The tail's own ``P`` (optional, all or none; without them the paper's ``P``)."""
 PIECE_CONSTANTS = ("k11", "k13", "k22", "k23", "k33", "gamma")
 INFINITY = "inf"
 MAX_PIECES = 256
@@ -151,23 +156,40 @@ class SupFlowCertificate(GainsAndBound):
     def __post_init__(self) -> None:
         for name in PARAMETERS:
             object.__setattr__(self, name, _exact(getattr(self, name), f"parameters.{name}"))
-        if sorted(self.constants) != sorted(CONSTANTS):
-            raise CertificateFormatError(f"constants must be exactly {', '.join(CONSTANTS)}; got {', '.join(sorted(self.constants))}")
-        object.__setattr__(self, "constants", {n: _exact(self.constants[n], f"constants.{n}") for n in CONSTANTS})
+        names = sorted(self.constants)
+        if names not in (sorted(CONSTANTS), sorted(CONSTANTS + TAIL_CONSTANTS)):
+            raise CertificateFormatError(f"constants must be exactly {', '.join(CONSTANTS)}, with or without all of "
+                                         f"{', '.join(TAIL_CONSTANTS)}; got {', '.join(names)}")
+        object.__setattr__(self, "constants", {n: _exact(self.constants[n], f"constants.{n}") for n in CONSTANTS + TAIL_CONSTANTS
+                                               if n in self.constants})
         pieces = tuple(self.pieces)
         if not 1 <= len(pieces) <= MAX_PIECES or not all(isinstance(p, SupFlowPiece) for p in pieces):
             raise CertificateFormatError(f"a sup-flow certificate has 1 to {MAX_PIECES} pieces; got {len(pieces)}")
         object.__setattr__(self, "pieces", pieces)
 
+    @property
+    def own_tail(self) -> bool:
+        """Whether the file gives the tail's ``P`` (else the paper's ``P`` of eq. lyapLikeP)."""
+        return TAIL_CONSTANTS[0] in self.constants
+
+    def tail_matrix(self) -> tuple[tuple[Fraction, ...], ...]:
+        """The tail's ``P``: the file's own (symmetric, from its six entries) or the paper's."""
+        if not self.own_tail:
+            return tuple(tuple(Fraction(x) for x in row) for row in lyapunov_matrix_entries(self.k_p, self.k_i, self.k_v))
+        c = {name[len("tail_p"):]: self.constants[name] for name in TAIL_CONSTANTS}
+        return tuple(tuple(c[f"{min(i, j)}{max(i, j)}"] for j in (1, 2, 3)) for i in (1, 2, 3))
+
     def to_dict(self) -> dict[str, Any]:
-        return {**self.common_dict(SCHEMA, TEMPLATE_ID, CONSTANTS), "pieces": [piece.to_dict() for piece in self.pieces]}
+        return {**self.common_dict(SCHEMA, TEMPLATE_ID, CONSTANTS + TAIL_CONSTANTS),
+                "pieces": [piece.to_dict() for piece in self.pieces]}
 
     @classmethod
     def from_dict(cls, data: object, *, source: str = "<string>") -> "SupFlowCertificate":
         from .certificate import _check_keys, _signed_rational_field
 
         params, constants, provenance, bound = read_common(data, source, what="sup-flow", schema=SCHEMA,
-                                                           template_id=TEMPLATE_ID, top=_TOP, constants=CONSTANTS)
+                                                           template_id=TEMPLATE_ID, top=_TOP, constants=CONSTANTS,
+                                                           optional_constants=TAIL_CONSTANTS)
         raw = data["pieces"]  # type: ignore[index]
         if not isinstance(raw, list) or not 1 <= len(raw) <= MAX_PIECES:
             shown = len(raw) if isinstance(raw, list) else type(raw).__name__
@@ -205,15 +227,16 @@ def sup_flow_premises(cert: SupFlowCertificate) -> list[Any]:
         out.append(Inequality("sup_flow.exit", f"piece {i + 1} starts where piece {i} ends",
                               pieces[i].start, "==", pieces[i].start + 1 if before is None else before))
     out.append(Inequality("sup_flow.exit", "the last piece ends at ∞", int(pieces[-1].end is None), "==", 1))
-    out.append(Inequality("sup_flow.exit", "T > 0 (the last piece starts after 0)", pieces[-1].start, ">", zero))
-    p_paper = _paper_p(cert)
+    out.append(Inequality("sup_flow.exit", "T ≥ 0 (the last piece starts at or after 0)", pieces[-1].start, ">=", zero))
+    p_tail = cert.tail_matrix()
+    whose = "the tail's P" if cert.own_tail else "the paper's P"
     p = const["p"]
     out += [
         Inequality("sup_flow.exit", "p > 0", p, ">", zero),
-        Semidefinite("sup_flow.exit", "P − p·I ⪰ 0 (the paper's P)", _sub(p_paper, _scaled_identity(3, p))),
-        Semidefinite("lemma2.dVdt", "−(AᵀP + PA) ⪰ 0 (the paper's P)",
-                     tuple(tuple(-x for x in row) for row in quad.lyapunov_rate_entries(k_p, k_i, k_v, p_paper))),
-        FlowNorm("sup_flow.bounds", "c2 ≥ ‖e^(At)‖² for every t ≥ 0", cert, p_paper),
+        Semidefinite("sup_flow.exit", f"P − p·I ⪰ 0 ({whose})", _sub(p_tail, _scaled_identity(3, p))),
+        Semidefinite("sup_flow.exit" if cert.own_tail else "lemma2.dVdt", f"−(AᵀP + PA) ⪰ 0 ({whose})",
+                     tuple(tuple(-x for x in row) for row in quad.lyapunov_rate_entries(k_p, k_i, k_v, p_tail))),
+        FlowNorm("sup_flow.bounds", "c2 ≥ ‖e^(At)‖² for every t ≥ 0", cert, p_tail),
         Copositive("sup_flow.bounds", "K1 − I copositive (piece 1)", _sub(pieces[0].k_matrix(), _scaled_identity(3, zero + 1))),
     ]
     for i, piece in enumerate(pieces):
@@ -228,7 +251,7 @@ def sup_flow_premises(cert: SupFlowCertificate) -> list[Any]:
         out.append(Copositive("sup_flow.stability_bound", f"{tag}: gamma·I − K copositive",
                               _sub(_scaled_identity(3, piece.constants["gamma"]), k)))
         out.append(FlowExit("sup_flow.exit", f"{tag}: U ≥ |e^(At)w|² on the exits of R̂ for t in {piece.interval_text()}", cert,
-                            p_paper, i))
+                            p_tail, i))
     kappa = cert.kappa
     out += [
         Inequality("sup_flow.stability_bound", "overshoot_bound > 0", kappa, ">", zero),
@@ -237,10 +260,6 @@ def sup_flow_premises(cert: SupFlowCertificate) -> list[Any]:
     out += [Inequality("sup_flow.stability_bound", f"overshoot_bound² ≥ gamma (piece {i + 1})", kappa * kappa, ">=",
                        piece.constants["gamma"]) for i, piece in enumerate(pieces)]
     return out
-
-
-def _paper_p(cert: SupFlowCertificate) -> tuple[tuple[Fraction, ...], ...]:
-    return tuple(tuple(Fraction(x) for x in row) for row in lyapunov_matrix_entries(cert.k_p, cert.k_i, cert.k_v))
 
 
 def _decide(premise: Any, budget: Budget | None = None) -> Check:

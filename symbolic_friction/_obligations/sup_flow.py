@@ -350,9 +350,10 @@ class ExitSubject:
     gram_gap: Any  # tail_gram(M, pQ, p) − MᵀQM, generic M and symmetric Q
     rate: Any  # d/dt |z|²_P along ż = Az with the paper's P (in ℚ(z, k, p), as the next four)
     decrease: Any  # c z₃², c = 2(k_v k_p − k_i) of eq. (dVdt)
-    tail_bound: Any  # the bound on |z|² the verifier uses for t ≥ T
+    own_rate: Any  # 2zᵀP(Az) − zᵀ(the verifier's AᵀP + PA)z for a generic symmetric P (0 when right)
+    tail_bound: Any  # the bound on |z|² the verifier uses for t ≥ T, generic symmetric P
     norm: Any  # |z|²
-    premise: Any  # zᵀ(P − pI)z, ≥ 0 by the certificate's premise P − pI ⪰ 0
+    premise: Any  # zᵀ(P − pI)z as the verifier builds P − pI, ≥ 0 by the certificate's premise P − pI ⪰ 0
     p: Any
     c: sp.Expr  # c with k_v = (k_i + δ)/k_p (Assumption 1), positive symbols
 
@@ -367,8 +368,9 @@ class Exit(Obligation):
         "for both signs s of σ the minimiser's w is h·D·y with D = exit_map(plane, h·s) of the template model, (h·s·y₁, −y₂, 0) resp. "
         "(h·s·y₁, 0, y₃), y = (|σ|, |dz φ|, |v|) from the model; the verifier's exit_forms are yᵀKy − wᵀGw there (generic "
         "symmetric G), so (g even) these copositive for G = e^{At}ᵀe^{At}, both signs and t ∈ I_i give U = max_i U_i ≥ "
-        "g(w) = V_∞ there; tail: with the paper's P, d/dt|z|²_P = zᵀ(AᵀP+PA)z ≤ 0 along ż = Az "
-        "(= −c z₃², c = 2(k_v k_p − k_i) > 0 by Assumption 1, as in lemma2.dVdt) and (1/p)|z|²_P − |z|² = (1/p)zᵀ(P − pI)z ≥ 0 when P − pI ⪰ 0, so for t ≥ T "
+        "g(w) = V_∞ there; tail: for any symmetric P, d/dt|z|²_P = zᵀ(AᵀP+PA)z along ż = Az, with AᵀP+PA as the verifier "
+        "builds it, so ≤ 0 when the file's premise −(AᵀP+PA) ⪰ 0 holds (for the paper's P it is −c z₃², c = 2(k_v k_p − k_i) > 0 "
+        "by Assumption 1, as in lemma2.dVdt) and (1/p)|z|²_P − |z|² = (1/p)zᵀ(P − pI)z ≥ 0 when P − pI ⪰ 0, so for t ≥ T ≥ 0 "
         "|e^{At}w|² ≤ (1/p)|e^{At}w|²_P ≤ (1/p)|e^{AT}w|²_P = wᵀ·tail_gram(e^{AT}, P, p)·w (tail_gram = (1/p)MᵀPM for generic M, P)"
     )
     method = ("exhaustive split over the half of R̂, the sign of σ and the class of φ; sympy identities; polynomial identities "
@@ -381,10 +383,15 @@ class Exit(Obligation):
 
         g = G()
         # the tail in the field ℚ(z, k, p): exact, and cheap to multiply out
-        _, z1, z2, z3, k_p, k_i, k_v, p = field("z1 z2 z3 k_p k_i k_v p", sp.QQ)
+        from .._certify.quadratic import _scaled_identity, _sub
+        from .._model.quadratic import lyapunov_rate_entries
+
+        _, z1, z2, z3, k_p, k_i, k_v, p, q11, q12, q13, q22, q23, q33 = field(
+            "z1 z2 z3 k_p k_i k_v p q11 q12 q13 q22 q23 q33", sp.QQ)
         z = (z1, z2, z3)
         a = _coordinates.system_matrix_entries(k_p, k_i, k_v)
         pm = _lyapunov.lyapunov_matrix_entries(k_p, k_i, k_v)
+        q = ((q11, q12, q13), (q12, q22, q23), (q13, q23, q33))  # the tail's P: the file's own, or the paper's
         form = lambda m, u, v: sum((u[i] * m[i][j] * v[j] for i in range(3) for j in range(3)), p - p)  # noqa: E731
         az = [sum((a[i][j] * z[j] for j in range(3)), p - p) for i in range(3)]
         return ExitSubject(
@@ -394,9 +401,10 @@ class Exit(Obligation):
             rate=2 * form(pm, z, az),
             decrease=decrease_rate(_FieldGains(k_p, k_i, k_v)) * z3**2,
             c=decrease_rate(g).xreplace(_symbolic.assumption1_substitution(g)),
-            tail_bound=form(pm, z, z) / p,
+            own_rate=2 * form(q, z, az) - form(lyapunov_rate_entries(k_p, k_i, k_v, q), z, z),
+            tail_bound=form(q, z, z) / p,
             norm=z1**2 + z2**2 + z3**2,
-            premise=form(pm, z, z) - p * (z1**2 + z2**2 + z3**2),
+            premise=form(_sub(q, _scaled_identity(3, p)), z, z),
             p=p,
         )
 
@@ -419,6 +427,8 @@ class Exit(Obligation):
             return Outcome.fail(f"d/dt |z|²_P = {s.rate} along ż = Az is not −c z₃² = {-s.decrease}: AᵀP + PA ⪯ 0 is not shown")
         if sign_of(s.c) != 1:
             return Outcome.fail(f"c = {s.c} under Assumption 1 is not shown > 0: AᵀP + PA ⪯ 0 is not shown")
+        if s.own_rate != 0:
+            return Outcome.fail(f"2zᵀP(Az) − zᵀ(AᵀP + PA)z = {s.own_rate} ≠ 0: the verifier's −(AᵀP + PA) ⪰ 0 is not d/dt|z|²_P ≤ 0")
         residual = s.p * s.tail_bound - s.p * s.norm - s.premise  # p > 0 is the certificate's premise
         if residual != 0:
             return Outcome.fail(f"p·(the tail bound − |z|²) − zᵀ(P − pI)z = {residual} ≠ 0: the tail bound does not follow from P − pI ⪰ 0")

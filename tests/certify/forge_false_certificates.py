@@ -85,7 +85,11 @@ SUP_FLOW = [
     ("first_start", "the first piece starts at t = 0", lambda d: d["pieces"][0].update(start="1/1000")),
     ("gap", "piece 3 starts where piece 2 ends", lambda d: d["pieces"][2].update(start="21/10")),
     ("last_end", "the last piece ends at ∞", lambda d: d["pieces"][-1].update(end="1000")),
-    ("horizon", "T > 0 (the last piece starts after 0)", lambda d: d.update(pieces=[dict(d["pieces"][-1], start="0")])),
+    ("horizon", "T ≥ 0 (the last piece starts at or after 0)", lambda d: d.update(pieces=[dict(d["pieces"][-1], start="-1")])),
+    # the tail's own P: the paper's P written out, with p above its least eigenvalue; then I, which no A makes a
+    # Lyapunov matrix (−(A + Aᵀ) has a zero diagonal entry beside a non-zero one)
+    ("tail_lower", "P − p·I ⪰ 0 (the tail's P)", lambda d: d["constants"].update(_tail((1, 0, -1, 1, 0, 11)), p="10")),
+    ("tail_rate", "−(AᵀP + PA) ⪰ 0 (the tail's P)", lambda d: d["constants"].update(_tail((1, 0, 0, 1, 0, 1)), p="1")),
     ("p_positive", "p > 0", lambda d: d["constants"].update(p="0")),
     ("p_lower", "P − p·I ⪰ 0 (the paper's P)", lambda d: d["constants"].update(p="10")),
     ("c2_flow", "c2 ≥ ‖e^(At)‖² for every t ≥ 0", lambda d: d["constants"].update(c2="1")),
@@ -94,6 +98,18 @@ SUP_FLOW = [
     ("exit", "piece 2: U ≥ |e^(At)w|² on the exits of R̂ for t in [2, 4)", lambda d: _scale(d["pieces"][1], F(0))),
     ("exit_tail", "piece 5: U ≥ |e^(At)w|² on the exits of R̂ for t in [8, ∞)", lambda d: _scale(d["pieces"][-1], F(0))),
 ]
+
+
+def _tail(entries: tuple[int, ...]) -> dict[str, str]:
+    """The tail's own ``P`` (entries 11, 12, 13, 22, 23, 33) as a file's constants."""
+    return {f"tail_p{ij}": str(e) for ij, e in zip(("11", "12", "13", "22", "23", "33"), entries)}
+
+
+def _single_piece(base: dict) -> dict:
+    """``base`` with one piece ``[0, ∞)``, the tail at ``T = 0`` (true: the tail form at ``T = 0`` is ``P/p``)."""
+    data = copy.deepcopy(base)
+    data["pieces"] = [dict(data["pieces"][-1], start="0")]
+    return data
 
 
 def _scale(piece: dict, factor: F) -> None:
@@ -182,6 +198,8 @@ def forged() -> tuple[dict[str, str], list[dict]]:
     base = _sup_flow_base()
     files["true_sup_flow.json"] = _text(base)
     manifest.append({"file": "true_sup_flow.json", "template": "sup-flow", "premise": None, "fails": []})
+    files["true_sup_flow_single.json"] = _text(_single_piece(base))
+    manifest.append({"file": "true_sup_flow_single.json", "template": "sup-flow", "premise": None, "fails": []})
     for stem, premise, edit in SUP_FLOW:
         data = copy.deepcopy(base)
         edit(data)

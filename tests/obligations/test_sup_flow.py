@@ -254,6 +254,29 @@ def test_exit_sees_a_p_whose_flow_can_grow(monkeypatch):
     assert not result.holds and "AᵀP + PA ⪯ 0" in result.reason
 
 
+def test_exit_sees_a_verifier_rate_that_is_not_the_derivative_along_the_flow(monkeypatch):
+    """The verifier decides −(AᵀP + PA) ⪰ 0 for a file's own tail ``P``: a wrong ``AᵀP + PA`` (here ``AᵀP + PAᵀ``)
+    would prove a tail that the flow can break."""
+    from symbolic_friction._model import quadratic as quad_model
+
+    def wrong(k_p, k_i, k_v, p):
+        a = [[0, 0, -k_i], [1, 0, -k_p], [0, 1, -k_v]]
+        return tuple(tuple(sum(a[k][i] * p[k][j] + p[i][k] * a[j][k] for k in range(3)) for j in range(3)) for i in range(3))
+
+    monkeypatch.setattr(quad_model, "lyapunov_rate_entries", wrong)
+    result = Exit().run()
+    assert not result.holds and "not d/dt|z|²_P ≤ 0" in result.reason
+
+
+def test_exit_sees_a_tail_premise_that_is_not_p_minus_p_identity(monkeypatch):
+    from symbolic_friction._certify import quadratic as quad_certify
+
+    monkeypatch.setattr(quad_certify, "_scaled_identity", lambda n, scale: tuple(
+        tuple(scale / 2 if i == j else scale - scale for j in range(n)) for i in range(n)))
+    result = Exit().run()
+    assert not result.holds and "tail bound does not follow" in result.reason
+
+
 def test_exit_sees_a_point_off_the_boundary():
     ob = Exit()
     subject = ob.derive()
