@@ -31,7 +31,7 @@ from .._infra.errors import ParameterError
 from .._model.lyapunov import lyapunov_matrix_entries
 from .._model.parameters import Parameters
 
-__all__ = ["FlowBound", "kappa_lin_bound"]
+__all__ = ["FlowBound", "kappa_lin_bound", "kappa_lin_lower"]
 
 PRECISION = 128
 """Bits of the arb balls."""
@@ -144,6 +144,44 @@ def _lower(A: Any, t: float) -> Fraction:
     num = sum(_arb(v[i]) * S[i, j] * _arb(v[j]) for i in range(3) for j in range(3))
     den = sum(x * x for x in v)
     return _fraction((num / _arb(den)).sqrt().lower())
+
+
+def kappa_lin_lower(params: Parameters) -> Fraction:
+    """A proven lower end of ``κ_lin = sup_t ‖e^{At}‖₂``, cheaply: the lower end of :func:`kappa_lin_bound` alone.
+
+    The time ``t*`` is searched in floats; ``‖e^{At*}‖₂ ≥ √(vᵀMᵀMv/vᵀv)`` is
+    then enclosed in arb at ``M = e^{At*}`` (a Rayleigh quotient), and its
+    lower end returned.  No overshoot bound of any template can be below it,
+    so ``certify`` measures its κ against it.  About 0.1–0.3 s; no cover, so it
+    also serves gains whose cover :func:`kappa_lin_bound` cannot finish.
+
+    Raises
+    ------
+    ParameterError
+        If Assumption 1 fails, or the gains are beyond float range (the search for ``t*``).
+
+    Examples
+    --------
+    >>> lower = kappa_lin_lower(Parameters.table_i("a"))
+    >>> 1.3732 < float(lower) <= 1.3732678
+    True
+    """
+    import flint
+    import numpy as np
+
+    if not params.k_v * params.k_p > params.k_i > 0:
+        raise ParameterError(f"Assumption 1 needs k_v·k_p > k_i > 0; got k_v·k_p = {params.k_v * params.k_p}, k_i = {params.k_i}")
+    k_p, k_i, k_v, _ = params.as_floats()
+    if not all(math.isfinite(x) and 1e-150 < x < 1e150 for x in (k_p, k_i, k_v)):
+        raise ParameterError(f"the gains of {params} are beyond the float range the search for the peak time works in")
+    old = flint.ctx.prec
+    flint.ctx.prec = PRECISION
+    try:
+        A = _system(params)
+        decay = min(abs(np.linalg.eigvals(np.array([[0, 0, -k_i], [1, 0, -k_p], [0, 1, -k_v]])).real))
+        return _lower(A, _peak(A, 40.0 / decay))
+    finally:
+        flint.ctx.prec = old
 
 
 def _p_condition(params: Parameters) -> Fraction:

@@ -1,6 +1,6 @@
 """Search for a quadratic-template certificate: an SDP, then exact rounding (the verifier decides).
 
-The SDP (cvxpy, Clarabel) minimises ``max(c₂, γ)`` over ``P₁₁, P₂₂, P₃₃``,
+The SDP (Clarabel, written into conic form by :mod:`._conic`) minimises ``max(c₂, γ)`` over ``P₁₁, P₂₂, P₃₃``,
 ``c``, ``K`` (``K₁₂ = 0``) and ``γ`` subject to the premises of
 :func:`._certify.quadratic.quadratic_premises`, each copositive premise written
 as ``M = S + N`` with ``S ⪰ 0`` and ``N ≥ 0`` entrywise (exact for ``n ≤ 3``,
@@ -30,49 +30,42 @@ MARGINS: tuple[float, ...] = (1e-7, 1e-6, 1e-5, 1e-4)
 SOLVER = "CLARABEL"
 
 
-def _solve(params: Parameters, margin: float):
-    import cvxpy as cp
-    import numpy as np
+def _solve(params: Parameters, margin: float) -> tuple[str, dict[str, float]]:
+    from ._conic import Program
 
     k_p, k_i, k_v, _ = params.as_floats()
-    p11, p22, p33, c, c2, gamma, z = (cp.Variable() for _ in range(7))
-    k11, k13, k22, k23, k33 = (cp.Variable() for _ in range(5))
-    P = cp.bmat([list(row) for row in model.quadratic_p_entries(k_p, k_i, k_v, p11, p22, p33)])
-    K = cp.bmat([list(row) for row in model.u_matrix_entries(k11, k13, k22, k23, k33)])
-    Q = cp.bmat([list(row) for row in model.lyapunov_rate_entries(k_p, k_i, k_v, tuple(tuple(P[i, j] for j in range(3)) for i in range(3)))])
-    eye, e3 = np.eye(3), np.diag([0.0, 0.0, 1.0])
+    program = Program()
+    names = ("p11", "p22", "p33", "c", "c2", "k11", "k13", "k22", "k23", "k33", "gamma")
+    variables = {name: program.variable() for name in names}
+    p11, p22, p33, c, c2, k11, k13, k22, k23, k33, gamma = (variables[n] for n in names)
+    z = program.variable()
+    p_rows = model.quadratic_p_entries(k_p, k_i, k_v, p11, p22, p33)
+    k_rows = model.u_matrix_entries(k11, k13, k22, k23, k33)
+    q = model.lyapunov_rate_entries(k_p, k_i, k_v, p_rows)
     scale = max(1.0, k_p, k_i, k_v, k_i / k_v, k_v / k_i)
     eps = margin
-    cons = [P - (1 + eps) * eye >> 0, c2 * eye - P - eps * eye >> 0, c >= eps, -(Q + c * e3) - eps * scale * np.diag([0.0, 1.0, 1.0]) >> 0]
-
-    def copositive(M, mask):
-        n = M.shape[0]
-        S = cp.Variable((n, n), symmetric=True)
-        N = cp.Variable((n, n), symmetric=True)
-        # a structurally zero diagonal entry forces its row of M to be ≥ 0: keep those entries ≥ the margin instead
-        free = 1 - np.array(mask, dtype=float)
-        margin_matrix = np.diag(np.array(mask, dtype=float)) + (1 - np.eye(n)) * np.minimum(1, np.add.outer(free, free))
-        return [S >> 0, N >= 0, M - eps * scale * margin_matrix == S + N]
-
-    k_rows = tuple(tuple(K[i, j] for j in range(3)) for i in range(3))
+    eye = lambda i, j: 1.0 if i == j else 0.0  # noqa: E731
+    program.psd([[p_rows[i][j] - (1 + eps) * eye(i, j) for j in range(3)] for i in range(3)])
+    program.psd([[(c2 - eps) * eye(i, j) - p_rows[i][j] for j in range(3)] for i in range(3)])
+    program.nonneg(c - eps)
+    # −(Q + c·e₃e₃ᵀ) ⪰ eps·scale·diag(0, 1, 1)
+    program.psd([[-q[i][j] - (c if i == j == 2 else 0.0) - (eps * scale if i == j and i > 0 else 0.0) for j in range(3)]
+                 for i in range(3)])
     for s in (1.0, -1.0):
         b = model.slip_rate_entries(k_p, k_i, k_v, s)
-        cons += copositive(cp.bmat([list(r) for r in model.u_rate_entries(k_rows, b)]), [0, 1, 1])
-        cons += copositive(cp.bmat([list(r) for r in model.band_rate_entries(k_i, k_v, k_rows, s)]), [0, 1])
-    cons += [k13 >= eps, k23 >= eps, k33 >= eps]
-    cons += copositive(K - eye, [1, 1, 1]) + copositive(gamma * eye - K, [1, 1, 1])
-    p_rows = tuple(tuple(P[i, j] for j in range(3)) for i in range(3))
+        program.copositive(model.u_rate_entries(k_rows, b), [0, 1, 1], eps * scale)
+        program.copositive(model.band_rate_entries(k_i, k_v, k_rows, s), [0, 1], eps * scale)
+    program.nonneg(k13 - eps, k23 - eps, k33 - eps)
+    program.copositive([[k_rows[i][j] - eye(i, j) for j in range(3)] for i in range(3)], [1, 1, 1], eps * scale)
+    program.copositive([[gamma * eye(i, j) - k_rows[i][j] for j in range(3)] for i in range(3)], [1, 1, 1], eps * scale)
     at_rest, at_edge = model.exit_entries(k_rows, p_rows)
-    cons += copositive(cp.bmat([list(r) for r in at_rest]), [1, 1]) + copositive(cp.bmat([list(r) for r in at_edge]), [1, 1])
-    problem = cp.Problem(cp.Minimize(z), cons + [z >= c2, z >= gamma])
-    try:
-        problem.solve(solver=getattr(cp, SOLVER))
-    except cp.error.SolverError as exc:
-        return f"solver error ({exc})", {}
-    values = {name: var.value for name, var in (("p11", p11), ("p22", p22), ("p33", p33), ("c", c), ("c2", c2),
-                                               ("k11", k11), ("k13", k13), ("k22", k22), ("k23", k23), ("k33", k33),
-                                               ("gamma", gamma))}
-    return problem.status, values
+    program.copositive(at_rest, [1, 1], eps * scale)
+    program.copositive(at_edge, [1, 1], eps * scale)
+    program.nonneg(z - c2, z - gamma)
+    status, x = program.solve(z)
+    if not x:
+        return status, {}
+    return status, {name: Program.value(v, x) for name, v in variables.items()}
 
 
 def certify_quadratic(params: Parameters, *, label: str = "") -> "QuadraticCertificate":

@@ -6,7 +6,7 @@ Nothing here is called proved.  The search:
    and a horizon ``T = 2^m`` at which the tail form ``(1/p)e^{AT}ᵀPe^{AT}`` is below a quarter of the sampled
    ``sup_t ‖e^{At}‖₂²``;
 2. starts from :data:`INITIAL_PIECES` equal pieces of ``[0, T]`` plus the tail ``[T, ∞)`` and, for each,
-   minimises ``γ`` by an SDP (cvxpy, Clarabel; compiled once, :class:`_PieceProblem`) over ``K`` subject to the
+   minimises ``γ`` by an SDP (Clarabel, written into conic form by :mod:`._conic`, :class:`_PieceProblem`) over ``K`` subject to the
    quadratic template's rate premises and the exit forms on :data:`SAMPLES` − 1 parts of the piece, each with
    the Gram at the part's middle plus its measured spread (:func:`_covering_grams`), every copositive premise
    as ``S + N`` with a margin (:func:`copositive_constraints`);
@@ -36,7 +36,7 @@ from .._model.parameters import Parameters
 if TYPE_CHECKING:
     from .sup_flow import SupFlowCertificate
 
-__all__ = ["certify_sup_flow", "copositive_constraints", "DIGITS", "SAMPLES", "INITIAL_PIECES", "MARGIN"]
+__all__ = ["certify_sup_flow", "rounded_constants", "DIGITS", "SAMPLES", "INITIAL_PIECES", "MARGIN"]
 
 DIGITS = 12
 """Significant digits kept from the solver's numbers."""
@@ -64,33 +64,6 @@ class _Piece:
     best: float = float("inf")
 
 
-def copositive_constraints(M, mask, margin: float) -> list:
-    """cvxpy constraints making ``M`` copositive with a margin.
-
-    ``mask[i]`` is 0 where ``M``'s diagonal entry is structurally zero.  Such
-    a row is copositive only with nonnegative off-diagonal entries, so those
-    are kept ``≥ margin`` by linear constraints, and the rest of ``M`` is
-    written ``M − margin·I = S + N`` with ``S ⪰ 0`` and ``N ≥ 0`` (Diananda:
-    exact for ``n ≤ 4``).  Writing the zero rows into ``S + N`` too would let
-    an interior-point solver keep ``S_ii`` at its tolerance and a visibly
-    negative ``S_ij`` beside it, which rounding then exposes.
-    """
-    import cvxpy as cp
-    import numpy as np
-
-    n = M.shape[0]
-    zero = [i for i in range(n) if not mask[i]]
-    rest = [i for i in range(n) if mask[i]]
-    cons = [M[i, j] >= margin for i in zero for j in range(n) if j != i]
-    if rest:
-        m = len(rest)
-        S = cp.Variable((m, m), symmetric=True)
-        N = cp.Variable((m, m), symmetric=True)
-        sub = cp.bmat([[M[i, j] for j in rest] for i in rest])
-        cons += [S >> 0, N >= 0, sub - margin * np.eye(m) == S + N]
-    return cons
-
-
 def _flows(a_matrix: Any, times: Any) -> list[Any]:
     from scipy.linalg import expm
 
@@ -98,73 +71,61 @@ def _flows(a_matrix: Any, times: Any) -> list[Any]:
 
 
 class _PieceProblem:
-    """The SDP of one piece, compiled once (cvxpy parameters for the Grams and the margins), solved per piece.
+    """The SDP of one piece, written into Clarabel's conic form (:mod:`._conic`) per solve.
 
     It minimises ``γ`` over ``K`` (``K₁₂ = 0``): ``K`` nonincreasing on ``R̂``
     (the quadratic template's rate premises), ``γI − K`` copositive, on the
     first piece ``K − I`` copositive, and ``U ≥ wᵀG_jw`` on both exits for
-    :data:`SAMPLES` − 1 Grams ``G_j``.
+    ``grams`` Grams ``G_j``.  With ``room``, ``γ`` is capped and the exit
+    forms' common margin maximised instead.
     """
 
-    def __init__(self, k: tuple[float, float, float], *, first: bool, room: bool = False) -> None:
-        import cvxpy as cp
-        import numpy as np
+    names = ("k11", "k13", "k22", "k23", "k33", "gamma")
 
-        k_p, k_i, k_v = k
-        self.names = ("k11", "k13", "k22", "k23", "k33", "gamma")
-        self.variables = [cp.Variable() for _ in self.names]
-        k11, k13, k22, k23, k33, gamma = self.variables
-        K = cp.bmat([list(r) for r in quad.u_matrix_entries(k11, k13, k22, k23, k33)])
-        rows = tuple(tuple(K[i, j] for j in range(3)) for i in range(3))
-        scale = max(1.0, k_p, k_i, k_v, k_i / k_v, k_v / k_i)
-        self.margin = cp.Parameter(nonneg=True)
-        eps = self.margin * scale
-        cons = [k13 >= eps, k23 >= eps, k33 >= eps]
-        for s in (1.0, -1.0):
-            b = quad.slip_rate_entries(k_p, k_i, k_v, s)
-            cons += copositive_constraints(cp.bmat([list(r) for r in quad.u_rate_entries(rows, b)]), [0, 1, 1], eps)
-            cons += copositive_constraints(cp.bmat([list(r) for r in quad.band_rate_entries(k_i, k_v, rows, s)]), [0, 1], eps)
-        eye = np.eye(3)
-        cons += copositive_constraints(gamma * eye - K, [1, 1, 1], eps)
-        if first:
-            cons += copositive_constraints(K - eye, [1, 1, 1], eps)
-        self.grams = [cp.Parameter((3, 3), symmetric=True) for _ in range(SAMPLES - 1)]
-        self.gram_margins = [cp.Parameter(nonneg=True) for _ in self.grams]
-        # room: with γ capped, the largest common room of the exit forms (the verifier then needs few parts)
-        self.room = cp.Variable() if room else None
-        self.cap = cp.Parameter(nonneg=True) if room else None
-        for gram, scale_g in zip(self.grams, self.gram_margins):
-            g = tuple(tuple(gram[i, j] for j in range(3)) for i in range(3))
-            for s in (1.0, -1.0):
-                for form in model.exit_forms(rows, g, s):
-                    margin_g = scale_g if self.room is None else scale_g * self.room
-                    cons += copositive_constraints(cp.bmat([list(r) for r in form]), [1, 1], margin_g)
-        if self.room is None:
-            self.problem = cp.Problem(cp.Minimize(gamma), cons)
-        else:
-            self.problem = cp.Problem(cp.Maximize(self.room), cons + [gamma <= self.cap, self.room >= self.margin, self.room <= 1])
+    def __init__(self, k: tuple[float, float, float], *, first: bool, room: bool = False, grams: int = SAMPLES - 1) -> None:
+        self.k, self.first, self.room, self.grams = k, first, room, grams
 
     def solve(self, grams: list[Any], margin: float, cap: float | None = None) -> tuple[str, dict[str, float]]:
-        import cvxpy as cp
         import numpy as np
 
-        grams = list(grams) + [grams[-1]] * (len(self.grams) - len(grams))  # the tail has one Gram
-        for parameter, room, gram in zip(self.grams, self.gram_margins, grams):
-            parameter.value = (gram + gram.T) / 2
-            room.value = max(1.0, float(np.max(np.abs(gram)))) * (margin if self.room is None else 1.0)
-        self.margin.value = margin
-        if self.cap is not None:
-            self.cap.value = cap
-        try:
-            self.problem.solve(solver=getattr(cp, SOLVER))
-        except cp.error.SolverError as exc:
-            return f"solver error ({exc})", {}
-        if any(v.value is None for v in self.variables):
-            return str(self.problem.status), {}
-        return str(self.problem.status), {n: float(v.value) for n, v in zip(self.names, self.variables)}
+        from ._conic import Program
+
+        k_p, k_i, k_v = self.k
+        program = Program()
+        variables = [program.variable() for _ in self.names]
+        k11, k13, k22, k23, k33, gamma = variables
+        rows = quad.u_matrix_entries(k11, k13, k22, k23, k33)
+        eps = margin * max(1.0, k_p, k_i, k_v, k_i / k_v, k_v / k_i)
+        program.nonneg(k13 - eps, k23 - eps, k33 - eps)
+        for s in (1.0, -1.0):
+            b = quad.slip_rate_entries(k_p, k_i, k_v, s)
+            program.copositive(quad.u_rate_entries(rows, b), [0, 1, 1], eps)
+            program.copositive(quad.band_rate_entries(k_i, k_v, rows, s), [0, 1], eps)
+        eye = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
+        program.copositive(tuple(tuple(gamma * eye[i][j] - rows[i][j] for j in range(3)) for i in range(3)), [1, 1, 1], eps)
+        if self.first:
+            program.copositive(tuple(tuple(rows[i][j] - eye[i][j] for j in range(3)) for i in range(3)), [1, 1, 1], eps)
+        room = program.variable() if self.room else None
+        grams = list(grams) + [grams[-1]] * (self.grams - len(grams))  # the tail has one Gram
+        for gram in grams[: self.grams]:
+            sym = (np.asarray(gram) + np.asarray(gram).T) / 2
+            scale = max(1.0, float(np.max(np.abs(sym))))
+            g = tuple(tuple(float(sym[i, j]) for j in range(3)) for i in range(3))
+            for s in (1.0, -1.0):
+                for form in model.exit_forms(rows, g, s):
+                    program.copositive(form, [1, 1], scale * margin if room is None else room * scale)
+        if room is None:
+            status, x = program.solve(gamma)
+        else:
+            program.nonneg(cap - gamma, room - margin, 1.0 - room)
+            status, x = program.solve(room, maximize=True)
+        if not x:
+            return status, {}
+        return status, {n: Program.value(v, x) for n, v in zip(self.names, variables)}
 
 
-def certify_sup_flow(params: Parameters, *, label: str = "", rel_tol: float = 3e-3, max_pieces: int = 32) -> "SupFlowCertificate":
+def certify_sup_flow(params: Parameters, *, label: str = "", rel_tol: float = 3e-3, max_pieces: int = 32,
+                     tail: str = "paper", deadline: float | None = None) -> "SupFlowCertificate":
     """Search, round and exactly verify a sup-flow certificate for ``params``.
 
     Parameters
@@ -177,6 +138,11 @@ def certify_sup_flow(params: Parameters, *, label: str = "", rel_tol: float = 3e
         A piece is halved while that lowers the largest ``γ`` by more than this (relative).
     max_pieces : int, keyword-only
         At most this many finite pieces (the tail is one more).
+    tail : {"paper", "own"}, keyword-only
+        The tail's ``P``: the paper's (eq. lyapLikeP), or the best-conditioned exact Lyapunov matrix of
+        :mod:`.sup_flow_tail`, written into the file (a shorter horizon on stiff, slow and spread gains).
+    deadline : float, keyword-only
+        A ``time.monotonic()`` past which no more pieces are halved (the pieces so far are rounded and verified).
 
     Raises
     ------
@@ -188,25 +154,34 @@ def certify_sup_flow(params: Parameters, *, label: str = "", rel_tol: float = 3e
     import numpy as np
 
     from .rounding import round_significant, sqrt_decimal_up
-    from .sup_flow import SupFlowCertificate, SupFlowPiece, SupFlowProvenance, verify_sup_flow
+    from .sup_flow import TAIL_CONSTANTS, SupFlowCertificate, SupFlowPiece, SupFlowProvenance, verify_sup_flow
 
     if params.stiction:
         raise ParameterError(f"a stability certificate is for the paper's model f_s = f_c; got f_s = {params.f_s} > f_c = {params.f_c}")
-    if not 0 < rel_tol < 1 or not 1 <= max_pieces <= 200:
-        raise ParameterError(f"rel_tol must be in (0, 1) and max_pieces in 1..200; got {rel_tol}, {max_pieces}")
+    if not 0 < rel_tol < 1 or not 1 <= max_pieces <= 200 or tail not in ("paper", "own"):
+        raise ParameterError(f"rel_tol must be in (0, 1), max_pieces in 1..200 and tail 'paper' or 'own'; "
+                             f"got {rel_tol}, {max_pieces}, {tail!r}")
     k_p, k_i, k_v, _ = params.as_floats()
+    if not all(np.isfinite(x) and 1e-150 < x < 1e150 for x in (k_p, k_i, k_v)):
+        raise CertificateError(f"the gains of {params} are beyond the range of the floats the SDPs work in")
     a_matrix = np.array([[0.0, 0.0, -k_i], [1.0, 0.0, -k_p], [0.0, 1.0, -k_v]])
-    p_exact = tuple(tuple(Fraction(x) for x in row) for row in lyapunov_matrix_entries(params.k_p, params.k_i, params.k_v))
+    own_tail = tail == "own"
+    if not own_tail:
+        p_exact = tuple(tuple(Fraction(x) for x in row) for row in lyapunov_matrix_entries(params.k_p, params.k_i, params.k_v))
+    else:
+        from .sup_flow_tail import best_conditioned_lyapunov, exact_lyapunov
+
+        p_exact = exact_lyapunov((params.k_p, params.k_i, params.k_v), best_conditioned_lyapunov((k_p, k_i, k_v)))
     p_float = np.array(p_exact, dtype=float)
     p = _p_below(p_exact, float(np.linalg.eigvalsh(p_float)[0]))
-    decay = float(min(abs(np.linalg.eigvals(a_matrix).real)))
-    # the horizon: a power of two past which the tail form is small next to the peak
-    horizon = Fraction(2) ** int(np.ceil(np.log2(4.0 / decay)))
+    rates = np.abs(np.linalg.eigvals(a_matrix).real)
+    # the horizon: a power of two past which the tail form is small next to the peak (the paper's P: from the
+    # slowest time constant; a well-conditioned P: from the fastest, doubled as needed)
+    horizon = Fraction(2) ** int(np.ceil(np.log2(4.0 / float(max(rates) if own_tail else min(rates)))))
     for _ in range(80):
-        times = np.linspace(0.0, float(horizon), 2001)
+        times = np.unique(np.concatenate([np.linspace(0.0, float(horizon), 2001), float(horizon) * np.logspace(-9, 0, 500)]))
         peak = max(float(np.linalg.norm(e, 2)) ** 2 for e in _flows(a_matrix, times))
-        tail = _tail(a_matrix, p_float, float(p), float(horizon))
-        if np.linalg.norm(tail, 2) <= peak / 4:
+        if np.linalg.norm(_tail(a_matrix, p_float, float(p), float(horizon)), 2) <= peak / 4:
             break
         horizon *= 2
     else:
@@ -225,14 +200,14 @@ def certify_sup_flow(params: Parameters, *, label: str = "", rel_tol: float = 3e
     # halve the pieces whose K fails between its sample times (a dense float look, not a proof)
     while True:
         bad = [q for q in pieces if q.end is not None and q.values is not None and not _dense_ok(a_matrix, q)]
-        if not bad or _finite(pieces) + len(bad) > max_pieces:
+        if not bad or _finite(pieces) + len(bad) > max_pieces or _past(deadline):
             break
         for q in bad:
             pieces = _halve(pieces, q, solve)
     # halve the piece with the largest γ until halving stops lowering it: a coarse piece's γ carries the
     # spread of the Gram over its parts, so a half may be worse before its own halves are better, and a
     # piece is given up only after STALLS generations without a drop of rel_tol
-    while _finite(pieces) < max_pieces:
+    while _finite(pieces) < max_pieces and not _past(deadline):
         open_ = [q for q in pieces if not q.final and q.end is not None]
         if not open_:
             break
@@ -260,22 +235,18 @@ def certify_sup_flow(params: Parameters, *, label: str = "", rel_tol: float = 3e
         status, values = roomy[q.start == 0].solve(grams, MARGIN, cap)
         if status == "optimal" and values and values["gamma"] <= cap:
             q.values = values
+    own = {} if not own_tail else {name: p_exact[int(name[-2]) - 1][int(name[-1]) - 1] for name in TAIL_CONSTANTS}
     failures: list[str] = []
     for attempt in range(4):
         rounded = []
         for piece in pieces:
             if piece.values is None:
                 raise CertificateError(f"no SDP solution for the piece starting at t = {float(piece.start):.6g} of {params}")
-            constants = {}
-            for name, value in piece.values.items():
-                direction = "up" if name == "gamma" else "nearest"
-                constants[name] = (round_significant(abs(value), DIGITS, direction=direction) * (1 if value > 0 else -1)
-                                   if value != 0 else Fraction(0))
-            rounded.append(SupFlowPiece(start=piece.start, end=piece.end, constants=constants))
+            rounded.append(SupFlowPiece(start=piece.start, end=piece.end, constants=rounded_constants(piece.values)))
         kappa_sq = max([c2_floor] + [q.constants["gamma"] for q in rounded])
         # c₂ costs nothing up to κ², and the room above the peak makes the verifier's cover of [0, T] coarse
         certificate = SupFlowCertificate(
-            k_p=params.k_p, k_i=params.k_i, k_v=params.k_v, f_c=params.f_c, constants={"c2": kappa_sq, "p": p},
+            k_p=params.k_p, k_i=params.k_i, k_v=params.k_v, f_c=params.f_c, constants={"c2": kappa_sq, "p": p, **own},
             pieces=tuple(rounded), overshoot_bound=sqrt_decimal_up(kappa_sq),
             provenance=SupFlowProvenance(search="sdp", solver=SOLVER, solver_status="optimal",
                                          margin=str(Fraction(MARGIN).limit_denominator(10**12)), label=label),
@@ -293,6 +264,24 @@ def certify_sup_flow(params: Parameters, *, label: str = "", rel_tol: float = 3e
             else:
                 pieces = _halve(pieces, q, solve)
     raise CertificateError(f"no sup-flow certificate for {params} verifies exactly: " + "; ".join(failures[:4]))
+
+
+def rounded_constants(values: dict[str, float]) -> dict[str, Fraction]:
+    """A piece's SDP values to :data:`DIGITS` significant digits (``γ`` up, the entries of ``K`` to nearest)."""
+    from .rounding import round_significant
+
+    constants = {}
+    for name, value in values.items():
+        direction = "up" if name == "gamma" else "nearest"
+        constants[name] = (round_significant(abs(value), DIGITS, direction=direction) * (1 if value > 0 else -1)
+                           if value != 0 else Fraction(0))
+    return constants
+
+
+def _past(deadline: float | None) -> bool:
+    import time
+
+    return deadline is not None and time.monotonic() > deadline
 
 
 def _finite(pieces: list[_Piece]) -> int:
