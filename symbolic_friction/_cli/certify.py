@@ -35,6 +35,7 @@ _HELP = {
 _EPILOG = """examples:
   symbolic-friction certify                      # regenerate proofs/ (Table I, cases a and b, every template)
   symbolic-friction certify --k-p 3 --k-i 4 --k-v 6.4 --f-c 1 --out my_proofs              # the tightest template
+  symbolic-friction certify --k-p 1000 --k-i 0.001 --k-v 1000 --f-c 1 --kappa-tol 0 --budget 30   # tightest within 30 s
   symbolic-friction certify --k-p 3 --k-i 4 --k-v 6.4 --f-c 1 --template paper --search sdp
   symbolic-friction certify --k-p 2.7:3.3 --k-i 3.6:4.4 --k-v 5.76:7.04 --f-c 1 --pieces 16   # a box of gains
   symbolic-friction certify --m 2 --k-p-bar 6 --k-i-bar 8 --k-d-bar 12.3 --alpha-v 0.5 --f-c-bar 2 --mode feasible
@@ -60,8 +61,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         choices=("auto", "paper", "quadratic", "sup-flow"),
         default="auto",
         help="which proof: 'paper' (Lemmas 2 and 3, Table I's constants), 'quadratic' (a free P and U = y'Ky, "
-        "beyond the paper; an SDP), 'sup-flow' (the peak of the friction-free flow and time pieces of U, beyond "
-        "the paper; SDPs, about 20 s), or 'auto' (default): each, keeping the proved certificate with the smallest κ",
+        "beyond the paper; an SDP), 'sup-flow' (the peak of the friction-free flow bounded by one Lyapunov matrix, "
+        "then by time pieces of U, beyond the paper; SDPs), or 'auto' (default): the closed form, then the others "
+        "cheapest first until κ is within --kappa-tol of κ_lin or --budget is spent, keeping the smallest proved κ",
     )
     parser.add_argument(
         "--mode",
@@ -87,7 +89,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--pieces", type=int, default=None, metavar="N",
                         help="for a box (intervals LO:HI): cover it by N pieces, κ the largest over them (default 1)")
     parser.add_argument("--kappa-tol", default=None, metavar="Q",
-                        help="for a box: halve pieces until κ is within Q (relative) of the largest pointwise κ at their corners")
+                        help="one gain set: stop searching once κ ≤ (1 + Q)·κ_lin, the proven lower end of the friction-free "
+                        "limit no template can beat (default 1/10; 0 tries every search within the budget); a box: halve "
+                        "pieces until κ is within Q (relative) of the largest pointwise κ at their corners")
+    parser.add_argument("--budget", default=None, metavar="SECONDS",
+                        help="one gain set: start no further search after this many seconds and keep the smallest κ "
+                        "proved so far (default 10; the cheap searches take well under a second)")
     parser.add_argument("--out", default="proofs", metavar="DIR", help="output directory (default: proofs)")
     parser.add_argument(
         "--name",
@@ -195,9 +202,10 @@ def run(args: argparse.Namespace) -> int:
 
     if _is_box(args):
         return _run_box(args)
-    if args.pieces is not None or args.kappa_tol is not None:
-        raise ParameterError("--pieces and --kappa-tol apply to a box: give at least one gain as an interval LO:HI")
+    if args.pieces is not None:
+        raise ParameterError("--pieces applies to a box: give at least one gain as an interval LO:HI")
     params = _gains(args)
+    search_options = _search_options(args)
     physical = _physical(args) if params is not None else None
     paper_only = paper_only_options(mode=args.mode, margin=args.margin, search=args.search, physical=physical)
     refuse_paper_only(args.template, paper_only)  # before any work
@@ -231,7 +239,7 @@ def run(args: argparse.Namespace) -> int:
     ensure_directory(args.out)  # an unusable --out (or an empty one) fails now, not after the search
     for params_j, template, mode, label, path in jobs:
         choice = certify_template(params_j, template=template, mode=mode, margin=args.margin, search=args.search,
-                                  label=label, physical=physical)
+                                  label=label, physical=physical, **search_options)
         if not isinstance(path, Path):  # one gain set: the file is named after the template chosen
             kind = (mode or "tightest") if choice.template.name == "paper" else choice.template.name
             path = out / f"{path or default_stem(params_j, kind)}.json"
@@ -240,6 +248,23 @@ def run(args: argparse.Namespace) -> int:
         written = choice.chosen.write(path)
         _render(args, choice, written, mode)
     return 0
+
+
+def _search_options(args: argparse.Namespace) -> dict:
+    """``--kappa-tol`` and ``--budget`` for one gain set, exact and in range (the library's defaults when absent)."""
+    from .._infra.rational import to_rational
+
+    options: dict = {}
+    if args.kappa_tol is not None:
+        options["kappa_tol"] = to_rational(args.kappa_tol, name="--kappa-tol")
+        if options["kappa_tol"] < 0:
+            raise ParameterError(f"--kappa-tol must be ≥ 0; got {args.kappa_tol}")
+    if args.budget is not None:
+        seconds = to_rational(args.budget, name="--budget")
+        if not 0 < seconds <= 86_400:
+            raise ParameterError(f"--budget must be a number of seconds in (0, 86400]; got {args.budget}")
+        options["budget"] = float(seconds)
+    return options
 
 
 def _render(args: argparse.Namespace, choice, written: tuple, mode: str | None) -> None:
@@ -260,13 +285,18 @@ def _render(args: argparse.Namespace, choice, written: tuple, mode: str | None) 
             "parameters": {k: format_rational(v) for k, v in cert.parameters.items()},
             "physical": None if physical is None else {k: format_rational(v) for k, v in physical.items()},
             "overshoot_bound": cert.overshoot_bound, "proved": True,
-            "alternatives": [{"template": a.template.name, "overshoot_bound": None if a.certificate is None
-                              else a.certificate.overshoot_bound, "reason": a.reason or None} for a in choice.others],
+            "alternatives": [{"template": a.template.name, "search": a.search or None, "overshoot_bound": None
+                              if a.certificate is None else a.certificate.overshoot_bound, "reason": a.reason or None,
+                              "seconds": round(a.seconds, 4)} for a in choice.others],
             "note": choice.note or None,
+            "template_search": choice.chosen.search or None, "seconds": round(choice.chosen.seconds, 4),
+            "kappa_lin_lower": None if choice.kappa_lin_lower is None else format_rational(choice.kappa_lin_lower),
         }, ensure_ascii=False), level=0)
         return
-    if choice.requested == "auto" and (choice.others or choice.note):
-        emit(choice.describe(), level=0)
+    if choice.others or choice.note:
+        emit(choice.describe(timed=True), level=0)
+    if choice.against_kappa_lin():
+        emit(choice.against_kappa_lin(), level=0)
     what = f"{written[0]} and {written[1].name} ({mode})" if paper else f"{written[0]} ({name} template)"
     # the normalised gains that were certified (physical values, when given, follow in parentheses)
     emit(f"wrote {what} for {cert.gains_text()}: |x(t)|_A <= {cert.overshoot_bound}·|x(0)|_A", level=0)
