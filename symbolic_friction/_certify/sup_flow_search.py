@@ -70,6 +70,35 @@ def _flows(a_matrix: Any, times: Any) -> list[Any]:
     return [expm(a_matrix * float(t)) for t in times]
 
 
+def piece_constraints(program: Any, k: tuple[float, float, float], variables: list[Any], *, first: bool,
+                      margin: float) -> tuple[Any, Any]:
+    """Add a piece's premises on ``K`` and ``γ`` to ``program`` (:mod:`._conic`): ``U`` nonincreasing on ``R̂``
+    (the quadratic template's rate, band and ``K₃ⱼ ≥ 0`` premises), ``γI − K`` and, on the first piece, ``K − I``
+    copositive, each with ``margin`` scaled by the gains.  ``variables`` are ``k11, k13, k22, k23, k33, γ``;
+    returns ``(K's rows, γ)``."""
+    k_p, k_i, k_v = k
+    k11, k13, k22, k23, k33, gamma = variables
+    rows = quad.u_matrix_entries(k11, k13, k22, k23, k33)
+    eps = margin * max(1.0, k_p, k_i, k_v, k_i / k_v, k_v / k_i)
+    program.nonneg(k13 - eps, k23 - eps, k33 - eps)
+    for s in (1.0, -1.0):
+        b = quad.slip_rate_entries(k_p, k_i, k_v, s)
+        program.copositive(quad.u_rate_entries(rows, b), [0, 1, 1], eps)
+        program.copositive(quad.band_rate_entries(k_i, k_v, rows, s), [0, 1], eps)
+    eye = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
+    program.copositive(tuple(tuple(gamma * eye[i][j] - rows[i][j] for j in range(3)) for i in range(3)), [1, 1, 1], eps)
+    if first:
+        program.copositive(tuple(tuple(rows[i][j] - eye[i][j] for j in range(3)) for i in range(3)), [1, 1, 1], eps)
+    return rows, gamma
+
+
+def exit_constraints(program: Any, rows: Any, gram: Any, margin: Any) -> None:
+    """``U ≥ wᵀGw`` on both exit planes, both signs of ``σ`` (``G`` numbers, or affine in the unknowns)."""
+    for s in (1.0, -1.0):
+        for form in model.exit_forms(rows, gram, s):
+            program.copositive(form, [1, 1], margin)
+
+
 class _PieceProblem:
     """The SDP of one piece, written into Clarabel's conic form (:mod:`._conic`) per solve.
 
@@ -90,30 +119,16 @@ class _PieceProblem:
 
         from ._conic import Program
 
-        k_p, k_i, k_v = self.k
         program = Program()
         variables = [program.variable() for _ in self.names]
-        k11, k13, k22, k23, k33, gamma = variables
-        rows = quad.u_matrix_entries(k11, k13, k22, k23, k33)
-        eps = margin * max(1.0, k_p, k_i, k_v, k_i / k_v, k_v / k_i)
-        program.nonneg(k13 - eps, k23 - eps, k33 - eps)
-        for s in (1.0, -1.0):
-            b = quad.slip_rate_entries(k_p, k_i, k_v, s)
-            program.copositive(quad.u_rate_entries(rows, b), [0, 1, 1], eps)
-            program.copositive(quad.band_rate_entries(k_i, k_v, rows, s), [0, 1], eps)
-        eye = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
-        program.copositive(tuple(tuple(gamma * eye[i][j] - rows[i][j] for j in range(3)) for i in range(3)), [1, 1, 1], eps)
-        if self.first:
-            program.copositive(tuple(tuple(rows[i][j] - eye[i][j] for j in range(3)) for i in range(3)), [1, 1, 1], eps)
+        rows, gamma = piece_constraints(program, self.k, variables, first=self.first, margin=margin)
         room = program.variable() if self.room else None
         grams = list(grams) + [grams[-1]] * (self.grams - len(grams))  # the tail has one Gram
         for gram in grams[: self.grams]:
             sym = (np.asarray(gram) + np.asarray(gram).T) / 2
             scale = max(1.0, float(np.max(np.abs(sym))))
             g = tuple(tuple(float(sym[i, j]) for j in range(3)) for i in range(3))
-            for s in (1.0, -1.0):
-                for form in model.exit_forms(rows, g, s):
-                    program.copositive(form, [1, 1], scale * margin if room is None else room * scale)
+            exit_constraints(program, rows, g, scale * margin if room is None else room * scale)
         if room is None:
             status, x = program.solve(gamma)
         else:
@@ -169,7 +184,7 @@ def certify_sup_flow(params: Parameters, *, label: str = "", rel_tol: float = 3e
     if not own_tail:
         p_exact = tuple(tuple(Fraction(x) for x in row) for row in lyapunov_matrix_entries(params.k_p, params.k_i, params.k_v))
     else:
-        from .sup_flow_tail import best_conditioned_lyapunov, exact_lyapunov
+        from .lyapunov_tail import best_conditioned_lyapunov, exact_lyapunov
 
         p_exact = exact_lyapunov((params.k_p, params.k_i, params.k_v), best_conditioned_lyapunov((k_p, k_i, k_v)))
     p_float = np.array(p_exact, dtype=float)
