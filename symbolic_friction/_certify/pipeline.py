@@ -341,5 +341,5 @@ def write_listed_certificates(directory: str | os.PathLike[str], names: Iterable
             from .sup_flow_search import certify_sup_flow
 
             case = path.stem[-1]
-            written.append(SUP_FLOW.write(certify_sup_flow(Parameters.table_i(case), label=TABLE_I_LABELS[case]), path))
+            written.append(SUP_FLOW.write(certify_sup_flow(Parameters.table_i(case), label=TABLE_I_LABELS[case], tail="own"), path))
     return written

@@ -216,6 +216,9 @@ def run(args: argparse.Namespace) -> int:
             raise ParameterError("--name applies to one gain set; Table I files are named case_<a|b>_<mode>")
         if args.label is not None:
             raise ParameterError("--label applies to one gain set; Table I's certificates are labelled by their case")
+        if search_options:
+            raise ParameterError("--kappa-tol and --budget apply to one gain set; Table I's files are regenerated in full")
+        search_options = {"kappa_tol": 0, "budget": None}  # every search to its end: the committed files, reproducibly
         modes = MODES if args.mode is None else (args.mode,)
         for case, label in TABLE_I_LABELS.items():
             if args.template in ("auto", "paper"):

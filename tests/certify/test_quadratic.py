@@ -91,7 +91,7 @@ def test_every_premise_has_a_breaking_case():
 def test_the_minus_sign_rate_premise_fails_alone():
     # a larger K₂₃ breaks only the s = −1 rate form
     cert = _load("a")
-    report = verify_quadratic(_with(cert, k23=cert.constants["k23"] * 2))
+    report = verify_quadratic(_with(cert, k23=cert.constants["k23"] * F(6, 5)))
     assert [c.name for c in report.failures] == ["−(K·B− + B−ᵀ·K) copositive"]
 
 

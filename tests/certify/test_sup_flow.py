@@ -97,13 +97,26 @@ def test_a_piece_that_is_empty_is_refused():
     assert any("empty piece" in c.instance for c in report.failures)
 
 
-def test_the_tail_needs_p_and_the_papers_p():
+def _paper_tail() -> dict:
+    """A true certificate whose tail uses the paper's P (no tail constants: the first format's files)."""
+    from symbolic_friction._certify.self_check import DIRECTORY
+
+    return json.loads((DIRECTORY / "true_sup_flow.json").read_text(encoding="utf-8"))
+
+
+def test_the_tail_needs_p_and_its_p():
+    for data, whose in ((_data(), "the tail's P"), (_paper_tail(), "the paper's P")):
+        assert _verify(data).proved
+        data["constants"]["p"] = "0"
+        assert "p > 0" in _failed(data)
+        data["constants"]["p"] = "1000"
+        assert f"P − p·I ⪰ 0 ({whose})" in _failed(data)
+
+
+def test_the_tails_own_p_must_be_a_lyapunov_matrix():
     data = _data()
-    data["constants"]["p"] = "0"
-    assert "p > 0" in _failed(data)
-    data = _data()
-    data["constants"]["p"] = "1000"
-    assert "P − p·I ⪰ 0 (the paper's P)" in _failed(data)
+    data["constants"]["tail_p12"] = str(Fraction(data["constants"]["tail_p12"]) + 1)  # (AᵀP + PA)₁₁ = 2P₁₂ > 0
+    assert "−(AᵀP + PA) ⪰ 0 (the tail's P)" in _failed(data)
 
 
 def test_the_papers_p_must_be_a_lyapunov_matrix(monkeypatch):
@@ -116,7 +129,7 @@ def test_the_papers_p_must_be_a_lyapunov_matrix(monkeypatch):
         return tuple(tuple(row) for row in p)
 
     monkeypatch.setattr(sup_flow, "lyapunov_matrix_entries", wrong)
-    assert "−(AᵀP + PA) ⪰ 0 (the paper's P)" in _failed(_data())
+    assert "−(AᵀP + PA) ⪰ 0 (the paper's P)" in _failed(_paper_tail())
 
 
 def test_c2_below_the_peak_of_the_flow_is_refused():
@@ -283,12 +296,18 @@ def test_every_premise_kind_is_named_when_it_fails(where, key, value, premise):
     assert premise in _failed(data)
 
 
-def test_a_single_piece_from_0_to_infinity_has_no_horizon():
+def test_a_single_piece_from_0_to_infinity_is_closed_by_the_tail_at_0_and_a_negative_start_is_refused():
+    """T = 0 is a sound horizon (the tail bound holds for every t ≥ 0); a piece starting before 0 is not."""
     data = _data()
     tail = copy.deepcopy(data["pieces"][-1])
     tail["start"] = "0"
     data["pieces"] = [tail]
-    assert "T > 0 (the last piece starts after 0)" in _failed(data)
+    failed = _failed(data)
+    assert "T ≥ 0 (the last piece starts at or after 0)" not in failed
+    # this piece's U was made for t ≥ 32, not for the whole flow: only the flow premises can fail
+    assert set(failed) <= {"c2 ≥ ‖e^(At)‖² for every t ≥ 0", "piece 1: U ≥ |e^(At)w|² on the exits of R̂ for t in [0, ∞)"}
+    tail["start"] = "-1"
+    assert "T ≥ 0 (the last piece starts at or after 0)" in _failed(data)
 
 
 def test_the_arb_shortcut_proves_only_what_the_exact_decision_proves():

@@ -128,7 +128,7 @@ import json  # noqa: E402
 import re  # noqa: E402
 from pathlib import Path  # noqa: E402
 
-from symbolic_friction._certify.sup_flow import SupFlowCertificate, sup_flow_premises  # noqa: E402
+from symbolic_friction._certify.sup_flow import TAIL_CONSTANTS, SupFlowCertificate, sup_flow_premises  # noqa: E402
 
 PROOFS = Path(__file__).resolve().parents[2] / "proofs" / "sup_flow"
 
@@ -147,21 +147,21 @@ def _norm_premise(cert):
 def test_the_norm_is_decided_on_0_to_the_last_start_and_past_it_by_p():
     check = E.decide_flow(_norm_premise(_certificate()), E.Budget())
     assert check.holds is True and check.obligation == "sup_flow.bounds"
-    # T = 32, the last piece's start (not the start of any earlier piece)
-    assert re.fullmatch(r"c2 = 104939546431/50000000000 on \[0, 32\] in \d+ parts and past it by P", check.instance)
+    # T = 8, the last piece's start (not the start of any earlier piece)
+    assert re.fullmatch(r"c2 = 104834527537/50000000000 on \[0, 8\] in \d+ parts and past it by P", check.instance)
 
 
 def test_a_tail_form_above_c2_is_refused_at_t():
     premise = _norm_premise(_certificate(p="1/10000000000000000000000000000000000000000"))
     check = E.decide_flow(premise, E.Budget())
     assert (check.obligation, check.name, check.instance, check.holds) == (
-        "sup_flow.bounds", premise.name, "the tail form at T = 32 is not below c2", False)
+        "sup_flow.bounds", premise.name, "the tail form at T = 8 is not below c2", False)
 
 
 def test_a_norm_not_decided_within_the_budget_says_why():
     check = E.decide_flow(_norm_premise(_certificate()), E.Budget(2))
     assert check.holds is False
-    assert check.instance == (f"not decided on [0, 32] within the {E.MAX_TOTAL_PARTS} parts of one verification "
+    assert check.instance == (f"not decided on [0, 8] within the {E.MAX_TOTAL_PARTS} parts of one verification "
                               "(‖e^(At)‖² ≥ c2 or too close to it)")
 
 
@@ -175,7 +175,7 @@ def test_the_tail_piece_is_decided_past_t_by_p():
     cert = _certificate()
     (premise,) = [p for p in sup_flow_premises(cert) if isinstance(p, E.FlowExit) and p.index == len(cert.pieces) - 1]
     check = E.decide_flow(premise, E.Budget())
-    assert (check.obligation, check.name, check.instance, check.holds) == ("sup_flow.exit", premise.name, "past T = 32 by P", True)
+    assert (check.obligation, check.name, check.instance, check.holds) == ("sup_flow.exit", premise.name, "past T = 8 by P", True)
 
 
 def test_an_empty_piece_is_refused_as_such():
@@ -344,7 +344,7 @@ def test_decide_passes_the_budget_it_is_given():
     from symbolic_friction._certify import sup_flow
 
     check = sup_flow._decide(_norm_premise(_certificate()), E.Budget(2))
-    assert check.instance.startswith("not decided on [0, 32] within the ")
+    assert check.instance.startswith("not decided on [0, 8] within the ")
 
 
 # -- sup_flow_premises: every premise cites its obligation (the structural ones gate the enclosures) ---
@@ -357,7 +357,7 @@ TWO_PIECES = [
     ('sup_flow.exit', 'the first piece starts at t = 0'),
     ('sup_flow.exit', 'piece 2 starts where piece 1 ends'),
     ('sup_flow.exit', 'the last piece ends at ∞'),
-    ('sup_flow.exit', 'T > 0 (the last piece starts after 0)'),
+    ('sup_flow.exit', 'T ≥ 0 (the last piece starts at or after 0)'),
     ('sup_flow.exit', 'p > 0'),
     ('sup_flow.exit', "P − p·I ⪰ 0 (the paper's P)"),
     ('lemma2.dVdt', "−(AᵀP + PA) ⪰ 0 (the paper's P)"),
@@ -394,6 +394,12 @@ def test_every_premise_cites_its_obligation_in_proof_order():
     first, tail = data["pieces"][0], data["pieces"][-1]
     first["end"] = tail["start"] = "1/64"
     data["pieces"] = [first, tail]
+    own = [(p.obligation, p.name) for p in sup_flow_premises(SupFlowCertificate.from_dict(data))]
+    # the file's own tail P: its two premises are the tail's, cited as sup_flow.exit
+    assert own == [(o, n.replace("(the paper's P)", "(the tail's P)")) if "the paper's P" in n else (o, n) for o, n in
+                   TWO_PIECES][:10] + [("sup_flow.exit", "−(AᵀP + PA) ⪰ 0 (the tail's P)")] + TWO_PIECES[11:]
+    for name in TAIL_CONSTANTS:  # without them, the paper's P (a file of the first format)
+        del data["constants"][name]
     assert [(p.obligation, p.name) for p in sup_flow_premises(SupFlowCertificate.from_dict(data))] == TWO_PIECES
 
 
@@ -488,9 +494,12 @@ def test_each_gain_must_be_an_exact_rational(name):
 
 def test_the_constants_are_exactly_c2_and_p_each_exact():
     cert = _certificate()
-    _refused(lambda: dataclasses.replace(cert, constants={"c2": 2}), "constants must be exactly c2, p; got c2")
+    tail = "with or without all of tail_p11, tail_p12, tail_p13, tail_p22, tail_p23, tail_p33"
+    _refused(lambda: dataclasses.replace(cert, constants={"c2": 2}), f"constants must be exactly c2, p, {tail}; got c2")
+    _refused(lambda: dataclasses.replace(cert, constants={"c2": 2, "p": 1, "tail_p11": 1}),
+             f"constants must be exactly c2, p, {tail}; got c2, p, tail_p11")
     _refused(lambda: dataclasses.replace(cert, constants={"c2": 2, "p": 1, "q": 0}),
-             "constants must be exactly c2, p; got c2, p, q")
+             f"constants must be exactly c2, p, {tail}; got c2, p, q")
     _refused(lambda: dataclasses.replace(cert, constants={"c2": 0.5, "p": 1}), "constants.c2 must be an exact rational; got 0.5")
     _refused(lambda: dataclasses.replace(cert, constants={"c2": 2, "p": "1"}), "constants.p must be an exact rational; got '1'")
 
@@ -514,13 +523,13 @@ def test_the_reader_reads_every_number_of_the_file():
     data = _case_a()
     cert = SupFlowCertificate.from_dict(data)
     assert cert.parameters == {n: Fraction(data["parameters"][n]) for n in PARAMETERS}
-    assert cert.constants == {n: Fraction(data["constants"][n]) for n in CONSTANTS}
+    assert cert.constants == {n: Fraction(data["constants"][n]) for n in CONSTANTS + TAIL_CONSTANTS}
     assert len(cert.pieces) == len(data["pieces"]) == 33
     for piece, item in zip(cert.pieces, data["pieces"]):
         assert piece.start == Fraction(item["start"])
         assert piece.end == (None if item["end"] == "inf" else Fraction(item["end"]))
         assert piece.constants == {n: Fraction(item[n]) for n in PIECE_CONSTANTS}
-    assert cert.pieces[-1].end is None and cert.pieces[-2].end == cert.pieces[-1].start == 32
+    assert cert.pieces[-1].end is None and cert.pieces[-2].end == cert.pieces[-1].start == 8
     assert cert.overshoot_bound == data["overshoot_bound"] and cert.provenance.to_dict() == data["provenance"]
     assert SupFlowCertificate.from_dict(cert.to_dict()) == cert
 
