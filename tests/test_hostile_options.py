@@ -46,7 +46,7 @@ KINDS: dict[tuple[str, str], str] = {
     ("certify", "--mode"): "choice", ("certify", "--margin"): "fraction", ("certify", "--out"): "out-dir",
     ("certify", "--name"): "stem", ("certify", "--label"): "text", ("certify", "--json"): "flag",
     ("certify", "--search"): "choice", ("certify", "--pieces"): "count", ("certify", "--kappa-tol"): "real",
-    ("certify", "--template"): "choice",
+    ("certify", "--template"): "choice", ("certify", "--budget"): "real",
     **{("certify", f): "gain" for f in ("--k-p", "--k-i", "--k-v", "--f-c", "--m", "--k-p-bar", "--k-i-bar",
                                         "--k-d-bar", "--f-c-bar", "--alpha-v")},
     # verify
@@ -298,6 +298,7 @@ CLASS = {"in-file": "path", "in-dir": "path", "out-dir": "path", "out-file": "pa
 # Combinations that are not hostile: the value is valid for this option.
 NOT_HOSTILE = {("certify", "--alpha-v", "zero"), ("tradeoff", "--alpha-v", "zero")}  # α_v = 0 is the default
 NOT_HOSTILE |= {("map", "--sample", "zero"), ("map", "--adversary", "zero")}  # a grid; no adversary
+NOT_HOSTILE |= {("certify", "--kappa-tol", "zero")}  # one gain set: every search within the budget
 
 
 PER_OPTION = {"gain": 5, "axis": 6, "fraction": 8, "count": 6, "real": 6}
@@ -384,7 +385,9 @@ SAYS = {
     "path-verify-junit-xml-symlink-to-device": "is a symbolic link",
     "path-hunting-figure-directory": "--figure",
     "number-crosscheck-samples-arabic-digits": "(ASCII digits)",
-    "number-crosscheck-horizon-overflow": "--horizon must lie in (0, 1e+06]",
+    "number-crosscheck-horizon-huge": "--horizon must lie in (0, 1e+06]",
+    "number-certify-budget-huge": "--budget must be a number of seconds in (0, 86400]",
+    "number-certify-kappa-tol-overflow": "--kappa-tol must be in [0, 1000] for one gain set",
     "number-tradeoff-repeats-float": "--repeats must be an integer from 1 to 1000",
     "number-hunting-sweep-empty": "--sweep takes 1 to 50",
     "structure-certificate-huge-array": "more than 10000 JSON values",

@@ -205,6 +205,8 @@ certificate and the quadratic template's SDP (tens of milliseconds each), then t
 
 DEFAULT_KAPPA_TOL = Fraction(1, 10)
 """``auto`` stops once a proved κ is at most ``(1 + this)`` times the proven lower end of κ_lin."""
+MAX_KAPPA_TOL = 1000
+"""The largest ``kappa_tol`` taken (``κ`` within ``1001·κ_lin``: the closed form's floor on most gains)."""
 DEFAULT_BUDGET = 10.0
 """Seconds ``auto`` spends on one gain set before it keeps what it has (a search is not started past it)."""
 STIFFNESS_LIMIT = 1e3
@@ -246,14 +248,16 @@ def _check_not_stiff(params: Parameters) -> None:
                                f"beyond the {STIFFNESS_LIMIT:.0e} time pieces can cover")
 
 
-def _try(template: Template, search: str, params: Parameters, *, alone: bool = False, **options: Any) -> Attempt:
+def _try(template: Template, search: str, params: Parameters, *, alone: bool = False, first: bool = True,
+         **options: Any) -> Attempt:
     """Search with ``template``, then decide the result with the template's own exact verifier.
 
     A failure of the search or its solver is the attempt's reason (a
     :class:`SymbolicFrictionError`'s message, or the type and message of
     anything else a solver raises), never a traceback; ``alone`` (the only
     search asked for) raises it instead, anything but our own errors as
-    :class:`SolverError`.
+    :class:`SolverError`.  A :class:`ParameterError` (bad input) is raised by
+    the ``first`` search and is a reason after it.
     """
     import time
 
@@ -264,8 +268,10 @@ def _try(template: Template, search: str, params: Parameters, *, alone: bool = F
         report = template.verify(certificate, "<certificate>")
         if not report.proved:  # the searches verify too; the choice trusts only this decision
             raise CertificateError(f"the {template.name} certificate does not verify: {template.failure(report)}")
-    except ParameterError:
-        raise  # bad input is bad input, whichever search met it first
+    except ParameterError as exc:
+        if alone or first:
+            raise  # bad input is bad input
+        return Attempt(template, reason=_reason(exc), search=label, seconds=time.monotonic() - start)
     except SymbolicFrictionError as exc:
         if alone:
             raise
@@ -350,8 +356,8 @@ def certify_template(
     if template not in TEMPLATE_CHOICES:
         raise ParameterError(f"template must be one of {', '.join(TEMPLATE_CHOICES)}; got {template!r}")
     tol = to_rational(kappa_tol, name="kappa_tol")
-    if tol < 0:
-        raise ParameterError(f"kappa_tol must be ≥ 0; got {tol}")
+    if not 0 <= tol <= MAX_KAPPA_TOL:
+        raise ParameterError(f"kappa_tol must be in [0, {MAX_KAPPA_TOL}]; got {tol}")
     if budget is not None and (isinstance(budget, bool) or not isinstance(budget, (int, float))
                                or not math.isfinite(budget) or not 0 < budget <= 86_400):
         raise ParameterError(f"budget must be a number of seconds in (0, 86400]; got {budget!r}")
@@ -378,7 +384,9 @@ def certify_template(
                 break
             if deadline is not None and time.monotonic() > deadline:
                 break
-        attempts.append(_try(templates[name], how, params, alone=len(plan) == 1, **options))
+        # bad input is for the first search to refuse (the paper's, which takes any exact gains); a later search
+        # that cannot take them (e.g. beyond float range) only gives a reason
+        attempts.append(_try(templates[name], how, params, alone=len(plan) == 1, first=not attempts, **options))
     proved = [a for a in attempts if a.certificate is not None]
     if not proved:
         raise CertificateError("no template gives a proved certificate: " + "; ".join(a.describe() for a in attempts))

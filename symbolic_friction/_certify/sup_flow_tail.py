@@ -104,7 +104,7 @@ def certify_sup_flow_tail(params: Parameters, *, label: str = "") -> "SupFlowCer
     Examples
     --------
     >>> cert = certify_sup_flow_tail(Parameters(k_p=1000, k_i="1/1000", k_v=1000, f_c=1))
-    >>> len(cert.pieces), cert.own_tail, float(cert.overshoot_bound) < 2 * 1.4143
+    >>> len(cert.pieces), cert.own_tail, float(cert.overshoot_bound) < 2.6 * 1.4142  # κ_lin ≈ 1.4142
     (1, True, True)
     """
     import numpy as np

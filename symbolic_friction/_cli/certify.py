@@ -249,7 +249,7 @@ def run(args: argparse.Namespace) -> int:
         if path.parent != out:
             ensure_directory(path.parent)
         written = choice.chosen.write(path)
-        _render(args, choice, written, mode)
+        _render(args, choice, written, mode, one=params is not None)
     return 0
 
 
@@ -259,9 +259,11 @@ def _search_options(args: argparse.Namespace) -> dict:
 
     options: dict = {}
     if args.kappa_tol is not None:
+        from .._certify.choose import MAX_KAPPA_TOL
+
         options["kappa_tol"] = to_rational(args.kappa_tol, name="--kappa-tol")
-        if options["kappa_tol"] < 0:
-            raise ParameterError(f"--kappa-tol must be ≥ 0; got {args.kappa_tol}")
+        if not 0 <= options["kappa_tol"] <= MAX_KAPPA_TOL:
+            raise ParameterError(f"--kappa-tol must be in [0, {MAX_KAPPA_TOL}] for one gain set; got {args.kappa_tol}")
     if args.budget is not None:
         seconds = to_rational(args.budget, name="--budget")
         if not 0 < seconds <= 86_400:
@@ -270,8 +272,9 @@ def _search_options(args: argparse.Namespace) -> dict:
     return options
 
 
-def _render(args: argparse.Namespace, choice, written: tuple, mode: str | None) -> None:
-    """One line per certificate written (JSON with ``--json``); with ``auto``, the choice first."""
+def _render(args: argparse.Namespace, choice, written: tuple, mode: str | None, *, one: bool = True) -> None:
+    """One line per certificate written (JSON with ``--json``); for one gain set, what was tried and κ against κ_lin
+    first."""
     from .._infra.output import emit
     from .._infra.rational import format_rational
 
@@ -296,9 +299,9 @@ def _render(args: argparse.Namespace, choice, written: tuple, mode: str | None) 
             "kappa_lin_lower": None if choice.kappa_lin_lower is None else format_rational(choice.kappa_lin_lower),
         }, ensure_ascii=False), level=0)
         return
-    if choice.others or choice.note:
+    if one and (choice.others or choice.note):
         emit(choice.describe(timed=True), level=0)
-    if choice.against_kappa_lin():
+    if one and choice.against_kappa_lin():
         emit(choice.against_kappa_lin(), level=0)
     what = f"{written[0]} and {written[1].name} ({mode})" if paper else f"{written[0]} ({name} template)"
     # the normalised gains that were certified (physical values, when given, follow in parentheses)

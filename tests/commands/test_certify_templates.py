@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import json
+from fractions import Fraction
+import re
 from pathlib import Path
 
 import pytest
@@ -44,11 +46,20 @@ def test_every_searchable_template_instantiates_only_obligations_check_proves():
     assert set(searchable_templates()) == {"paper", "quadratic", "sup-flow"}  # a new template must be added to this test
 
 
+def _untimed(line: str) -> str:
+    return re.sub(r" in [0-9]+\.[0-9]{2} s", "", line)
+
+
 def test_auto_keeps_the_sup_flow_certificate_for_table_i_and_names_the_others(tmp_path, capsys):
-    assert main(["certify", *CASE_A, "--out", str(tmp_path)]) == 0
-    first, wrote = capsys.readouterr().out.splitlines()
-    assert first == "template sup-flow (auto: the smallest proved κ): κ 1.44873; paper: κ 3.46703; quadratic: κ 1.80834"
-    assert wrote.startswith("wrote ") and "(sup-flow template)" in wrote and "<= 1.44873·|x(0)|_A" in wrote
+    # a budget no machine exhausts: the time pieces are halved to their end, so the file is Table I's committed one
+    assert main(["certify", *CASE_A, "--out", str(tmp_path), "--budget", "3600"]) == 0
+    first, against, wrote = capsys.readouterr().out.splitlines()
+    assert re.search(r"κ 1\.44800 in [0-9]+\.[0-9]{2} s; paper", first)  # every search says how long it took
+    assert _untimed(first) == ("template sup-flow (pieces) (auto: the smallest proved κ): κ 1.44800; paper: κ 3.46703; "
+                               "sup-flow (one piece): κ 1.79444; quadratic: κ 1.80833")
+    # κ against the proven lower end of κ_lin = 1.3732677…: 1.44800/1.37326771 = 1.05442… rounded up
+    assert against == "κ ≤ 1.0545·κ_lin (κ_lin ≥ 1.3732677, proven)"
+    assert wrote.startswith("wrote ") and "(sup-flow template)" in wrote and "<= 1.44800·|x(0)|_A" in wrote
     path = _one(tmp_path)
     assert path.name.endswith("_sup-flow.json")
     committed = json.loads((Path(__file__).resolve().parents[2] / "proofs" / "sup_flow" / "case_a.json").read_text())
@@ -61,19 +72,57 @@ def test_auto_keeps_the_sup_flow_certificate_for_table_i_and_names_the_others(tm
     assert "premises of the sup-flow template hold" in capsys.readouterr().out
 
 
-def test_auto_falls_back_to_the_paper_when_the_quadratic_sdp_is_infeasible(tmp_path, capsys):
+def test_auto_stops_at_the_target_and_within_the_budget(tmp_path, capsys):
+    """A generous --kappa-tol stops after the closed form; --budget 0.001 starts nothing after the first search."""
+    assert main(["certify", *CASE_A, "--out", str(tmp_path), "--kappa-tol", "2", "--json"]) == 0
+    payload = json.loads(capsys.readouterr().out)
+    assert payload["template"] == "paper" and payload["alternatives"] == []  # 3.46703 ≤ 3·1.3733: the target is met
+    assert main(["certify", *CASE_A, "--out", str(tmp_path), "--kappa-tol", "0", "--budget", "0.001", "--json"]) == 0
+    payload = json.loads(capsys.readouterr().out)
+    assert payload["template"] == "paper" and payload["alternatives"] == [] and payload["kappa_lin_lower"]
+
+
+def test_stiff_gains_get_a_tight_one_piece_certificate_and_every_failure_is_a_reason(tmp_path, capsys):
     assert main(["certify", *STIFF, "--out", str(tmp_path)]) == 0
-    first, _ = capsys.readouterr().out.splitlines()
-    assert first == ("template paper (auto: the smallest proved κ): κ 1414.22; quadratic: no certificate "
-                     "(its SDP is infeasible at every margin tried (4)); sup-flow: no certificate (the SDP of the "
-                     "piece starting at t = 0 is infeasible at every margin tried)")
-    assert read_certificate_file(_one(tmp_path))[0].name == "paper"
+    first, against, _ = capsys.readouterr().out.splitlines()
+    assert _untimed(first).startswith("template sup-flow (one piece) (auto: the smallest proved κ): κ ")
+    assert "paper: κ 1414.22" in first
+    ratio = float(against.split("·κ_lin")[0].split("≤ ")[1])
+    assert 1 <= ratio <= 2
+    assert read_certificate_file(_one(tmp_path))[0].name == "sup-flow"
     assert main(["certify", *STIFF, "--name", "j", "--json", "--out", str(tmp_path)]) == 0
     payload = json.loads(capsys.readouterr().out)
-    assert payload["template"] == "paper" and payload["overshoot_bound"] == "1414.22"
-    assert payload["alternatives"][0] == {"template": "quadratic", "overshoot_bound": None,
-                                          "reason": "its SDP is infeasible at every margin tried (4)"}
-    assert payload["alternatives"][1]["template"] == "sup-flow" and payload["alternatives"][1]["overshoot_bound"] is None
+    assert payload["template"] == "sup-flow" and payload["template_search"] == "one piece"
+    assert payload["alternatives"][0]["template"] == "paper" and payload["alternatives"][0]["overshoot_bound"] == "1414.22"
+    assert all(set(a) == {"template", "search", "overshoot_bound", "reason", "seconds"} for a in payload["alternatives"])
+
+
+def test_gains_at_the_edge_of_float_range_are_reasons_never_a_traceback(tmp_path, capsys):
+    """cvxpy once ended this in 'ValueError: Problem data contains NaN or Inf'; every search now says why, on one line."""
+    huge = ["--k-p", "1e300", "--k-i", "1e300", "--k-v", "3", "--f-c", "1"]
+    assert main(["certify", *huge, "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr()
+    assert "Traceback" not in out.out + out.err and out.err == ""
+    assert out.out.splitlines()[0].startswith("template paper (auto: the smallest proved κ)")
+    for template in ("quadratic", "sup-flow"):
+        assert main(["certify", *huge, "--template", template, "--out", str(tmp_path)]) == 2
+        err = capsys.readouterr().err
+        assert len(err.strip().splitlines()) == 1 and "Traceback" not in err
+
+
+def test_a_solver_raising_anything_is_a_reason_in_auto_and_a_solver_error_alone(monkeypatch):
+    from symbolic_friction._certify import quadratic_search
+    from symbolic_friction._infra.errors import SolverError
+
+    def broken(params, **_):
+        raise ValueError("Problem data contains NaN or Inf")
+
+    monkeypatch.setattr(quadratic_search, "certify_quadratic", broken)
+    choice = certify_template(Parameters.table_i("a"), kappa_tol=0, budget=None)
+    (quad,) = [a for a in choice.attempts if a.template.name == "quadratic"]
+    assert quad.reason == "the quadratic search failed: ValueError: Problem data contains NaN or Inf"
+    with pytest.raises(SolverError, match="the quadratic search failed: ValueError: Problem data contains NaN or Inf"):
+        certify_template(Parameters.table_i("a"), template="quadratic")
 
 
 def test_template_quadratic_writes_a_quadratic_file_and_json(tmp_path, capsys):
@@ -82,7 +131,7 @@ def test_template_quadratic_writes_a_quadratic_file_and_json(tmp_path, capsys):
     assert main(argv) == 0
     payload = json.loads(capsys.readouterr().out)
     assert payload["template"] == "quadratic" and payload["template_id"] == "quadratic/v1"
-    assert payload["overshoot_bound"] == "1.80834" and payload["report"] is None and payload["alternatives"] == []
+    assert payload["overshoot_bound"] == "1.80833" and payload["report"] is None and payload["alternatives"] == []
     template, cert = read_certificate_file(tmp_path / "q.json")
     assert template.name == "quadratic" and cert.provenance.label == "case a"
 
@@ -101,7 +150,7 @@ def test_template_paper_is_todays_certificate_by_either_search(tmp_path, capsys)
 def test_auto_with_an_option_of_the_paper_only_certifies_with_the_paper_and_says_so(tmp_path, capsys):
     assert main(["certify", *CASE_A, "--mode", "feasible", "--out", str(tmp_path)]) == 0
     first = capsys.readouterr().out.splitlines()[0]
-    assert first == "template paper (auto: the smallest proved κ; only the paper's template takes --mode feasible): κ 3.51842"
+    assert _untimed(first) == "template paper (auto: the smallest proved κ; only the paper's template takes --mode feasible): κ 3.51842"
 
 
 PHYSICAL_A = ["--m", "2", "--k-p-bar", "6", "--k-i-bar", "8", "--k-d-bar", "12.3", "--alpha-v", "0.5", "--f-c-bar", "2"]
@@ -151,9 +200,12 @@ def test_table_i_with_the_quadratic_template_writes_proofs_quadratic(tmp_path, c
 # --- the library function: the choice trusts only the templates' exact verifiers -------------------------------
 
 def test_the_choice_is_the_smallest_proved_kappa():
-    choice = certify_template(Parameters.table_i("b"))
-    assert choice.template.name == "sup-flow" and choice.certificate.overshoot_bound == "2.40172"
-    assert [a.describe() for a in choice.others] == ["paper: κ 7.88526", "quadratic: κ 3.27300"]
+    choice = certify_template(Parameters.table_i("b"), budget=None)
+    assert choice.template.name == "sup-flow" and choice.certificate.overshoot_bound == "2.40132"
+    assert choice.chosen.title == "sup-flow (pieces)"
+    assert [a.describe() for a in choice.others] == ["paper: κ 7.88526", "sup-flow (one piece): κ 3.03474",
+                                                     "quadratic: κ 3.27300"]
+    assert choice.target == choice.kappa_lin_lower * Fraction(11, 10) and choice.ratio < Fraction(1003, 1000)
 
 
 def test_a_quadratic_certificate_its_verifier_refuses_is_never_chosen(monkeypatch):
@@ -179,7 +231,7 @@ class _Refused:
 
 
 def test_a_failing_search_is_a_reason_and_no_template_at_all_is_an_error(monkeypatch):
-    from symbolic_friction._certify import pipeline, quadratic_search, sup_flow_search
+    from symbolic_friction._certify import pipeline, quadratic_search, sup_flow_search, sup_flow_tail
 
     def no_sdp(params, **_):
         raise CertificateError("no quadratic certificate for X verifies exactly: margin 1e-07: solver status inaccurate")
@@ -188,12 +240,18 @@ def test_a_failing_search_is_a_reason_and_no_template_at_all_is_an_error(monkeyp
         raise CertificateError("no sup-flow certificate for X verifies exactly: the SDP of the piece starting at t = 0 "
                                "is infeasible at every margin tried")
 
+    def no_piece(params, **_):
+        raise CertificateError("no one-piece sup-flow certificate for X verifies exactly: the SDP for U is infeasible")
+
     monkeypatch.setattr(quadratic_search, "certify_quadratic", no_sdp)
     monkeypatch.setattr(sup_flow_search, "certify_sup_flow", no_pieces)
+    monkeypatch.setattr(sup_flow_tail, "certify_sup_flow_tail", no_piece)
     choice = certify_template(Parameters.table_i("a"))
     assert choice.template.name == "paper"
-    assert choice.others[0].reason == "its SDP is inaccurate at every margin tried (1)"
-    assert choice.others[1].reason == "the SDP of the piece starting at t = 0 is infeasible at every margin tried"
+    reasons = {a.title: a.reason for a in choice.others}
+    assert reasons == {"sup-flow (one piece)": "the SDP for U is infeasible",
+                       "quadratic": "its SDP is inaccurate at every margin tried (1)",
+                       "sup-flow (pieces)": "the SDP of the piece starting at t = 0 is infeasible at every margin tried"}
 
     def no_paper(params, **_):
         raise CertificateError("the rounded candidate does not verify exactly")
