@@ -33,15 +33,15 @@ pieces of ``U`` on ``R̂``) comes within 6 % of the friction-free limit ``sup_t 
 >>> from symbolic_friction.certificates import load_sup_flow, verify_sup_flow
 >>> sup = load_sup_flow("proofs/sup_flow/case_a.json")  # doctest: +SKIP
 >>> verify_sup_flow(sup).proved, sup.overshoot_bound, len(sup.pieces)  # doctest: +SKIP
-(True, '1.44873', 33)
+(True, '1.44800', 33)
 
-What ``symbolic-friction certify`` does by default: every template, the smallest proved κ kept (about 30 s,
-most of it the sup-flow search):
+What ``symbolic-friction certify`` does by default: the closed form, then the other searches cheapest first
+until κ is within 10 % of κ_lin's proven lower end (or 10 s are spent), the smallest proved κ kept:
 
 >>> from symbolic_friction.certificates import certify_template
 >>> choice = certify_template(sf.Parameters.table_i("a"))  # doctest: +SKIP
 >>> choice.describe()  # doctest: +SKIP
-'template sup-flow (auto: the smallest proved κ): κ 1.44873; paper: κ 3.46703; quadratic: κ 1.80834'
+'template sup-flow (pieces) (auto: the smallest proved κ): κ 1.44800; paper: κ 3.46703; sup-flow (one piece): κ 1.79444; quadratic: κ 1.80833'
 """
 
 from __future__ import annotations
