@@ -276,11 +276,17 @@ class SupFlowReport(QuadraticReport):
     template_name: ClassVar[str] = "sup-flow"
 
 
-def verify_sup_flow(certificate: SupFlowCertificate, *, source: str = "<certificate>") -> SupFlowReport:
-    """Decide every premise of :func:`sup_flow_premises` (a structural failure stops before the flow is enclosed)."""
+def verify_sup_flow(certificate: SupFlowCertificate, *, source: str = "<certificate>",
+                    max_parts: int | None = None) -> SupFlowReport:
+    """Decide every premise of :func:`sup_flow_premises` (a structural failure stops before the flow is enclosed).
+
+    ``max_parts`` lowers the parts all enclosures together may use (default and upper limit
+    :data:`MAX_TOTAL_PARTS`): a search short of time fails sooner; a lower budget can only refuse more.
+    """
     if not isinstance(certificate, SupFlowCertificate):
         raise TypeError(f"verify_sup_flow needs a SupFlowCertificate; got {type(certificate).__name__}")
-    checks, structural, budget = [], True, Budget()
+    parts = MAX_TOTAL_PARTS if max_parts is None else max(0, min(int(max_parts), MAX_TOTAL_PARTS))
+    checks, structural, budget = [], True, Budget(parts)
     for premise in sup_flow_premises(certificate):
         if isinstance(premise, Inequality) and premise.obligation in ("lemma2.P", "sup_flow.exit"):
             check = _decide(premise)

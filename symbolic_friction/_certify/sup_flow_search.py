@@ -266,7 +266,10 @@ def certify_sup_flow(params: Parameters, *, label: str = "", rel_tol: float = 3e
             provenance=SupFlowProvenance(search="sdp", solver=SOLVER, solver_status="optimal",
                                          margin=str(Fraction(MARGIN).limit_denominator(10**12)), label=label),
         )
-        report = verify_sup_flow(certificate)
+        if _past(deadline):
+            raise CertificateError(f"no sup-flow certificate for {params} within the time budget (past it before "
+                                   f"verification round {attempt + 1})")
+        report = verify_sup_flow(certificate, max_parts=_parts_left(deadline))
         if report.proved:
             return certificate
         failures = [check.message for check in report.failures]
@@ -297,6 +300,19 @@ def _past(deadline: float | None) -> bool:
     import time
 
     return deadline is not None and time.monotonic() > deadline
+
+
+PARTS_PER_SECOND = 2000
+"""About how many intervals the verifier's enclosures decide per second (sets the parts a deadline leaves)."""
+
+
+def _parts_left(deadline: float | None) -> int | None:
+    """The verifier's budget of parts that the time left allows (None: its own limit)."""
+    import time
+
+    if deadline is None:
+        return None
+    return max(256, int(PARTS_PER_SECOND * (deadline - time.monotonic())))
 
 
 def _finite(pieces: list[_Piece]) -> int:

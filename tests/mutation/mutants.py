@@ -345,6 +345,25 @@ QUADRATIC = tuple(replace(m, tests=_Q_TESTS) for m in (
 ))
 MUTANTS = MUTANTS + QUADRATIC
 
+_SF = "symbolic_friction/_certify/sup_flow.py"
+SUP_FLOW_TAIL = (
+    Mutant("sf.tail_rate_paper", "verifier", _SF,
+           "tuple(tuple(-x for x in row) for row in quad.lyapunov_rate_entries(k_p, k_i, k_v, p_tail))),",
+           "tuple(tuple(-x for x in row) for row in quad.lyapunov_rate_entries(k_p, k_i, k_v, "
+           "lyapunov_matrix_entries(k_p, k_i, k_v)))),",
+           "the rate premise decided for the paper's P whatever tail P the file gives"),
+    Mutant("sf.tail_lower_paper", "verifier", _SF,
+           'Semidefinite("sup_flow.exit", f"P − p·I ⪰ 0 ({whose})", _sub(p_tail, _scaled_identity(3, p))),',
+           'Semidefinite("sup_flow.exit", f"P − p·I ⪰ 0 ({whose})", _sub(p_tail, _scaled_identity(3, p - p))),',
+           "P − pI ⪰ 0 decided as P ⪰ 0: the tail's 1/p is not bounded"),
+    Mutant("sf.horizon_strict", "verifier", _SF, 'pieces[-1].start, ">=", zero))', 'pieces[-1].start, ">", zero))',
+           "the horizon T = 0 refused (a sound one-piece certificate is not proved)"),
+    Mutant("sf.tail_entries_swapped", "verifier", _SF, 'return tuple(tuple(c[f"{min(i, j)}{max(i, j)}"] for j in (1, 2, 3)) for i in (1, 2, 3))',
+           'return tuple(tuple(c[f"{min(i, j)}{max(i, j)}"] for i in (1, 2, 3)) for j in (3, 2, 1))',
+           "the file's tail P read in the wrong order"),
+)
+MUTANTS = MUTANTS + SUP_FLOW_TAIL
+
 KERNEL_RESIDUAL = (
     Mutant("ker.event_residual", "kernel", _KER, "ev_res[n_ev] = residual", "ev_res[n_ev] = 0.0",
            "the residual abs(v) at an event is dropped (the mode table's v = 0 at events is then vacuous)",
