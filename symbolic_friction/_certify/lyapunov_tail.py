@@ -15,7 +15,21 @@ from typing import Any
 
 from .._infra.errors import CertificateError
 
-__all__ = ["best_conditioned_lyapunov", "exact_lyapunov"]
+__all__ = ["lyapunov_constraints", "best_conditioned_lyapunov", "exact_lyapunov"]
+
+
+def lyapunov_constraints(program: Any, k: tuple[float, float, float]) -> tuple[Any, Any]:
+    """Add ``I ⪯ P ⪯ tI`` and ``AᵀP + PA ⪯ 0`` to ``program`` (:mod:`._conic`); returns ``(P's rows, t)``."""
+    from .._model.quadratic import lyapunov_rate_entries
+
+    entries = {(i, j): program.variable() for i in range(3) for j in range(i, 3)}
+    p = tuple(tuple(entries[min(i, j), max(i, j)] for j in range(3)) for i in range(3))
+    t = program.variable()
+    program.psd([[p[i][j] - (1.0 if i == j else 0.0) for j in range(3)] for i in range(3)])
+    program.psd([[(t if i == j else 0.0) - p[i][j] for j in range(3)] for i in range(3)])
+    rate = lyapunov_rate_entries(k[0], k[1], k[2], p)
+    program.psd([[-rate[i][j] for j in range(3)] for i in range(3)])
+    return p, t
 
 
 def best_conditioned_lyapunov(k: tuple[float, float, float]) -> Any:
@@ -28,17 +42,10 @@ def best_conditioned_lyapunov(k: tuple[float, float, float]) -> Any:
     """
     import numpy as np
 
-    from .._model.quadratic import lyapunov_rate_entries
     from ._conic import Program
 
     program = Program()
-    entries = {(i, j): program.variable() for i in range(3) for j in range(i, 3)}
-    p = tuple(tuple(entries[min(i, j), max(i, j)] for j in range(3)) for i in range(3))
-    t = program.variable()
-    program.psd([[p[i][j] - (1.0 if i == j else 0.0) for j in range(3)] for i in range(3)])
-    program.psd([[(t if i == j else 0.0) - p[i][j] for j in range(3)] for i in range(3)])
-    rate = lyapunov_rate_entries(k[0], k[1], k[2], p)
-    program.psd([[-rate[i][j] for j in range(3)] for i in range(3)])
+    p, t = lyapunov_constraints(program, k)
     status, x = program.solve(t)
     if not x:
         raise CertificateError(f"the SDP for the tail's P is {status}")

@@ -47,18 +47,12 @@ def joint_tail(k: tuple[float, float, float], *, margin: float) -> tuple[Any, di
     """
     import numpy as np
 
-    from .._model.quadratic import lyapunov_rate_entries
     from ._conic import Program
+    from .lyapunov_tail import lyapunov_constraints
     from .sup_flow_search import _PieceProblem, exit_constraints, piece_constraints
 
     program = Program()
-    entries = {(i, j): program.variable() for i in range(3) for j in range(i, 3)}
-    p = tuple(tuple(entries[min(i, j), max(i, j)] for j in range(3)) for i in range(3))
-    t = program.variable()
-    program.psd([[p[i][j] - (1.0 if i == j else 0.0) for j in range(3)] for i in range(3)])
-    program.psd([[(t if i == j else 0.0) - p[i][j] for j in range(3)] for i in range(3)])
-    rate = lyapunov_rate_entries(k[0], k[1], k[2], p)
-    program.psd([[-rate[i][j] for j in range(3)] for i in range(3)])
+    p, t = lyapunov_constraints(program, k)
     variables = [program.variable() for _ in _PieceProblem.names]
     rows, gamma = piece_constraints(program, k, variables, first=True, margin=margin)
     exit_constraints(program, rows, p, t * margin)
