@@ -36,7 +36,7 @@ pieces of ``U`` on ``R̂``) comes within 6 % of the friction-free limit ``sup_t 
 (True, '1.44800', 33)
 
 What ``symbolic-friction certify`` does by default: the closed form, then the other searches cheapest first
-until κ is within 10 % of κ_lin's proven lower end (or 8 s are spent), the smallest proved κ kept:
+until κ is within 10 % of κ_lin's proven lower end (or 6 s are spent), the smallest proved κ kept:
 
 >>> from symbolic_friction.certificates import certify_template
 >>> choice = certify_template(sf.Parameters.table_i("a"))  # doctest: +SKIP

@@ -13,7 +13,7 @@ For every gain set it prints
 * per search (the paper's closed form, the one-piece sup-flow certificate, the quadratic template's SDP, the
   sup-flow time pieces): the proven κ as a multiple of that lower end, and the seconds of search plus exact
   verification (``-`` with the reason where a search gives nothing; every search run, no target, 60 s budget);
-* ``auto``: what default ``certify_template`` keeps (target ``κ ≤ 1.1·κ_lin``, budget 8 s), its κ/κ_lin
+* ``auto``: what default ``certify_template`` keeps (target ``κ ≤ 1.1·κ_lin``, budget 6 s), its κ/κ_lin
   and its seconds in this process;
 * ``command``: the wall time of ``python -m symbolic_friction certify … --out <tmp>`` (imports included), the
   number the users see;
