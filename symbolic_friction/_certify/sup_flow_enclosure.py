@@ -212,7 +212,8 @@ class Budget:
     """The parts one verification may still bisect into (all its premises together)."""
 
     def __init__(self, parts: int | None = None) -> None:
-        self.left = MAX_TOTAL_PARTS if parts is None else parts
+        self.total = MAX_TOTAL_PARTS if parts is None else max(0, min(int(parts), MAX_TOTAL_PARTS))
+        self.left = self.total
 
 
 def _bisect(a: Fraction, b: Fraction, test: Any, refute: Any, budget: Budget) -> tuple[int, str]:
@@ -236,7 +237,7 @@ def _bisect(a: Fraction, b: Fraction, test: Any, refute: Any, budget: Budget) ->
         if false_at:
             return done, f"refuted at t = {_f(mid)} ({reason})"
         if done + len(stack) + 2 > MAX_PARTS or budget.left < 2:
-            limit = f"{MAX_PARTS} parts" if budget.left >= 2 else f"the {MAX_TOTAL_PARTS} parts of one verification"
+            limit = f"{MAX_PARTS} parts" if budget.left >= 2 else f"the {budget.total} parts of one verification"
             return done, f"not decided on [{float(lo):.6g}, {float(hi):.6g}] within {limit} ({why})"
         stack += [(mid, hi), (lo, mid)]
     return done, ""

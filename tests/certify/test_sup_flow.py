@@ -335,3 +335,11 @@ def test_the_arb_shortcut_proves_only_what_the_exact_decision_proves():
     edge = ((flint.arb(1), flint.arb(-1) - flint.arb(2) ** -100), (flint.arb(-1) - flint.arb(2) ** -100, flint.arb(1)))
     assert not sup_flow_enclosure._lower_ends_clearly_copositive(edge)
     assert sup_flow_enclosure._lower_ends_clearly_copositive(((flint.arb(1), flint.arb(-1)), (flint.arb(-1), flint.arb(1))))
+
+
+def test_a_search_short_of_time_gives_the_verifier_fewer_parts_and_it_only_refuses_more():
+    cert = SupFlowCertificate.from_dict(_data())
+    assert verify_sup_flow(cert).proved
+    short = verify_sup_flow(cert, max_parts=2)
+    assert not short.proved and any("within the 2 parts of one verification" in c.instance for c in short.failures)
+    assert verify_sup_flow(cert, max_parts=10**9).proved  # above the limit: the limit
