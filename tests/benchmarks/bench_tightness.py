@@ -134,20 +134,29 @@ def worst_found(params, *, budget: int) -> tuple[float, float]:
 ORDER = ("paper", "sup-flow (one piece)", "quadratic", "sup-flow (pieces)")
 
 
+def _rounded(x: float | None, digits: int, direction: str) -> str:
+    """A lower end printed rounded down, a ratio to it rounded up: as printed, both stay true."""
+    from symbolic_friction._certify.rounding import round_significant
+
+    if x is None:
+        return "nan"
+    return f"{float(round_significant(F(x), digits, direction=direction)):.{digits}g}"
+
+
 def render(row: dict) -> str:
-    cells = [f"{row['name']:<34}", f"{row['kappa_lin_lower'] or float('nan'):>10.6g}"]
+    cells = [f"{row['name']:<34}", f"{_rounded(row['kappa_lin_lower'], 6, 'down'):>10}"]
     for title in ORDER:
         s = row["searches"].get(title)
         if s is None or s["ratio"] is None:
             cells.append(f"{'-':>9} {s['seconds'] if s else 0:>6.2f}s")
         else:
-            cells.append(f"{s['ratio']:>8.4g}× {s['seconds']:>6.2f}s")
+            cells.append(f"{_rounded(s['ratio'], 4, 'up'):>8}× {s['seconds']:>6.2f}s")
     a = row["auto"]
-    cells.append(f"{a['search']:<22} {a['ratio'] if a['ratio'] is not None else float('nan'):>8.4g}× {a['seconds']:>5.2f}s")
+    cells.append(f"{a['search']:<22} {_rounded(a['ratio'], 4, 'up'):>8}× {a['seconds']:>5.2f}s")
     cells.append(f"{row['command_seconds']:>6.2f}s" if row["command_seconds"] is not None else "     -")
     if "worst" in row:
         kappa = float(a["kappa"])
-        cells.append(f"{row['worst']:>9.6g} ({kappa / row['worst']:.3f})")
+        cells.append(f"{row['worst']:>9.6g} ({_rounded(kappa / row['worst'], 4, 'up')})")
     return " | ".join(cells)
 
 
@@ -178,14 +187,14 @@ def main(argv: list[str] | None = None) -> int:
     auto_times = [r["auto"]["seconds"] for r in rows]
     print()
     print(f"auto: κ ≤ 2·κ_lin on {sum(x <= 2 for x in ratios)} of {len(ratios)}, ≤ 10·κ_lin on "
-          f"{sum(x <= 10 for x in ratios)}; largest κ/κ_lin {max(ratios):.4g}")
+          f"{sum(x <= 10 for x in ratios)}; largest κ/κ_lin {_rounded(max(ratios), 4, 'up')}")
     print(f"auto in-process: median {statistics.median(auto_times):.2f} s, max {max(auto_times):.2f} s")
     if times:
         print(f"certify command (imports included): median {statistics.median(times):.2f} s, max {max(times):.2f} s")
     for r in rows:
         if "worst" in r and r["auto"]["ratio"] is not None and r["auto"]["ratio"] > 2 and math.isfinite(r["worst"]):
-            print(f"{r['name']}: κ/κ_lin {r['auto']['ratio']:.4g} > 2; worst found {r['worst']:.6g} "
-                  f"= {r['worst'] / r['kappa_lin_lower']:.4g}·κ_lin; κ/worst {float(r['auto']['kappa']) / r['worst']:.4g}")
+            print(f"{r['name']}: κ/κ_lin ≤ {_rounded(r['auto']['ratio'], 4, 'up')} > 2; worst found {r['worst']:.6g} "
+                  f"= {r['worst'] / r['kappa_lin_lower']:.4g}·κ_lin; κ/worst {_rounded(float(r['auto']['kappa']) / r['worst'], 4, 'up')}")
     if args.json:
         with open(args.json, "w", encoding="utf-8") as fh:
             json.dump(rows, fh, indent=1)
