@@ -239,8 +239,9 @@ def _search(template: Template, search: str, params: Parameters, *, mode: str | 
 def _check_not_stiff(params: Parameters) -> None:
     import numpy as np
 
-    k_p, k_i, k_v, _ = params.as_floats()
-    rates = np.abs(np.linalg.eigvals(np.array([[0.0, 0.0, -k_i], [1.0, 0.0, -k_p], [0.0, 1.0, -k_v]])).real)
+    from .flow_bound import flow_rates
+
+    rates = flow_rates(params)
     if not np.all(np.isfinite(rates)) or not min(rates) > 0:
         raise CertificateError("not tried: the flow's rates are beyond float range")
     if max(rates) > STIFFNESS_LIMIT * min(rates):

@@ -31,7 +31,7 @@ from .._infra.errors import ParameterError
 from .._model.lyapunov import lyapunov_matrix_entries
 from .._model.parameters import Parameters
 
-__all__ = ["FlowBound", "kappa_lin_bound", "kappa_lin_lower"]
+__all__ = ["FlowBound", "kappa_lin_bound", "kappa_lin_lower", "flow_rates"]
 
 PRECISION = 128
 """Bits of the arb balls."""
@@ -146,6 +146,14 @@ def _lower(A: Any, t: float) -> Fraction:
     return _fraction((num / _arb(den)).sqrt().lower())
 
 
+def flow_rates(params: Parameters) -> Any:
+    """``|Re λ|`` of the eigenvalues of ``A`` (eq. xDot), in floats: where the searches look, never a decision."""
+    import numpy as np
+
+    k_p, k_i, k_v, _ = params.as_floats()
+    return np.abs(np.linalg.eigvals(np.array([[0.0, 0.0, -k_i], [1.0, 0.0, -k_p], [0.0, 1.0, -k_v]])).real)
+
+
 def kappa_lin_lower(params: Parameters) -> Fraction:
     """A proven lower end of ``κ_lin = sup_t ‖e^{At}‖₂``, cheaply: the lower end of :func:`kappa_lin_bound` alone.
 
@@ -167,7 +175,6 @@ def kappa_lin_lower(params: Parameters) -> Fraction:
     True
     """
     import flint
-    import numpy as np
 
     if not params.k_v * params.k_p > params.k_i > 0:
         raise ParameterError(f"Assumption 1 needs k_v·k_p > k_i > 0; got k_v·k_p = {params.k_v * params.k_p}, k_i = {params.k_i}")
@@ -178,7 +185,7 @@ def kappa_lin_lower(params: Parameters) -> Fraction:
     flint.ctx.prec = PRECISION
     try:
         A = _system(params)
-        decay = min(abs(np.linalg.eigvals(np.array([[0, 0, -k_i], [1, 0, -k_p], [0, 1, -k_v]])).real))
+        decay = float(min(flow_rates(params)))
         return _lower(A, _peak(A, 40.0 / decay))
     finally:
         flint.ctx.prec = old
@@ -246,7 +253,6 @@ def kappa_lin_bound(params: Parameters, *, rel_tol: Fraction = Fraction(1, 1000)
     (True, True)
     """
     import flint
-    import numpy as np
 
     rel_tol = Fraction(rel_tol)
     if not 0 < rel_tol <= 1:
@@ -257,8 +263,7 @@ def kappa_lin_bound(params: Parameters, *, rel_tol: Fraction = Fraction(1, 1000)
     flint.ctx.prec = PRECISION
     try:
         A = _system(params)
-        k_p, k_i, k_v, _ = params.as_floats()
-        decay = min(abs(np.linalg.eigvals(np.array([[0, 0, -k_i], [1, 0, -k_p], [0, 1, -k_v]])).real))
+        decay = float(min(flow_rates(params)))
         t_peak = _peak(A, 40.0 / decay)
         lower = _lower(A, t_peak)
         # the tail: T with √(p̄/p)·‖e^{AT}‖_F ≤ lower

@@ -189,7 +189,9 @@ def certify_sup_flow(params: Parameters, *, label: str = "", rel_tol: float = 3e
         p_exact = exact_lyapunov((params.k_p, params.k_i, params.k_v), best_conditioned_lyapunov((k_p, k_i, k_v)))
     p_float = np.array(p_exact, dtype=float)
     p = _p_below(p_exact, float(np.linalg.eigvalsh(p_float)[0]))
-    rates = np.abs(np.linalg.eigvals(a_matrix).real)
+    from .flow_bound import flow_rates
+
+    rates = flow_rates(params)
     # the horizon: a power of two past which the tail form is small next to the peak (the paper's P: from the
     # slowest time constant; a well-conditioned P: from the fastest, doubled as needed)
     horizon = Fraction(2) ** int(np.ceil(np.log2(4.0 / float(max(rates) if own_tail else min(rates)))))

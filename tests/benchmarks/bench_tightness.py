@@ -117,8 +117,7 @@ def worst_found(params, *, budget: int) -> tuple[float, float]:
     from symbolic_friction._model.coordinates import x_to_z
     from symbolic_friction._simulation.batch import simulate_batch
 
-    k_p, k_i, k_v, _ = params.as_floats()
-    rates = np.abs(np.linalg.eigvals(np.array([[0, 0, -k_i], [1, 0, -k_p], [0, 1, -k_v]])).real)
+    rates = flow_bound.flow_rates(params)
     t_peak = flow_bound._peak(flow_bound._system(params), 40.0 / min(rates))
     horizon = min(default_horizon(params), 50 * t_peak + 50 / max(rates))
     t = sample_times(horizon, 101)
