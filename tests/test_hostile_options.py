@@ -416,10 +416,12 @@ def _check(result, name: str) -> None:
 
 
 @pytest.fixture(scope="module")
-def server():
+def server(tmp_path_factory):
     from tests.forkserver import ForkServer
+    from tests.test_hostile_inputs import warm_jit
 
     forks = ForkServer()
+    warm_jit(forks, tmp_path_factory.mktemp("warm"))  # the kernel's one-time compile is not a case's time
     yield forks
     forks.close()
 
