@@ -110,12 +110,7 @@ def certify(
     >>> cert.k1, cert.k2, cert.overshoot_bound
     (Fraction(2, 1), Fraction(2, 1), '3.46703')
     """
-    if params.stiction:
-        # Proposition 1 is about the paper's model; with f_s > f_c the mass hunts (see hunting_cycle)
-        raise ParameterError(
-            f"a stability certificate is for the paper's model f_s = f_c; got f_s = {params.f_s} > f_c = {params.f_c}: "
-            "with static friction above Coulomb the loop hunts (symbolic-friction hunting)"
-        )
+    params.check_paper_model()
     search = check_search(search)
     if search == "closed-form":
         from .closed_form import closed_form_certificate

@@ -81,8 +81,7 @@ def certify_quadratic(params: Parameters, *, label: str = "") -> "QuadraticCerti
     from .quadratic import QuadraticCertificate, QuadraticProvenance, verify_quadratic
     from .rounding import round_significant, sqrt_decimal_up
 
-    if params.stiction:
-        raise ParameterError(f"a stability certificate is for the paper's model f_s = f_c; got f_s = {params.f_s} > f_c = {params.f_c}")
+    params.check_paper_model()
     failures = []
     for margin in MARGINS:
         status, values = _solve(params, margin)

@@ -171,8 +171,7 @@ def certify_sup_flow(params: Parameters, *, label: str = "", rel_tol: float = 3e
     from .rounding import round_significant, sqrt_decimal_up
     from .sup_flow import TAIL_CONSTANTS, SupFlowCertificate, SupFlowPiece, SupFlowProvenance, verify_sup_flow
 
-    if params.stiction:
-        raise ParameterError(f"a stability certificate is for the paper's model f_s = f_c; got f_s = {params.f_s} > f_c = {params.f_c}")
+    params.check_paper_model()
     if not 0 < rel_tol < 1 or not 1 <= max_pieces <= 200 or tail not in ("paper", "own"):
         raise ParameterError(f"rel_tol must be in (0, 1), max_pieces in 1..200 and tail 'paper' or 'own'; "
                              f"got {rel_tol}, {max_pieces}, {tail!r}")

@@ -106,8 +106,7 @@ def certify_sup_flow_tail(params: Parameters, *, label: str = "") -> "SupFlowCer
     from .sup_flow import verify_sup_flow
     from .sup_flow_search import MARGIN
 
-    if params.stiction:
-        raise ParameterError(f"a stability certificate is for the paper's model f_s = f_c; got f_s = {params.f_s} > f_c = {params.f_c}")
+    params.check_paper_model()
     k_p, k_i, k_v, _ = params.as_floats()
     if not all(np.isfinite(x) and 0 < x < 1e150 for x in (k_p, k_i, k_v)):
         raise CertificateError(f"the gains of {params} are beyond the range of the floats the SDPs work in")

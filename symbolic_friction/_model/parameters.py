@@ -121,6 +121,15 @@ class Parameters:
         ``f_s > f_c`` is the stiction its conclusion names as future work
         (see :mod:`symbolic_friction._hunting`).  A gain set with
         ``f_s = f_c`` compares, hashes and prints exactly as one without it.
+    reset_dwell : number or None, default None (plain PID)
+        Reset PID (beyond the paper; the package's own law, the idea of
+        Bisoffi et al., *To stick or to slip*, Annu. Rev. Control 49, 2020):
+        during a stick (``v = 0``, ``|φ| ≤ f_s``) with ``σφ ≤ 0``, the
+        integrator ``e_i`` jumps so that ``φ⁺ = f_c·sign(σ)``, at most once
+        per ``reset_dwell > 0`` time units (the dwell timer that excludes
+        Zeno solutions).  ``V`` of eq. (lyapLikeV) is unchanged by a jump
+        (:mod:`symbolic_friction._model.reset`).  ``None`` is the paper's PID,
+        which compares, hashes and prints exactly as before.
     physical : PhysicalParameters or None, default None
         The physical values the gains were normalised from (set by
         :meth:`from_physical`); checked to normalise to the gains, and
@@ -132,7 +141,8 @@ class Parameters:
         If a value is not a finite number.
     AssumptionError
         If Assumption 1 (``k_i > 0``, ``k_p > 0``, ``k_v k_p > k_i``),
-        ``f_c > 0`` or ``f_s ≥ f_c`` is violated; the message gives the numbers.
+        ``f_c > 0``, ``f_s ≥ f_c`` or ``reset_dwell > 0`` is violated; the
+        message gives the numbers.
 
     Examples
     --------
@@ -148,6 +158,7 @@ class Parameters:
     k_v: Fraction
     f_c: Fraction = field(default=Fraction(1))
     f_s: Fraction = field(default=None)  # type: ignore[assignment]  # None: f_s = f_c
+    reset_dwell: Fraction | None = field(default=None)
     # the physical values the gains were normalised from (from_physical); the dynamics are the gains',
     # so two gain sets compare and hash alike whether or not they remember where they came from
     physical: "PhysicalParameters | None" = field(default=None, compare=False, repr=False)
@@ -175,6 +186,13 @@ class Parameters:
                 f"the static level needs f_s ≥ f_c; got f_s = {_fmt(f_s)} < f_c = {_fmt(f_c)}"
             )
         object.__setattr__(self, "f_s", f_s)
+        if self.reset_dwell is not None:
+            dwell = to_rational(self.reset_dwell, name="reset_dwell")
+            if not dwell > 0:
+                raise AssumptionError(
+                    f"the reset's dwell time needs reset_dwell > 0 (it excludes Zeno solutions); got {_fmt(dwell)}"
+                )
+            object.__setattr__(self, "reset_dwell", dwell)
         if self.physical is not None:
             self._check_physical()
 
@@ -195,7 +213,11 @@ class Parameters:
         cached = self.__dict__.get("_hash")
         if cached is None:
             key = (self.k_p, self.k_i, self.k_v, self.f_c)
-            cached = hash(key if self.f_s == self.f_c else key + (self.f_s,))
+            if self.f_s != self.f_c:
+                key += (self.f_s,)
+            if self.reset_dwell is not None:
+                key += ("reset", self.reset_dwell)
+            cached = hash(key)
             object.__setattr__(self, "_hash", cached)
         return cached
 
@@ -287,6 +309,42 @@ class Parameters:
         return (self.f_s - self.f_c) / self.f_c
 
     @property
+    def reset(self) -> bool:
+        """Whether this is reset PID (``reset_dwell`` given) rather than the paper's PID."""
+        return self.reset_dwell is not None
+
+    def without_reset(self) -> "Parameters":
+        """The same gains and friction with the paper's PID (no reset)."""
+        if self.reset_dwell is None:
+            return self
+        return Parameters(k_p=self.k_p, k_i=self.k_i, k_v=self.k_v, f_c=self.f_c, f_s=self.f_s, physical=self.physical)
+
+    def check_paper_model(self, what: str = "a stability certificate") -> None:
+        """Refuse, naming ``what``, gains that are not the paper's model: ``f_s > f_c`` or reset PID.
+
+        Proposition 1 and its certificates are about eq. (basic) with the
+        paper's PID; with ``f_s > f_c`` the loop hunts, and reset PID is
+        another (hybrid) closed loop.
+
+        Raises
+        ------
+        ParameterError
+            Naming the value that leaves the paper's model.
+        """
+        from .._infra.errors import ParameterError
+
+        if self.stiction:
+            raise ParameterError(
+                f"{what} is for the paper's model f_s = f_c; got f_s = {_fmt(self.f_s)} > f_c = {_fmt(self.f_c)}: "
+                "with static friction above Coulomb the loop hunts (symbolic-friction hunting)"
+            )
+        if self.reset_dwell is not None:
+            raise ParameterError(
+                f"{what} is for the paper's PID; got reset PID (reset_dwell = {_fmt(self.reset_dwell)}): "
+                "its settling is certified by symbolic-friction settling"
+            )
+
+    @property
     def routh_margin(self) -> Fraction:
         """``k_v k_p / k_i``; Assumption 1 holds iff this exceeds 1."""
         return self.k_v * self.k_p / self.k_i
@@ -311,10 +369,14 @@ class Parameters:
         out = {name: format_rational(getattr(self, name)) for name in self._names}
         if self.stiction:
             out["f_s"] = format_rational(self.f_s)
+        if self.reset_dwell is not None:
+            out["reset_dwell"] = format_rational(self.reset_dwell)
         return out
 
     def __str__(self) -> str:
         names = (*self._names, "f_s") if self.stiction else self._names
+        if self.reset_dwell is not None:
+            names = (*names, "reset_dwell")
         inner = ", ".join(f"{k}={_fmt(getattr(self, k))}" for k in names)
         return f"Parameters({inner})"
 

@@ -39,12 +39,13 @@ def obligation_modules() -> tuple[ModuleType, ...]:
         quadratic,
         regularization,
         remark,
+        reset,
         sup_flow,
         table1,
     )
 
     return (coordinates, regularization, assumption1, equilibria, distance, model, lemma1, lemma2, remark,
-            claim1, prop1, lemma3, cor1, table1, certificate, closed_form, quadratic, sup_flow)
+            claim1, prop1, lemma3, cor1, table1, certificate, closed_form, quadratic, sup_flow, reset)
 
 
 def registry() -> tuple[type[Obligation], ...]:
@@ -55,7 +56,7 @@ def registry() -> tuple[type[Obligation], ...]:
     its Remark, Claim 1, Proposition 1's attractivity, Lemma 3, Proposition 1's
     stability bound, Corollary 1, Table I, the verifier's bindings, and last the closed-form
     certificate for all gains, the monotonicity that box certificates rest on and the closed form's
-    ``k₁ = k₄`` variant.
+    ``k₁ = k₄`` variant, the templates beyond the paper, and last reset PID's jumps.
     """
     from .assumption1 import Assumption1Encoding, Assumption1Routh
     from .certificate import CertificateVerifier, VerifierDecision
@@ -84,6 +85,14 @@ def registry() -> tuple[type[Obligation], ...]:
     from .quadratic import QuadraticPStructure, QuadraticStabilityBound, QuadraticUExit, QuadraticURate, QuadraticVDecrease
     from .regularization import Regularization
     from .remark import RemarkArmstrong
+    from .reset import (
+        ResetAttractor,
+        ResetBasicConditions,
+        ResetKernelBinding,
+        ResetLeavesStick,
+        ResetNoSecondJump,
+        ResetVJump,
+    )
     from .sup_flow import Bounds, Exit, Nonincreasing, RestMinimum, SlipFlow, SupFlowStabilityBound
     from .table1 import TableI
 
@@ -96,6 +105,7 @@ def registry() -> tuple[type[Obligation], ...]:
         Assumption1Encoding, CertificateVerifier, VerifierDecision, ClosedFormAllGains, ClosedFormMonotone, ClosedFormBalanced,
         QuadraticPStructure, QuadraticVDecrease, QuadraticURate, QuadraticUExit, QuadraticStabilityBound,
         SlipFlow, RestMinimum, Nonincreasing, Bounds, Exit, SupFlowStabilityBound,
+        ResetVJump, ResetNoSecondJump, ResetAttractor, ResetBasicConditions, ResetLeavesStick, ResetKernelBinding,
     )
 
 

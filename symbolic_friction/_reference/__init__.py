@@ -147,6 +147,9 @@ class Reference(SlipMethods):
         self.f_s = q(fr["f_s"])
         self._fs_minus_fc = q(fr["f_s"] - fr["f_c"])  # exact difference, then rounded once
         self._fr = fr
+        # reset PID (Parameters.reset_dwell): the law written again from its definition, not from the kernel
+        self.dwell = None if params.reset_dwell is None else q(params.reset_dwell)
+        self._last_reset = None
         self.A = [
             [ctx.mpf(0), ctx.mpf(0), -self.k_i],
             [ctx.mpf(1), ctx.mpf(0), -self.k_p],
@@ -243,6 +246,13 @@ class Reference(SlipMethods):
                 else:
                     gap = e * self.f_s - ref * self.f_c - off
                 exact = None
+                if self.dwell is not None and self._reset(t, sigma, e, ref, off):
+                    t = self._last_reset
+                    ref, off = e, ctx.mpf(0)  # φ⁺ = e·f_c
+                    if len(self.events) >= self.max_events:
+                        self.status = "max_events"
+                        return
+                    continue
                 t1 = t + gap / sigma
                 x_start = [sigma, ref * self.f_c + off, ctx.mpf(0)]
                 if t1 >= self.t_end:
@@ -274,6 +284,29 @@ class Reference(SlipMethods):
                 self.status = "max_events"
                 return
 
+    def _reset(self, t, sigma, e, ref, off) -> bool:
+        """Reset PID at a stick from ``t``: jump ``e_i`` so that ``φ⁺ = sign(σ)·f_c``, if the law says so.
+
+        The jump set is ``v = 0``, ``σφ < f_c|σ|`` (``φ`` short of ``sign(σ) f_c``, which it
+        reaches at the rate ``σ``) and a dwell of at least ``reset_dwell`` since the last
+        jump.  Records the stick up to the jump and the event ``(t, 0, 0)``.
+        """
+        phi = ref * self.f_c + off
+        if not e * phi < self.f_c:
+            return False
+        t_allow = t if self._last_reset is None else max(t, self._last_reset + self.dwell)
+        if not (t_allow < t + (e * self.f_c - phi) / sigma and t_allow < self.t_end):
+            return False
+        if t_allow > t:
+            self.pieces.append(_Piece(t, t_allow, 0, [sigma, phi, self.ctx.mpf(0)]))
+        self.events.append((t_allow, 0, 0))
+        self._last_reset = t_allow
+        return True
+
+    def reset_times(self):
+        """Times (floats) of the resets of reset PID, in order."""
+        return [float(t) for t, a, b in self.events if a == 0 and b == 0]
+
     # -- output ---------------------------------------------------------------
     def x_at(self, t):
         """``(σ, φ, v)`` (mpf) and the mode at time ``t`` (float or mpf)."""
@@ -299,8 +332,13 @@ class Reference(SlipMethods):
         return self._flow(piece.grid[j], r), piece
 
     def z_mpf_at(self, t):
-        """``(e_i, s, v)`` as mpf and the mode at time ``t`` (eq. CoC inverted)."""
+        """``(e_i, s, v)`` as mpf and the mode at time ``t`` (eq. CoC inverted).
+
+        At ``t = 0`` the given state, also when reset PID jumps at once (a hybrid solution's first point).
+        """
         (sigma, phi, v), mode = self.x_at(t)
+        if t == 0:
+            return self.z0, mode
         s = -sigma / self.k_i
         e_i = (-phi - self.k_p * s) / self.k_i
         return (e_i, s, v), mode

@@ -146,6 +146,11 @@ def simulate(
             f"method {solver.name!r} models Coulomb friction only (f_s = f_c); got f_s = {params.f_s} > f_c = {params.f_c}: "
             "use the event-driven method"
         )
+    if params.reset and not solver.resets:
+        raise SimulationError(
+            f"method {solver.name!r} models the paper's PID only; got reset PID (reset_dwell = {params.reset_dwell}): "
+            "use the event-driven method, whose resets are events"
+        )
     _check_float_model(params)
     z = _check_state(z0)
     t = _check_horizon(t_end)

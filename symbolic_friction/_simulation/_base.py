@@ -127,6 +127,8 @@ class SimulationMethod(abc.ABC):
       field that trades speed for accuracy, or ``None``).  Set ``stiction =
       True`` only if the method models static friction above Coulomb
       (``f_s > f_c``); ``simulate`` refuses such parameters to the others.
+      Likewise ``resets = True`` only if it models reset PID
+      (``Parameters.reset_dwell``).
     * Implement :meth:`_validate`, called on construction with
       :attr:`options`, which raises
       :class:`~symbolic_friction.SimulationError` naming the option and the
@@ -145,6 +147,8 @@ class SimulationMethod(abc.ABC):
     # Whether the method models static friction above Coulomb (``Parameters.f_s > f_c``);
     # a method that does not is refused such parameters by ``simulate``.
     stiction: ClassVar[bool] = False
+    # Whether the method models reset PID (``Parameters.reset_dwell``), whose resets are events.
+    resets: ClassVar[bool] = False
 
     def __post_init__(self) -> None:
         self._validate(self.options)

@@ -196,6 +196,9 @@ def trajectory(K, W, N, z0, x0, t_end, max_events, ts, out_x, out_z, out_mode, e
     """
     f_c = K[I_FC]
     f_s, excess = K[I_FS], K[I_EXCESS]
+    dwell = K[I_DWELL]  # < 0: the paper's PID
+    n_resets = 0
+    t_reset = 0.0
     cap = ev_t.size
     m = ts.size
     i = 0
@@ -224,6 +227,36 @@ def trajectory(K, W, N, z0, x0, t_end, max_events, ts, out_x, out_z, out_mode, e
                     t = t_end
                     break
                 d = 1 if sigma > 0.0 else -1
+                if dwell >= 0.0:
+                    # reset PID: while φ is short of d·f_c (it moves there at the rate σ) and the timer
+                    # allows, e_i jumps so that φ⁺ = d·f_c (σ, v unchanged): the stick ends at once in the
+                    # paper's model; V of eq. (lyapLikeV) is unchanged (model.reset)
+                    phi_now = base * f_c + offset
+                    if d * phi_now < f_c:
+                        t_allow = t if n_resets == 0 else max(t, t_reset + dwell)
+                        t_cross = t + (d * f_c - phi_now) / sigma
+                        if t_allow < t_cross and t_allow < t_end:
+                            i = _emit(K, q, t, t_allow, False, 0, sigma, base, offset, ts, i, out_x, out_z, out_mode)
+                            if n_ev >= cap:
+                                status = BUFFER_FULL
+                                break
+                            ev_t[n_ev] = t_allow
+                            ev_x[n_ev, 0] = sigma
+                            ev_x[n_ev, 1] = phi_now + sigma * (t_allow - t)
+                            ev_x[n_ev, 2] = 0.0
+                            ev_m[n_ev, 0] = 0
+                            ev_m[n_ev, 1] = 0
+                            ev_res[n_ev] = 0.0
+                            n_ev += 1
+                            n_resets += 1
+                            t = t_allow
+                            t_reset = t
+                            base, offset = d, 0.0
+                            if n_ev >= max_events:
+                                i = _emit(K, q, t, t, True, mode, sigma, base, offset, ts, i, out_x, out_z, out_mode)
+                                status = MAX_EVENTS
+                                break
+                            continue
                 # distance to the exit d·f_s: exactly -offset when leaving where the last slip ended
                 gap = -offset if base == d else (d - base) * f_c - offset
                 if excess != 0.0:

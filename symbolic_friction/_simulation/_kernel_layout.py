@@ -57,7 +57,10 @@ I_PQ = 64  # q = α² - β², E = q S² + S'²
 I_MU = 65  # μ₀ … μ₄
 I_SDT, I_SCELLS, I_SWINDOW, I_TFAST = 70, 71, 72, 73  # slow table Δ, cells, length; fast part decayed after
 I_MF, I_MC, I_MD = 74, 83, 92  # 3×3 row-major each
-K_SIZE = 101
+# Reset PID (Parameters.reset_dwell): the dwell time τ_d between resets, or -1 for the paper's PID, where
+# the event loop takes exactly the paper's path.  A reset is an event with modes (0, 0).
+I_DWELL = 101
+K_SIZE = 102
 # Rows of W and N: the scan table of w (ScanTable) and, below it, the slow table of the pair (ModalScan).
 W_FAST, W_SLOW = 0, 5
 N_FAST, N_SLOW = 0, 3

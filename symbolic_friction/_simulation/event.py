@@ -241,6 +241,7 @@ class EventDriven(SimulationMethod):
 
     name: ClassVar[str] = "event"
     stiction: ClassVar[bool] = True
+    resets: ClassVar[bool] = True
     order: ClassVar[float] = math.inf
     knob: ClassVar[str | None] = None
 

@@ -51,7 +51,7 @@ mathematics and its constants (:func:`slip_model`).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import lru_cache
 
 from fractions import Fraction
@@ -100,7 +100,21 @@ class SlipModel:
 
 @lru_cache(maxsize=64)
 def slip_model(params: Parameters) -> SlipModel:
-    """The closed form, the bounds and the scan table of ``params`` (cached), packed for the kernel."""
+    """The closed form, the bounds and the scan table of ``params`` (cached), packed for the kernel.
+
+    Reset PID shares everything with the paper's PID but the dwell time ``K[I_DWELL]``.
+    """
+    if params.reset:
+        from . import _kernel_layout as k
+
+        plain = slip_model(params.without_reset())
+        K = plain.K.copy()
+        try:
+            K[k.I_DWELL] = float(params.reset_dwell)  # a dwell below 1e-308 is 0.0: reset at every stick
+        except OverflowError:
+            K[k.I_DWELL] = math.inf  # one reset, then never again
+        K.flags.writeable = False
+        return replace(plain, K=K)
     expm = MatrixExponential.from_params(params)
     bounds = SlipBounds.from_params(params)
     table = ScanTable.build(expm)
@@ -141,6 +155,7 @@ def _pack(
     from . import _kernel as k
 
     K = np.zeros(k.K_SIZE)
+    K[k.I_DWELL] = -1.0  # the paper's PID: no reset
     K[k.I_R], K[k.I_ALPHA], K[k.I_BETA2] = expm.r, expm.alpha, expm.beta2
     K[k.I_DELTA] = expm.r - expm.alpha
     K[k.I_DEN] = K[k.I_DELTA] ** 2 - expm.beta2

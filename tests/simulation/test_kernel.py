@@ -21,6 +21,9 @@ CASES = {
     # static friction above Coulomb: stick exits at ±f_s, slips that start with v' ≠ 0
     "a_stiction": Parameters(k_v="6.4", k_p=3, k_i=4, f_s="1.2"),
     "b_stiction": Parameters(k_v="1.5", k_p="0.66", k_i="0.08", f_s="1.5"),
+    # reset PID: resets are events of the same loop
+    "a_reset": Parameters(k_v="6.4", k_p=3, k_i=4, reset_dwell="1/100"),
+    "b_reset_stiction": Parameters(k_v="1.5", k_p="0.66", k_i="0.08", f_s="1.2", reset_dwell="1/2"),
 }
 
 
