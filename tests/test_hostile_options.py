@@ -68,6 +68,11 @@ KINDS: dict[tuple[str, str], str] = {
     **{("hunting", f): "gain" for f in ("--k-p", "--k-i", "--k-v", "--f-c", "--f-s")},
     ("hunting", "--out"): "out-dir", ("hunting", "--name"): "stem", ("hunting", "--figure"): "out-file",
     ("hunting", "--sweep"): "sweep", ("hunting", "--no-iss"): "flag", ("hunting", "--no-simulation"): "flag",
+    # settling
+    **{("settling", f): "gain" for f in ("--k-p", "--k-i", "--k-v", "--f-c", "--f-s")},
+    ("settling", "--reset-dwell"): "real", ("settling", "--z0"): "state", ("settling", "--tol"): "real",
+    ("settling", "--t-end"): "real", ("settling", "--samples"): "count", ("settling", "--out"): "out-dir",
+    ("settling", "--no-figure"): "flag", ("settling", "--json"): "flag",
     # tradeoff
     ("tradeoff", "--case"): "choice", ("tradeoff", "--z0"): "state", ("tradeoff", "--t-end"): "real",
     ("tradeoff", "--samples"): "count", ("tradeoff", "--repeats"): "count", ("tradeoff", "--quick"): "flag",
@@ -116,6 +121,7 @@ BASE: dict[str, list[str]] = {
     "figures": ["figures", "--only", "fig4", "--out", "{d}/out"],
     "crosscheck": ["crosscheck", CERTS, "--trajectories", "5", "--no-adversarial", "--out", "{d}/cx"],
     "hunting": ["hunting", *GAINS, "--f-s", "1.2", "--out", "{d}/out", "--no-iss", "--no-simulation"],
+    "settling": ["settling", *GAINS, "--t-end", "5", "--samples", "11", "--out", "{d}/out"],
     "tradeoff": ["tradeoff", *GAINS, "--quick", "--no-cost", "--no-figures", "--repeats", "1", "--samples", "11",
                  "--t-end", "1"],
     "extremes": ["extremes", "--only", "f_c", "--out", "{d}/out"],

@@ -20,7 +20,7 @@ from typing import Any, NoReturn
 
 __all__ = ["main", "build_parser"]
 
-COMMANDS = ("check", "certify", "verify", "simulate", "figures", "crosscheck", "hunting", "tradeoff", "extremes", "map")
+COMMANDS = ("check", "certify", "verify", "simulate", "figures", "crosscheck", "hunting", "settling", "tradeoff", "extremes", "map")
 
 
 class _Parser(argparse.ArgumentParser):
