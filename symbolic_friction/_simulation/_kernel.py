@@ -232,6 +232,11 @@ def trajectory(K, W, N, z0, x0, t_end, max_events, ts, out_x, out_z, out_mode, e
                     # allows, e_i jumps so that φ⁺ = d·f_c (σ, v unchanged): the stick ends at once in the
                     # paper's model; V of eq. (lyapLikeV) is unchanged (model.reset)
                     phi_now = base * f_c + offset
+                    if abs(sigma) <= UNDERFLOW:
+                        # resets converge exponentially: a σ this small is 𝒜 in double precision (as a slip's
+                        # UNDERFLOW), and following it further would only compute with subnormal numbers
+                        sigma = 0.0
+                        continue
                     if d * phi_now < f_c:
                         t_allow = t if n_resets == 0 else max(t, t_reset + dwell)
                         t_cross = t + (d * f_c - phi_now) / sigma
