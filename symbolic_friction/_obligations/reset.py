@@ -236,8 +236,10 @@ class ResetLeavesStick(Obligation):
 class ResetKernelBinding(Obligation):
     id = "reset.kernel_binding"
     paper = "beyond the paper: reset PID; binds the event kernel to _model.reset"
-    statement = "from exact stick states the event kernel resets exactly when the model's D (strictly short of sign(σ) f_c) says so, and to G(x)"
-    method = "the kernel from 8 stick states of Table I (a) with reset_dwell = 1/100 (inside and outside D, both signs of σ): first event, its state and the state just after it"
+    statement = "the event kernel resets exactly when the model's D (strictly short of sign(σ) f_c, dwell elapsed) says so, at that time, and to G(x)"
+    method = ("the kernel from 8 exact stick states of Table I (a) (inside and outside D, both signs of σ): first event, its "
+              "state and the state after it; and along 3 trajectories with dwell 1/100 and 3/2, every stick start's reset "
+              "predicted from the model (time, or none) against the kernel's events")
 
     def derive(self):
         from .._model.parameters import Parameters
@@ -267,7 +269,33 @@ class ResetKernelBinding(Obligation):
                     if abs(after[0] - post[0]) > 1e-12 or abs(after[1] - post[1]) > 1e-9:
                         return Outcome.fail(f"σ = {sigma}, φ = {phi}: the kernel jumps to {tuple(after)}, G gives {post}")
                 n += 1
-        return Outcome(True, f"{n} stick states: the kernel's resets are the model's")
+        walked = 0
+        for dwell, z0 in ((Fraction(1, 100), (0.0, 3.0, 0.0)), (Fraction(3, 2), (0.0, 3.0, 0.0)), (Fraction(3, 2), (-1.0, 2.0, -0.5))):
+            import dataclasses
+
+            sol = simulate(dataclasses.replace(params, reset_dwell=dwell), z0, 60.0)
+            events, states = sol.events, sol.event_x
+            last = None
+            for j, ((t, a, b), x) in enumerate(zip(events, states)):
+                if (a, b) == (0, 0):
+                    last = t
+                if a == 0 or b != 0 or j + 1 >= len(events):
+                    continue
+                sigma, phi = float(x[0]), float(x[1])
+                d = 1.0 if sigma > 0 else -1.0
+                margins = _reset.jump_set_margins(sigma, phi, 0.0, abs(sigma), abs(phi), float(f_c), float(f_c), 1.0, 0.0)
+                allowed = t if last is None else max(t, last + float(dwell))
+                natural = t + (d * float(f_c) - phi) / sigma
+                predicted = allowed if all(m >= 0 for m in margins) and d * phi < float(f_c) and allowed < natural else None
+                t_next, a_next, b_next = events[j + 1]
+                is_reset = (a_next, b_next) == (0, 0)
+                if (predicted is None) == is_reset or (is_reset and abs(t_next - predicted) > 1e-9 * max(1.0, t_next)):
+                    return Outcome.fail(f"dwell {dwell}, stick from t = {t:.12g}: the model resets at {predicted}, "
+                                        f"the kernel's next event is {(t_next, a_next, b_next)}")
+                walked += 1
+        if walked < 20:
+            return Outcome.fail(f"only {walked} stick starts were walked: the binding would pass vacuously")
+        return Outcome(True, f"{n} stick states and {walked} stick starts along trajectories: the kernel's resets are the model's")
 
 
 OBLIGATIONS = (ResetVJump, ResetNoSecondJump, ResetAttractor, ResetBasicConditions, ResetLeavesStick, ResetKernelBinding)
