@@ -87,7 +87,7 @@ KINDS: dict[tuple[str, str], str] = {
     # map
     **{("map", f): "axis" for f in ("--k-p", "--k-i", "--k-v", "--f-c", "--f-s", "--m", "--k-p-bar", "--k-i-bar",
                                     "--k-d-bar", "--alpha-v", "--f-c-bar", "--f-s-bar")},
-    ("map", "--sample"): "count", ("map", "--seed"): "seed", ("map", "--sdp"): "flag", ("map", "--adversary"): "count",
+    ("map", "--sample"): "count", ("map", "--tight"): "real", ("map", "--seed"): "seed", ("map", "--sdp"): "flag", ("map", "--adversary"): "count",
     ("map", "--chunk"): "count", ("map", "--out"): "out-dir", ("map", "--format"): "formats",
     ("map", "--workers"): "count", ("map", "--scheduler"): "text", ("map", "--plot"): "names",
     ("map", "--no-plot"): "flag", ("map", "--json"): "flag",
@@ -305,6 +305,7 @@ CLASS = {"in-file": "path", "in-dir": "path", "out-dir": "path", "out-file": "pa
 NOT_HOSTILE = {("certify", "--alpha-v", "zero"), ("tradeoff", "--alpha-v", "zero")}  # α_v = 0 is the default
 NOT_HOSTILE |= {("map", "--sample", "zero"), ("map", "--adversary", "zero")}  # a grid; no adversary
 NOT_HOSTILE |= {("certify", "--kappa-tol", "zero")}  # one gain set: every search within the budget
+NOT_HOSTILE |= {("map", "--tight", "zero")}  # the tight columns off (the default)
 
 
 PER_OPTION = {"gain": 5, "axis": 6, "fraction": 8, "count": 6, "real": 6}

@@ -58,7 +58,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     physical = parser.add_argument_group("physical axes (paper §II-A: k_p = k̄_p/m, k_v = (k̄_d + α_v)/m, …)")
     for name in _PHYSICAL:
         physical.add_argument(_flag(name), dest=name, default=None, metavar="AXIS", help=_HELP[name])
-    from .._infra.options import count_option
+    from .._infra.options import count_option, real_option
+
+    MAX_TIGHT = 600.0  # = _studies.gainmap.MAX_TIGHT (the spec checks it again); not imported: --help stays light
 
     # bounds stated before any work (the spec checks them again for library callers)
     parser.add_argument("--sample", type=count_option("--sample", low=0, high=10**7), default=0, metavar="N",
@@ -66,6 +68,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--seed", type=count_option("--seed", low=0, high=2**32 - 1), default=0,
                         help="seed of the sample and of the adversary (default 0)")
     parser.add_argument("--sdp", action="store_true", help="also the SDP's tightest κ (about 3 ms a point)")
+    parser.add_argument("--tight", type=real_option("--tight", high=MAX_TIGHT, low=0, low_open=False), default=0.0,
+                        metavar="SECONDS",
+                        help="also the tight bound of default certify per point within SECONDS (closed form, then the "
+                        "sup-flow and quadratic templates; columns kappa_tight, kappa_lin (proven lower end), tight_ratio)")
     parser.add_argument("--adversary", type=count_option("--adversary", low=0, high=100_000), default=0,
                         metavar="BUDGET",
                         help="trajectories per point for the worst overshoot found, and tightness = worst/κ (default 0: off)")
@@ -96,7 +102,8 @@ def run(args: argparse.Namespace) -> int:
     values = {n: getattr(args, n) for n in _NORMALISED + _PHYSICAL if getattr(args, n) is not None}
     if not values:
         raise ParameterError("give the axes: normalised --k-p --k-i --k-v (and --f-c, --f-s) or physical --m --k-p-bar …")
-    spec = map_spec(values, sample=args.sample, seed=args.seed, sdp=args.sdp, adversary=args.adversary, chunk=args.chunk)
+    spec = map_spec(values, sample=args.sample, seed=args.seed, sdp=args.sdp, adversary=args.adversary, chunk=args.chunk,
+                    tight=args.tight)
     axes = None
     if not args.no_plot:
         from .._studies.gainmap_plot import default_axes

@@ -67,6 +67,8 @@ MAX_CHUNK = 10**6
 SAMPLE_DIGITS = 10
 """Significant decimal digits of logarithmic grid points and of sampled points."""
 MAX_ADVERSARY = 100_000
+MAX_TIGHT = 600.0
+"""Most seconds per point for the tight bound (``--tight``)."""
 _SCALES = ("lin", "log")
 
 
@@ -206,6 +208,9 @@ class MapSpec:
         Seed of a sample (chunk ``c`` draws from ``numpy.random.default_rng([seed, c])``) and of the adversary.
     sdp : bool
         Also the SDP's tightest κ (about 3 ms a point).
+    tight : float
+        Seconds per point for the tight bound of default ``certify`` (the
+        columns ``kappa_tight``, ``kappa_lin`` and ``tight_ratio``; 0: off).
     adversary : int
         Trajectory budget of the overshoot adversary per point (0: off).
     chunk : int
@@ -218,6 +223,7 @@ class MapSpec:
     sample: int = 0
     seed: int = 0
     sdp: bool = False
+    tight: float = 0.0
     adversary: int = 0
     chunk: int = 1000
     mu: Fraction = field(default=DEFAULT_MU)
@@ -249,6 +255,9 @@ class MapSpec:
             raise ParameterError(f"adversary budget must be at most {MAX_ADVERSARY} trajectories a point; got {self.adversary}")
         if self.chunk > MAX_CHUNK:
             raise ParameterError(f"chunk must be at most {MAX_CHUNK} points; got {self.chunk}")
+        if isinstance(self.tight, bool) or not isinstance(self.tight, (int, float)) or not 0 <= self.tight <= MAX_TIGHT:
+            raise ParameterError(f"tight must be seconds per point in [0, {MAX_TIGHT:g}]; got {self.tight!r}")
+        object.__setattr__(self, "tight", float(self.tight))
         object.__setattr__(self, "mu", to_rational(self.mu, name="mu"))
         if not self.mu > 0:
             raise ParameterError(f"the margin mu must be positive; got {short_rational(self.mu)}")
@@ -323,6 +332,8 @@ class MapSpec:
         cols += [("status", "i1"), ("kappa", "f8")]
         if self.sdp:
             cols.append(("kappa_sdp", "f8"))
+        if self.tight:
+            cols += [("kappa_tight", "f8"), ("kappa_lin", "f8"), ("tight_ratio", "f8"), ("tight_template", "i1")]
         if self.adversary:
             cols += [("worst_overshoot", "f8"), ("tightness", "f8")]
         if self.hunting:
@@ -330,9 +341,12 @@ class MapSpec:
         return tuple(cols)
 
     def to_dict(self) -> dict[str, Any]:
-        return {"axes": [a.to_dict() for a in self.axes], "sample": self.sample, "seed": self.seed, "sdp": self.sdp,
-                "adversary": self.adversary, "chunk": self.chunk, "mu": format_rational(self.mu),
-                "sample_digits": SAMPLE_DIGITS}
+        out = {"axes": [a.to_dict() for a in self.axes], "sample": self.sample, "seed": self.seed, "sdp": self.sdp,
+               "adversary": self.adversary, "chunk": self.chunk, "mu": format_rational(self.mu),
+               "sample_digits": SAMPLE_DIGITS}
+        if self.tight:  # only when on: a map without it keeps its digest, so its chunks stay reusable
+            out["tight"] = self.tight
+        return out
 
     @classmethod
     def from_dict(cls, data: Mapping[str, Any]) -> "MapSpec":
@@ -346,7 +360,7 @@ class MapSpec:
         try:
             axes = tuple(Axis(a["name"], a["lo"], a["hi"], a["n"], a["scale"]) for a in data["axes"])
             return cls(axes, sample=data["sample"], seed=data["seed"], sdp=data["sdp"], adversary=data["adversary"],
-                       chunk=data["chunk"], mu=data["mu"])
+                       chunk=data["chunk"], mu=data["mu"], tight=data.get("tight", 0.0))
         except (KeyError, TypeError) as exc:
             raise ParameterError(f"not a gain-map spec: {type(exc).__name__} {exc}") from None
 
@@ -415,8 +429,11 @@ def evaluate_point(spec: MapSpec, values: Mapping[str, Fraction]) -> dict[str, f
     row: dict[str, float | int] = {n: float(v) for n, v in values.items()}
     row.update({n: float(v) for n, v in g.items()})
     row.update(status=STATUS.index("outside_assumption_1"), kappa=math.nan)
-    nan_cols = {"kappa_sdp": spec.sdp, "worst_overshoot": spec.adversary, "tightness": spec.adversary}
+    nan_cols = {"kappa_sdp": spec.sdp, "worst_overshoot": spec.adversary, "tightness": spec.adversary,
+                "kappa_tight": spec.tight, "kappa_lin": spec.tight, "tight_ratio": spec.tight}
     row.update({n: math.nan for n, on in nan_cols.items() if on})
+    if spec.tight:
+        row["tight_template"] = 0
     if spec.hunting:
         row.update(hunting_found=-1, hunting_proved=-1)
     k_p, k_i, k_v, f_c = g["k_p"], g["k_i"], g["k_v"], g["f_c"]
@@ -442,6 +459,11 @@ def evaluate_point(spec: MapSpec, values: Mapping[str, Fraction]) -> dict[str, f
             row["kappa_sdp"] = float_up(certify(params, mode="tightest", search="sdp").overshoot_bound)
         except SymbolicFrictionError:
             pass
+    if spec.tight:
+        from .gainmap_point import tight_kappa
+
+        row["kappa_tight"], row["kappa_lin"], row["tight_template"] = tight_kappa(params, budget=spec.tight)
+        row["tight_ratio"] = row["kappa_tight"] / row["kappa_lin"]  # NaN where either is
     if spec.adversary:
         worst = worst_overshoot(params, budget=spec.adversary, seed=spec.seed)
         row["worst_overshoot"] = worst

@@ -335,3 +335,29 @@ def test_a_finished_map_reads_back_with_its_spec(reference, tmp_path):
         read_map(tmp_path)
     with pytest.raises(ParameterError, match="not a gain-map spec"):
         MapSpec.from_dict({"axes": []})
+
+
+def test_the_tight_columns_are_default_certify_against_kappa_lin():
+    """``tight``: κ of default certify per point, below the closed form's and above κ_lin's proven lower end."""
+    from symbolic_friction._studies.gainmap import evaluate_point, map_spec
+    from symbolic_friction._studies.gainmap_point import TIGHT_TEMPLATES
+
+    spec = map_spec({"k_p": "1000", "k_i": "0.001", "k_v": "1000"}, tight=5.0)
+    assert [c for c, _ in spec.columns()][-4:] == ["kappa_tight", "kappa_lin", "tight_ratio", "tight_template"]
+    row = evaluate_point(spec, {a.name: a.lo for a in spec.axes})
+    assert row["kappa_lin"] <= row["kappa_tight"] <= row["kappa"]
+    assert row["kappa_tight"] < row["kappa"] / 1000  # the closed form is 31622.9 there, the sup-flow one piece 3.67
+    assert TIGHT_TEMPLATES[row["tight_template"]] == "sup-flow"
+    assert row["tight_ratio"] == row["kappa_tight"] / row["kappa_lin"]
+
+
+def test_a_map_without_tight_keeps_its_digest():
+    from symbolic_friction._studies.gainmap import MapSpec, map_spec
+
+    spec = map_spec({"k_p": "1:3:2", "k_i": "1", "k_v": "2"})
+    assert "tight" not in spec.to_dict()
+    tight = map_spec({"k_p": "1:3:2", "k_i": "1", "k_v": "2"}, tight=1.5)
+    assert tight.digest() != spec.digest() and MapSpec.from_dict(tight.to_dict()) == tight
+    for bad in (-1.0, 601.0, True, "2"):
+        with pytest.raises(Exception, match="tight must be seconds"):
+            map_spec({"k_p": "1", "k_i": "1", "k_v": "2"}, tight=bad)
