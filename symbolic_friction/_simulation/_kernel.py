@@ -356,12 +356,16 @@ def trajectory(K, W, N, z0, x0, t_end, max_events, ts, out_x, out_z, out_mode, e
             out_x[j, c] = np.nan
             out_z[j, c] = np.nan
         out_mode[j] = 0
+    # a reset at t = 0: the samples at 0 are the given state, before the jump (a hybrid solution's first point)
+    jumped_at_0 = n_ev > 0 and ev_t[0] == 0.0 and ev_m[0, 0] == 0 and ev_m[0, 1] == 0
     for j in range(m):  # the given state, not its round trip through x
         if ts[j] != 0.0:
             break
         if status != NONFINITE:
             for c in range(3):
                 out_z[j, c] = z0[c]
+                if jumped_at_0:
+                    out_x[j, c] = x0[c]
     for j in range(n_ev, cap):
         ev_t[j] = np.nan
         for c in range(3):

@@ -27,7 +27,8 @@ from typing import Any
 from .._infra.errors import ParameterError
 from .._model.parameters import Parameters
 
-__all__ = ["ControllerRun", "SettlingComparison", "compare_settling", "hunting_verdict", "DEFAULT_DWELL", "MAX_SAMPLES"]
+__all__ = ["ControllerRun", "SettlingComparison", "compare_settling", "hunting_verdict", "DEFAULT_DWELL", "MAX_SAMPLES",
+           "Trajectory", "simulate_trajectory", "settled_at", "same_exits", "pid_refuted"]
 
 DEFAULT_DWELL = Fraction(1, 100)
 """The reset's dwell time when the gains give none (any ``τ_d > 0`` is proved; this one is short against a slip)."""
@@ -101,44 +102,97 @@ class SettlingComparison:
                 "t_end": self.t_end, "reset_dwell": str(self.dwell), "pid": self.pid.as_json(), "reset": self.reset.as_json()}
 
 
-def _settling_time(t: Any, s: Any, level: float) -> float | None:
-    import numpy as np
-
-    above = np.nonzero(np.abs(s) > level)[0]
-    if above.size == 0:
-        return 0.0
-    last = above[-1]
-    if last + 1 >= t.size:
-        return None
-    return float(t[last + 1])
+_SETTLED = ("t_end reached", "equilibrium reached")
+_EXIT_RTOL = 1e-6  # σ at matching stick exits of two runs agree to the float error of the event kernel
 
 
-def _run(params: Parameters, z0, t_end: float, tol: Fraction, hunting: str, samples: int) -> ControllerRun:
-    from .._model.attractor import distance_x
-    from .._model.lyapunov import V
+@dataclass(frozen=True)
+class Trajectory:
+    """One exact trajectory, summarised for settling: samples (and every event time), stick exits, resets."""
+
+    t: Any
+    x: Any
+    s: Any
+    status: str
+    events: int
+    resets: int
+    exit_t: Any
+    exit_sigma: Any
+
+    @property
+    def complete(self) -> bool:
+        """Whether the kernel followed it to ``t_end`` (or onto 𝒜)."""
+        return self.status in _SETTLED
+
+
+def simulate_trajectory(params: Parameters, z0: Any, t_end: float, samples: int) -> Trajectory:
+    """The event kernel from ``z0`` on ``samples`` equally spaced times plus every event time."""
     import numpy as np
 
     from .._simulation import simulate
 
     grid = np.linspace(0.0, t_end, samples)
-    sol = simulate(params, [float(c) for c in z0], t_end, t_eval=grid, max_events=MAX_EVENTS)
-    event_times = np.array([e[0] for e in sol.events], dtype=float)
-    t = np.union1d(grid, event_times[np.isfinite(event_times)]) if event_times.size else grid
-    if t.size != grid.size:
-        sol = simulate(params, [float(c) for c in z0], t_end, t_eval=t, max_events=MAX_EVENTS)
-    s = sol.z[:, 1]
-    s0 = abs(float(z0[1]))
-    reference = s0 if s0 > 0 else float(np.nanmax(np.abs(s)))
-    d = distance_x(params, sol.x)
+    start = [float(c) for c in z0]
+    sol = simulate(params, start, t_end, t_eval=grid, max_events=MAX_EVENTS)
+    times = np.array([e[0] for e in sol.events], dtype=float)
+    t = np.union1d(grid, times[np.isfinite(times)]) if times.size else grid
+    if t.size != grid.size:  # |s| is sampled at every event too
+        sol = simulate(params, start, t_end, t_eval=t, max_events=MAX_EVENTS)
+    exits = [(e[0], float(x[0])) for e, x in zip(sol.events, np.asarray(sol.event_x)) if e[1] == 0 and e[2] != 0]
+    return Trajectory(t=np.asarray(sol.t), x=np.asarray(sol.x), s=np.asarray(sol.z[:, 1]), status=sol.status,
+                      events=len(sol.events), resets=sum(1 for e in sol.events if e[1:] == (0, 0)),
+                      exit_t=np.array([e[0] for e in exits]), exit_sigma=np.array([e[1] for e in exits]))
+
+
+def settled_at(t: Any, s: Any, level: float) -> float | None:
+    """The first sample or event time after which ``|s| ≤ level`` up to the end; None if that is only the end."""
+    import numpy as np
+
+    above = np.nonzero(np.abs(s) > level)[0]
+    if above.size == 0:
+        return 0.0
+    return None if above[-1] + 2 >= t.size else float(t[above[-1] + 1])
+
+
+def same_exits(pid: Trajectory, reset: Trajectory) -> bool:
+    """Whether PID's stick exits are, in ``σ``, the first of reset PID's (the module's key fact, measured)."""
+    import numpy as np
+
+    n = pid.exit_sigma.size
+    if reset.exit_sigma.size < n:
+        return False
+    a, b = pid.exit_sigma, reset.exit_sigma[:n]
+    return bool(np.all(np.abs(a - b) <= _EXIT_RTOL * np.maximum(np.abs(a), np.abs(b)) + 1e-300))
+
+
+def pid_refuted(pid: Trajectory, reset: Trajectory, level: float) -> bool:
+    """Whether PID, inside ``level`` from some time to ``t_end``, leaves it later: reset PID's run shows it.
+
+    With the same stick exits, reset PID's run past its exit number
+    ``len(pid exits) + 1`` is PID's future after ``t_end`` up to stick
+    times; PID may end inside a long stick with small ``|s|`` and slip out of
+    the level after ``t_end``.
+    """
+    import numpy as np
+
+    if not (same_exits(pid, reset) and reset.exit_t.size > pid.exit_t.size):
+        return False
+    future = reset.s[reset.t >= reset.exit_t[pid.exit_t.size]]
+    return bool(np.any(np.abs(future) > level))
+
+
+def _run(name: str, params: Parameters, traj: Trajectory, level: float, hunting: str) -> ControllerRun:
+    import numpy as np
+
+    from .._model.attractor import distance_x
+    from .._model.lyapunov import V
+
+    d = distance_x(params, traj.x)
     d0 = float(d[0])
-    overshoot = float(np.nanmax(d) / d0) if d0 > 0 else math.nan
-    resets = sum(1 for e in sol.events if e[1] == 0 and e[2] == 0)
     return ControllerRun(
-        name="reset" if params.reset else "pid",
-        settling_time=_settling_time(sol.t, s, float(tol) * reference) if sol.status == "t_end reached" or
-        sol.status == "equilibrium reached" else None,
-        events=len(sol.events), resets=resets, overshoot=overshoot, hunting=hunting, status=sol.status,
-        t=sol.t, s=s, V=np.asarray(V(params, sol.x), dtype=float),
+        name=name, settling_time=settled_at(traj.t, traj.s, level) if traj.complete else None,
+        events=traj.events, resets=traj.resets, overshoot=float(np.nanmax(d) / d0) if d0 > 0 else math.nan,
+        hunting=hunting, status=traj.status, t=traj.t, s=traj.s, V=np.asarray(V(params, traj.x), dtype=float),
     )
 
 
@@ -229,10 +283,17 @@ def compare_settling(
     # the same stick-exit map (module docstring): PID's verdict holds for reset PID, said so
     hunting_reset = (hunting_pid[:-1] + _SAME_MAP + ")" if hunting_pid.endswith(")") and plain.stiction
                      else hunting_verdict(with_reset, prove=False))
+    pid_traj = simulate_trajectory(plain, z, float(t_end), samples)
+    reset_traj = simulate_trajectory(with_reset, z, float(t_end), samples)
+    import numpy as np
+
+    level = float(tol) * (abs(float(z[1])) if z[1] != 0 else float(np.nanmax(np.abs(pid_traj.s))))
+    pid = _run("pid", plain, pid_traj, level, hunting_pid)
+    if pid.settling_time is not None and pid_refuted(pid_traj, reset_traj, level):
+        pid = replace(pid, settling_time=None, hunting=pid.hunting)  # settled on [0, t_end] only by a long stick
     return SettlingComparison(
         params=plain, z0=z, tol=tol, t_end=float(t_end), dwell=with_reset.reset_dwell,
-        pid=_run(plain, z, float(t_end), tol, hunting_pid, samples),
-        reset=_run(with_reset, z, float(t_end), tol, hunting_reset, samples),
+        pid=pid, reset=_run("reset", with_reset, reset_traj, level, hunting_reset),
     )
 
 

@@ -56,13 +56,11 @@ import numpy as np
 
 from .._infra.errors import ParameterError
 from .._model.parameters import Parameters
+from .settling import pid_refuted, same_exits, settled_at, simulate_trajectory
 
 __all__ = ["SettlingCell", "SettlingMap", "StictionEntry", "StictionTable", "log_gains", "settling_ratio_map",
            "stiction_table"]
 
-_SETTLED = ("t_end reached", "equilibrium reached")
-_MAX_EVENTS = 1_000_000
-_EXIT_RTOL = 1e-6  # σ at matching stick exits of the two runs agree to float error of the event kernel
 
 
 def log_gains(points: int = 8, *, lo: float = -0.5, hi: float = 1.0, digits: int = 4) -> tuple[Fraction, ...]:
@@ -77,51 +75,6 @@ def log_gains(points: int = 8, *, lo: float = -0.5, hi: float = 1.0, digits: int
         raise ParameterError(f"points must be a positive integer; got {points!r}")
     exps = [lo] if points == 1 else [lo + (hi - lo) * j / (points - 1) for j in range(points)]
     return tuple(Fraction(format(10.0 ** x, f".{digits}g")) for x in exps)
-
-
-def _settling(t: np.ndarray, s: np.ndarray, level: float) -> float | None:
-    """The first sample or event time after which ``|s| ≤ level`` up to the end; None if that is only the end."""
-    above = np.nonzero(np.abs(s) > level)[0]
-    if above.size == 0:
-        return 0.0
-    return None if above[-1] + 2 >= t.size else float(t[above[-1] + 1])
-
-
-@dataclass(frozen=True)
-class _Run:
-    """One exact trajectory: samples and events, the stick exits ``(t, σ)`` and the resets."""
-
-    t: np.ndarray
-    s: np.ndarray
-    complete: bool
-    exit_t: np.ndarray
-    exit_sigma: np.ndarray
-    resets: int
-
-
-def _simulate(params: Parameters, z: tuple, t_end: float, samples: int) -> _Run:
-    from .._simulation import simulate
-
-    grid = np.linspace(0.0, t_end, samples)
-    start = [float(c) for c in z]
-    sol = simulate(params, start, t_end, t_eval=grid, max_events=_MAX_EVENTS)
-    times = np.array([e[0] for e in sol.events], dtype=float)
-    t = np.union1d(grid, times[np.isfinite(times)]) if times.size else grid
-    if t.size != grid.size:  # |s| is sampled at every event too, as compare_settling does
-        sol = simulate(params, start, t_end, t_eval=t, max_events=_MAX_EVENTS)
-    exits = [(e[0], float(x[0])) for e, x in zip(sol.events, np.asarray(sol.event_x)) if e[1] == 0 and e[2] != 0]
-    return _Run(t=np.asarray(sol.t), s=np.asarray(sol.z[:, 1]), complete=sol.status in _SETTLED,
-                exit_t=np.array([e[0] for e in exits]), exit_sigma=np.array([e[1] for e in exits]),
-                resets=sum(1 for e in sol.events if e[1:] == (0, 0)))
-
-
-def _same_exits(pid: _Run, reset: _Run) -> bool:
-    """Whether PID's stick exits are, in ``σ``, the first of reset PID's (the key fact, measured)."""
-    n = pid.exit_sigma.size
-    if reset.exit_sigma.size < n:
-        return False
-    a, b = pid.exit_sigma, reset.exit_sigma[:n]
-    return bool(np.all(np.abs(a - b) <= _EXIT_RTOL * np.maximum(np.abs(a), np.abs(b)) + 1e-300))
 
 
 @dataclass(frozen=True)
@@ -273,8 +226,8 @@ def _hunting_level(params: Parameters, band: Fraction) -> tuple[float, str] | No
 
 def _cell(params: Parameters, ratio: Fraction, z, tol: Fraction, band: Fraction, t_end: float, samples: int,
           dwell: Fraction) -> SettlingCell:
-    pid = _simulate(params, z, t_end, samples)
-    reset = _simulate(replace(params, reset_dwell=dwell), z, t_end, samples)
+    pid = simulate_trajectory(params, z, t_end, samples)
+    reset = simulate_trajectory(replace(params, reset_dwell=dwell), z, t_end, samples)
     # |s(0)| = 0: relative to max |s|, as compare_settling does
     level = float(tol) * (abs(float(z[1])) if z[1] != 0 else float(np.nanmax(np.abs(pid.s))))
     criterion, hunting = "tol", "no (f_s = f_c: Proposition 1)"
@@ -284,14 +237,10 @@ def _cell(params: Parameters, ratio: Fraction, z, tol: Fraction, band: Fraction,
         if found is not None:
             level, note = found
             criterion, hunting = "band", f"cycle found, not proven: {note}"
-    pid_time = _settling(pid.t, pid.s, level) if pid.complete else None
-    reset_time = _settling(reset.t, reset.s, level) if reset.complete else None
-    same = _same_exits(pid, reset)
-    refuted = False
-    if pid_time is not None and same and reset.exit_t.size > pid.exit_t.size:
-        # reset PID's run past its exit number pid_exits + 1 is PID's future after t_end, up to stick times
-        future = reset.s[reset.t >= reset.exit_t[pid.exit_t.size]]
-        refuted = bool(np.any(np.abs(future) > level))
+    pid_time = settled_at(pid.t, pid.s, level) if pid.complete else None
+    reset_time = settled_at(reset.t, reset.s, level) if reset.complete else None
+    same = same_exits(pid, reset)
+    refuted = pid_time is not None and pid_refuted(pid, reset, level)
     return SettlingCell(
         k_p=params.k_p, k_i=params.k_i, k_v=params.k_v, f_s_ratio=ratio, criterion=criterion, level=level,
         pid_time=None if refuted else pid_time, reset_time=reset_time, pid_final=abs(float(pid.s[-1])),
