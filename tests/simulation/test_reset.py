@@ -159,7 +159,7 @@ def test_reset_costs_at_most_twice_plain_pid_per_trajectory():
 def test_a_reset_at_t_0_keeps_the_given_state_as_the_first_sample():
     """x and z at t = 0 are both the state before the jump (the jump is the first event, at t = 0)."""
     p = with_reset(Parameters.table_i("a"))
-    sol = simulate(p, (0.0, 3.0, 0.0), 1.0, t_eval=[0.0, 0.5])
+    sol = simulate(p, (-2.375, 3.0, 0.0), 1.0, t_eval=[0.0, 0.5])  # σ = -12, φ = 1/2: a stick, reset at once
     assert sol.events[0] == (0.0, 0, 0)
-    np.testing.assert_array_equal(sol.x[0], z_to_x(p, np.array([0.0, 3.0, 0.0])))
-    assert sol.z[0].tolist() == [0.0, 3.0, 0.0]
+    np.testing.assert_array_equal(sol.x[0], z_to_x(p, np.array([-2.375, 3.0, 0.0])))
+    assert sol.z[0].tolist() == [-2.375, 3.0, 0.0]
