@@ -45,6 +45,8 @@ TABLE_I_FILES: tuple[str, ...] = tuple(f"case_{case}_{mode}.json" for case in TA
 """The committed certificates of ``proofs/`` (both cases of Table I, both modes)."""
 BEYOND_TABLE_I_FILES: tuple[str, ...] = ("case_a.json", "case_b.json")
 """Table I's certificates in the templates beyond the paper, under ``proofs/quadratic/`` and ``proofs/sup_flow/``."""
+RESET_TABLE_I_FILES: tuple[str, ...] = ("case_a_contraction.json",)
+"""Table I's reset-contraction certificates, under ``proofs/reset/`` (case (b) has none: its slip from a stick never ends)."""
 
 
 SEARCHES: tuple[str, ...] = ("closed-form", "sdp")
@@ -337,4 +339,10 @@ def write_listed_certificates(directory: str | os.PathLike[str], names: Iterable
 
             case = path.stem[-1]
             written.append(SUP_FLOW.write(certify_sup_flow(Parameters.table_i(case), label=TABLE_I_LABELS[case], tail="own"), path))
+        elif path.parent == directory / "reset" and path.name in RESET_TABLE_I_FILES:
+            # an existing one regenerates itself (its template's `regenerate`); a missing one is Table I's
+            from .reset_contraction import RESET_CONTRACTION, certify_contraction
+
+            case = path.stem.split("_")[1]
+            written.append(RESET_CONTRACTION.write(certify_contraction(Parameters.table_i(case), label=TABLE_I_LABELS[case]), path))
     return written

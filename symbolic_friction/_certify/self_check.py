@@ -25,13 +25,21 @@ breaks and the exact set of checks that fail:
   in ``σ`` and in ``τ`` (the Krawczyk inclusion, both ends), ``σ_lo = 0``, a
   monotonicity start ``τ_a`` before ``v`` peaks, a ``σ`` range where ``v' > 0``
   near ``τ = 0`` cannot be shown, each number of ``cycle`` edited, and a
-  ``verdict`` of ``not proved``.
+  ``verdict`` of ``not proved``;
+* reset-contraction certificates, one per premise of
+  :data:`.reset_contraction_proof.PREMISES` (those of a file that claims an
+  overshoot on Table I (a), those of one that does not on gains without
+  overshoot), among them ``rho`` below ``|E₁₁(τ*)|``, a box around a later zero
+  of ``E₃₁`` and a radius too large for a long dwell, and three true ones
+  (Table I (a) with dwell 0 and with a dwell longer than the slip, and gains
+  without overshoot).
 
 :func:`refuse_false_certificates` verifies every file through the same
 route as ``symbolic-friction verify`` and holds only if each false one is
 refused *by the verifier* (exit 1 of ``verify``) naming exactly its
 manifest's checks, each true one is proved, and every premise of the
-stability and quadratic verifiers has a false certificate.  A file the
+stability, quadratic and reset-contraction verifiers (and each sup-flow
+premise of :data:`SUP_FLOW_PREMISES`) has a false certificate.  A file the
 reader refuses as malformed (exit 2 of ``verify``), or one the verifier
 raises on, counts as not refused.  A dropped premise, a broken python-flint
 or sympy, or a patched install then fails ``check``.
@@ -130,8 +138,10 @@ def _premise_names() -> dict[str, list[str]]:
         def __getattr__(self, name: str) -> Fraction:
             return Fraction(1)
 
+    from .reset_contraction_proof import PREMISES as RESET_PREMISES
+
     return {"stability": [p.name for p in premises(One())], "quadratic": [p.name for p in quadratic_premises(One())],
-            "sup-flow": list(SUP_FLOW_PREMISES)}
+            "sup-flow": list(SUP_FLOW_PREMISES), "reset-contraction": list(RESET_PREMISES)}
 
 
 def _decide(data: object, source: str) -> Any:
@@ -169,8 +179,9 @@ def refuse_false_certificates(directory: str | Path = DIRECTORY) -> SelfCheck:
     directory = Path(directory)
     manifest = json.loads((directory / "manifest.json").read_text(encoding="utf-8"))["false_certificates"]
     from .hunting import shared_proofs
+    from .reset_contraction_proof import shared_enclosures
 
-    with shared_proofs():
+    with shared_proofs(), shared_enclosures():
         refusals = tuple(_one(directory / entry["file"], entry) for entry in manifest)
     uncovered = tuple(
         f"{template}: {name}"

@@ -3,8 +3,9 @@
 :func:`builtin_templates` imports the modules that register the package's
 templates (a missing one is an :class:`ImportError`): the stability
 certificate of Proposition 1 (:data:`.pipeline.STABILITY`), the hunting
-certificate (:data:`.hunting.HUNTING`), the box certificate (:data:`.box.BOX`) and the quadratic
-template (:data:`.quadratic.QUADRATIC`, beyond the paper).  The functions below take any file,
+certificate (:data:`.hunting.HUNTING`), the box certificate (:data:`.box.BOX`), the quadratic
+template (:data:`.quadratic.QUADRATIC`, beyond the paper), the sup-flow template (:data:`.sup_flow.SUP_FLOW`)
+and the reset-contraction certificate (:data:`.reset_contraction.RESET_CONTRACTION`, reset PID).  The functions below take any file,
 pick its template from its ``template`` member or its ``schema``
 (:func:`._template.template_for`) and run that template's reader, exact
 verifier and staleness check; ``symbolic-friction verify`` and ``check`` go
@@ -39,9 +40,10 @@ def builtin_templates() -> tuple[Template, ...]:
     from .hunting import HUNTING
     from .pipeline import STABILITY
     from .quadratic import QUADRATIC
+    from .reset_contraction import RESET_CONTRACTION
     from .sup_flow import SUP_FLOW
 
-    first = (STABILITY, HUNTING, BOX, QUADRATIC, SUP_FLOW)
+    first = (STABILITY, HUNTING, BOX, QUADRATIC, SUP_FLOW, RESET_CONTRACTION)
     return first + tuple(t for t in registered() if t not in first)
 
 

@@ -348,11 +348,12 @@ def certificates_section(args: argparse.Namespace) -> Section:
 
 
 def _claim(entry: Any) -> str:
-    """The ``kappa`` column: κ of a stability certificate, ``cycle`` for a hunting certificate."""
+    """The ``kappa`` column: κ of a stability certificate, ``cycle`` for a hunting certificate, a template's own
+    ``claim_column`` (``ρ≤…`` for a reset-contraction certificate)."""
     if entry.report is None:
         return "-"
     bound = getattr(entry.report.certificate, "overshoot_bound", None)
-    return str(bound) if bound is not None else "cycle"
+    return str(bound) if bound is not None else getattr(entry.report.certificate, "claim_column", "cycle")
 
 
 def crosscheck_section(args: argparse.Namespace) -> Section:

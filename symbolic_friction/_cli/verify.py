@@ -91,7 +91,7 @@ def run(args: argparse.Namespace) -> int:
             "gains": {k: format_rational(v) for k, v in cert.parameters.items()},
             "gains_text": gains,
             "label": cert.provenance.label if cert.provenance is not None else "",
-            "overshoot_bound": cert.overshoot_bound,
+            "overshoot_bound": getattr(cert, "overshoot_bound", None),  # None: a template without κ (reset contraction)
             "failures": [{"obligation": c.obligation, "inequality": c.name, "instance": c.instance} for c in report.failures],
             **({"checks": [{"obligation": c.obligation, "inequality": c.name, "instance": c.instance, "holds": c.holds}
                            for c in report.checks]} if args.verbose else {}),

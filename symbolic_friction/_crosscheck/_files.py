@@ -18,6 +18,8 @@ SKIPPED = {
                         "inequalities (verify checks it)",
     "lyapunov-box/v1": "a box certificate: it proves a box of gain sets at its corners (verify checks it); "
                        "cross-check a point inside it with its own certificate",
+    "reset-contraction/v1": "a reset-contraction certificate: it proves how fast reset PID settles near the attractor, "
+                            "not the paper's inequalities (verify checks it)",
 }
 """Why :func:`default_certificate_files` leaves a file of another template out (by template id)."""
 

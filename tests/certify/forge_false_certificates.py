@@ -206,6 +206,10 @@ def forged() -> tuple[dict[str, str], list[dict]]:
         name = f"sup-flow_{stem}.json"
         files[name] = _text(data)
         manifest.append({"file": name, "template": "sup-flow", "premise": premise, "fails": expected_failures(data)})
+    for name, premise, data in _reset_contraction():
+        files[name] = _text(data)
+        manifest.append({"file": name, "template": "reset-contraction", "premise": premise,
+                         "fails": [] if premise is None else expected_failures(data)})
     for name, premise, data in _hunting():
         files[name] = _text(data)
         manifest.append({"file": name, "template": "hunting", "premise": premise,
@@ -254,6 +258,88 @@ def _hunting():
     d = copy.deepcopy(base)
     d["verdict"] = "not proved"
     yield "hunting_verdict.json", "verdict", d
+
+
+# -- reset-contraction certificates: (file stem, premise, edit) on Table I (a) (an overshoot), then on gains without one --
+RESET_OVERSHOOT = [
+    ("k_i_positive", "k_i > 0", lambda d: d["parameters"].update(k_i="-4")),
+    ("k_p_positive", "k_p > 0", lambda d: d["parameters"].update(k_p="-3")),
+    ("assumption1", "k_v·k_p > k_i", lambda d: d["parameters"].update(k_p="5/8")),
+    ("f_c_positive", "f_c > 0", lambda d: d["parameters"].update(f_c="-1")),
+    ("interval", "0 < τ_a < τ_lo < τ_hi", lambda d: d["slip"].update(tau=d["slip"]["tau"][::-1])),
+    ("dwell", "dwell ≥ 0", lambda d: d.update(dwell="-1")),
+    # E₃₁ falls on [1, τ_lo]? it rises there: the monotone part fails
+    ("monotone_too_early", "E31 > 0 on (0, τ_lo]", lambda d: d["slip"].update(monotone_from="1")),
+    # the interval one width below τ*: E₃₁ is still positive at τ_hi
+    ("slip_not_ended", "E31(τ_hi) < 0", lambda d: d["slip"].update(tau=_shift(d["slip"]["tau"], -2))),
+    # ρ one unit of the sixth digit below what is proved: |E₁₁(τ*)| = 0.45863270… > 0.458632
+    ("rho_below", "|E11| ≤ rho on [τ_lo, τ_hi]", lambda d: d.update(rho="57329/125000")),
+    ("rho_one", "rho < 1", lambda d: d.update(rho="1")),
+    ("radius_positive", "radius > 0", lambda d: d.update(radius="-" + d["radius"])),
+    # claiming no overshoot where there is one: only the sign fails (the other two premises get weaker)
+    ("no_overshoot_claimed", "E11 > 0 on [τ_lo, τ_hi]", lambda d: d.update(overshoot=False)),
+    ("radius", "radius·(|E21| + rho·max(0, dwell − τ_lo)) ≤ f_c on [τ_lo, τ_hi]", lambda d: d.update(radius="14")),
+    ("cycle_time", "cycle_time ≥ max(τ_hi, dwell)", lambda d: d.update(cycle_time="4")),
+    ("cycles", "rho^cycles ≤ tol", lambda d: d["settling"].update(cycles=d["settling"]["cycles"] - 1)),
+    ("settling_time", "settling_time ≥ cycles·cycle_time", lambda d: d["settling"].update(time="37")),
+]
+RESET_DWELL = [
+    # a dwell longer than the slip with dwell 0's radius: the stick may outlast σφ ≤ 0 before the timer allows the reset
+    ("dwell_radius", "radius·(|E21| + rho·max(0, dwell − τ_lo)) ≤ f_c on [τ_lo, τ_hi]", lambda d: d.update(radius="131077/10000")),
+    ("dwell_cycle_time", "cycle_time ≥ max(τ_hi, dwell)", lambda d: d.update(cycle_time="206811/50000")),
+]
+RESET_NO_OVERSHOOT = [
+    # the overshoot's radius premise is f_c, not 2f_c: the radius halved keeps it, so only the sign fails
+    ("overshoot_claimed", "E11 < 0 on [τ_lo, τ_hi]", lambda d: d.update(overshoot=True, radius=_half(d["radius"]))),
+    ("no_overshoot_radius", "radius·|E21| ≤ 2·f_c on [τ_lo, τ_hi]", lambda d: d.update(radius="3")),
+    ("no_overshoot_cycle_time", "cycle_time ≥ τ_hi + |E21|/E11 on [τ_lo, τ_hi]",
+     lambda d: d.update(cycle_time=_plus(d["slip"]["tau"][1], 1))),
+]
+NO_OVERSHOOT_GAINS = {"k_p": 1, "k_i": F(1, 5), "k_v": F(3, 10)}
+"""Gains whose slip from a stick ends with E₁₁(τ*) ≈ 0.201 > 0: the stick after it lasts |E₂₁|/E₁₁ ≈ 3.76."""
+
+
+def _shift(tau: list[str], widths: int) -> list[str]:
+    from symbolic_friction._infra.rational import format_rational
+
+    lo, hi = F(tau[0]), F(tau[1])
+    return [format_rational(lo + widths * (hi - lo)), format_rational(hi + widths * (hi - lo))]
+
+
+def _half(value: str) -> str:
+    from symbolic_friction._infra.rational import format_rational
+
+    return format_rational(F(value) / 2)
+
+
+def _plus(value: str, amount: int) -> str:
+    from symbolic_friction._infra.rational import format_rational
+
+    return format_rational(F(value) + amount)
+
+
+def _reset_contraction():
+    """The true reset-contraction certificates, then one false one per premise (see :data:`RESET_OVERSHOOT`)."""
+    from symbolic_friction import Parameters
+    from symbolic_friction._certify.reset_contraction import candidate_at, certify_contraction, dumps_contraction
+
+    def plain(cert) -> dict:
+        data = json.loads(dumps_contraction(cert))
+        del data["provenance"]  # a forged file claims nothing about its origin
+        return data
+
+    a = Parameters.table_i("a")
+    bases = {"": plain(certify_contraction(a)), "_dwell": plain(certify_contraction(a, dwell=6)),
+             "_no_overshoot": plain(certify_contraction(Parameters(**NO_OVERSHOOT_GAINS)))}
+    for suffix, base in bases.items():
+        yield f"true_reset_contraction{suffix}.json", None, base
+    for suffix, edits in (("", RESET_OVERSHOOT), ("_dwell", RESET_DWELL), ("_no_overshoot", RESET_NO_OVERSHOOT)):
+        for stem, premise, edit in edits:
+            data = copy.deepcopy(bases[suffix])
+            edit(data)
+            yield f"reset-contraction_{stem}.json", premise, data
+    # the box around the third zero of E₃₁ (the second where it falls), with that zero's own numbers
+    yield "reset-contraction_later_zero.json", "E31 > 0 on (0, τ_lo]", plain(candidate_at(a, 12.06696030550267))
 
 
 def _hunting_failures(data: dict) -> list[str]:

@@ -45,6 +45,11 @@ def test_every_premise_has_a_false_certificate_that_names_it():
         names |= {p.name for p in sup_flow_premises(SupFlowCertificate.from_dict(data))}
     assert set(SUP_FLOW_PREMISES) <= names and len(SUP_FLOW_PREMISES) == 12
     assert sorted(e["premise"] for e in FALSE if e["template"] == "sup-flow") == sorted(SUP_FLOW_PREMISES)
+    # reset contraction: every premise of either kind (overshoot or not) of file
+    from symbolic_friction._certify.reset_contraction_proof import PREMISES as RESET
+
+    assert sorted(set(e["premise"] for e in FALSE if e["template"] == "reset-contraction")) == sorted(RESET)
+    assert len(RESET) == 19
     for e in FALSE:
         assert e["premise"] in e["fails"], e["file"]
     # where the premises are independent, exactly that premise fails
@@ -64,7 +69,7 @@ class _Ones:
 def test_the_self_check_passes_on_this_install():
     result = refuse_false_certificates()
     assert result.ok and result.uncovered == ()
-    assert len(result.refusals) == len(MANIFEST) == 82
+    assert len(result.refusals) == len(MANIFEST) == 107
 
 
 @pytest.mark.parametrize("entry", FALSE, ids=lambda e: e["file"])
@@ -90,7 +95,7 @@ def test_the_sign_premises_are_refused_by_the_verifier_through_the_console_scrip
     import subprocess
     import sys
 
-    assert len(SIGNS) == 17
+    assert len(SIGNS) == 21
     run = subprocess.run([sys.executable, "-m", "symbolic_friction", "verify", *(str(DIRECTORY / e["file"]) for e in SIGNS)],
                          capture_output=True, text=True, timeout=120)
     assert run.returncode == 1 and "MALFORMED" not in run.stdout and "error" not in run.stderr, run.stderr
@@ -105,9 +110,10 @@ def test_the_sign_premises_are_refused_by_the_verifier_through_the_console_scrip
 
 def test_the_true_controls_are_proved(capsys):
     for name in ("true_stability.json", "true_hunting.json", "true_quadratic.json", "true_sup_flow.json",
-                 "true_sup_flow_single.json"):
+                 "true_sup_flow_single.json", "true_reset_contraction.json", "true_reset_contraction_dwell.json",
+                 "true_reset_contraction_no_overshoot.json"):
         assert main(["verify", str(DIRECTORY / name)]) == 0
-    assert capsys.readouterr().out.count("PROVED ") == 5
+    assert capsys.readouterr().out.count("PROVED ") == 8
 
 
 # -- breaking the verifier breaks the self-check ----------------------------------------------------------

@@ -105,6 +105,11 @@ def test_the_package_templates_are_the_schema_defaults():
     stability, hunting = builtin_templates()[:2]
     assert (stability.id, stability.default) == ("lyapunov-pair/v1", True)
     assert (hunting.id, hunting.default) == ("hunting-cycle/v1", True)
+    ids = [t.id for t in builtin_templates()]
+    assert ids[:6] == ["lyapunov-pair/v1", "hunting-cycle/v1", "lyapunov-box/v1", "quadratic/v1", "sup-flow/v1",
+                       "reset-contraction/v1"]
+    reset = builtin_templates()[5]
+    assert reset.default and reset.schema == "symbolic-friction/reset-contraction-certificate/v1" and reset.regenerate
 
 
 def test_a_file_naming_its_own_template_reads_as_before(tmp_path):
