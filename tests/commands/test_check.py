@@ -61,12 +61,12 @@ def test_json_schema(full_run):
     assert set(payload) == {"obligations", "errata", "certificates", "crosscheck_self_test", "self_check", "passed",
                             "counts", "configuration"}
     assert payload["configuration"]["source"].endswith("pyproject.toml") and payload["configuration"]["report"] is True
-    assert len(payload["configuration"]["certificates"]) == 15 and payload["configuration"]["only"] is None
+    assert len(payload["configuration"]["certificates"]) == 16 and payload["configuration"]["only"] is None
     assert payload["passed"] is True
     assert payload["counts"]["selftest_ok"] == payload["counts"]["selftest_rows"] == 52  # 24 kernel runs + 2 × 14
     assert payload["counts"]["obligations"] == payload["counts"]["obligations_hold"] == len(payload["obligations"])
-    assert payload["counts"]["certificates"] == payload["counts"]["certificates_proved"] == 15
-    assert [c["proved"] and not c["stale"] for c in payload["certificates"]] == [True] * 15
+    assert payload["counts"]["certificates"] == payload["counts"]["certificates_proved"] == 16
+    assert [c["proved"] and not c["stale"] for c in payload["certificates"]] == [True] * 16
     ids = [o["id"] for o in payload["obligations"]]
     assert len(ids) == len(set(ids))
     assert [i for i in ids if i in MY_IDS] == list(MY_IDS)  # all present, in paper order
@@ -315,7 +315,7 @@ def test_no_certificates_flag_and_empty_directory(tmp_path, capsys):
     args.no_certificates = False
     section = check.certificates_section(args)
     assert not section.ok  # Table I's files (and the hunting ones) are required and missing
-    assert section.summary.startswith("0 of 15 certificates proved exactly")
+    assert section.summary.startswith("0 of 16 certificates proved exactly")
 
 
 # --------------------------------------------------------------------------- start-up cost
@@ -365,7 +365,7 @@ def _copy_proofs(tmp_path):
 
 def test_certificates_section_passes_on_committed_proofs(tmp_path):
     section = check.certificates_section(check_args(_copy_proofs(tmp_path)))
-    assert section.ok and len(section.rows) == 15
+    assert section.ok and len(section.rows) == 16
     assert all(row[1:3] == ("yes", "yes") for row in section.rows)
 
 
