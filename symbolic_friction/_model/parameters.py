@@ -124,9 +124,9 @@ class Parameters:
     reset_dwell : number or None, default None (plain PID)
         Reset PID (beyond the paper; the package's own law, the idea of
         Bisoffi et al., *To stick or to slip*, Annu. Rev. Control 49, 2020):
-        during a stick (``v = 0``, ``|φ| ≤ f_s``) with ``σφ ≤ 0``, the
-        integrator ``e_i`` jumps so that ``φ⁺ = f_c·sign(σ)``, at most once
-        per ``reset_dwell > 0`` time units (the dwell timer that excludes
+        during a stick (``v = 0``, ``|φ| ≤ f_s``) while ``φ`` is short of
+        ``f_c·sign(σ)``, the integrator ``e_i`` jumps so that
+        ``φ⁺ = f_c·sign(σ)``, at most once per ``reset_dwell > 0`` time units (the dwell timer that excludes
         Zeno solutions).  ``V`` of eq. (lyapLikeV) is unchanged by a jump
         (:mod:`symbolic_friction._model.reset`).  ``None`` is the paper's PID,
         which compares, hashes and prints exactly as before.
