@@ -72,7 +72,7 @@ KINDS: dict[tuple[str, str], str] = {
     **{("settling", f): "gain" for f in ("--k-p", "--k-i", "--k-v", "--f-c", "--f-s")},
     ("settling", "--reset-dwell"): "real", ("settling", "--z0"): "state", ("settling", "--tol"): "real",
     ("settling", "--t-end"): "real", ("settling", "--samples"): "count", ("settling", "--out"): "out-dir",
-    ("settling", "--no-figure"): "flag", ("settling", "--json"): "flag",
+    ("settling", "--no-figure"): "flag", ("settling", "--json"): "flag", ("settling", "--contraction"): "flag",
     # tradeoff
     ("tradeoff", "--case"): "choice", ("tradeoff", "--z0"): "state", ("tradeoff", "--t-end"): "real",
     ("tradeoff", "--samples"): "count", ("tradeoff", "--repeats"): "count", ("tradeoff", "--quick"): "flag",

@@ -74,6 +74,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help=f"sample times besides the events, 2 to {MAX_SAMPLES} (default 20001)")
     parser.add_argument("--out", default=".", metavar="DIR", help="directory of the figure settling_<hash>.png (default: .)")
     parser.add_argument("--no-figure", action="store_true", help="do not write the figure")
+    parser.add_argument("--contraction", action="store_true",
+                        help="also prove exponential settling of reset PID (f_s = f_c): write the reset-contraction "
+                        "certificate reset_contraction_<hash>.json into --out (|σ| shrinks by ρ < 1 per slip), which "
+                        "`verify` re-checks; where none exists (e.g. real roots: a slip from a stick never ends) say why")
     parser.add_argument("--json", action="store_true",
                         help="print one JSON object with keys pid and reset (settling_time, events, resets, overshoot, hunting)")
 
@@ -95,6 +99,9 @@ def run(args: argparse.Namespace) -> int:
                                   samples=args.samples)
     z0 = args.z0
     t_end = args.t_end
+    contraction = None
+    if args.contraction:
+        contraction = _contraction(params, args)
     figure = None
     if not args.no_figure:
         key = json.dumps(comparison.as_json(), sort_keys=True).encode()
@@ -103,6 +110,8 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         out = comparison.as_json()
         out["figure"] = None if figure is None else str(figure)
+        if contraction is not None:
+            out["contraction"] = contraction
         emit(json.dumps(out, indent=2, ensure_ascii=False), level=0)
         return 0
     emit(f"{comparison.params} from z0 = ({', '.join(map(str, z0))}), tol {comparison.tol}, t_end {t_end:g}, "
@@ -118,4 +127,29 @@ def run(args: argparse.Namespace) -> int:
         emit(f"  reset settles {said}", level=0)
     if figure is not None:
         emit(f"wrote {figure}")
+    if contraction is not None:
+        emit(f"contraction: {contraction.get('claim') or contraction['reason']}"
+             + (f" (wrote {contraction['path']})" if contraction.get("path") else ""), level=0)
     return 0
+
+
+def _contraction(params, args) -> dict:
+    """The reset-contraction certificate for these gains, written into ``--out``; or the reason there is none."""
+    import hashlib
+    from pathlib import Path
+
+    from .._certify.reset_contraction import certify_contraction, dumps_contraction, verify_contraction
+    from .._infra.errors import ParameterError
+    from .._infra.io import atomic_write_text, check_output_directory
+
+    check_output_directory(args.out, what="--out")
+    try:
+        cert = certify_contraction(params, dwell=args.reset_dwell)
+    except ParameterError as exc:
+        return {"path": None, "rho": None, "reason": str(exc)}
+    text = dumps_contraction(cert)
+    path = Path(args.out) / f"reset_contraction_{hashlib.sha256(text.encode()).hexdigest()[:12]}.json"
+    atomic_write_text(path, text)
+    report = verify_contraction(cert, source=str(path))
+    return {"path": str(path), "rho": str(cert.rho), "radius": str(cert.radius), "cycle_time": str(cert.cycle_time),
+            "proved": report.proved, "claim": report.summary()}

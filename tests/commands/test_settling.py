@@ -72,3 +72,17 @@ def test_bad_input_is_one_line_and_exit_2(argv, says, capsys):
     assert rc == 2
     err = capsys.readouterr().err
     assert says in err and "Traceback" not in err and len(err.strip().splitlines()) == 1
+
+
+def test_contraction_writes_a_certificate_verify_proves(tmp_path, capsys):
+    out = _json(capsys, [*A, "--no-figure", "--contraction", "--out", str(tmp_path)])
+    c = out["contraction"]
+    assert c["proved"] is True and c["rho"] == "458633/1000000"
+    assert main(["verify", c["path"]]) == 0
+    assert capsys.readouterr().out.startswith("PROVED ")
+
+
+def test_contraction_says_why_there_is_none_with_real_roots(tmp_path, capsys):
+    out = _json(capsys, [*B, "--no-figure", "--contraction", "--out", str(tmp_path)])
+    assert out["contraction"]["path"] is None and "only real roots" in out["contraction"]["reason"]
+    assert not list(tmp_path.iterdir())
