@@ -33,7 +33,6 @@ gains, so no hunting cycle exists.
 
 from __future__ import annotations
 
-import contextlib
 import json
 import os
 from dataclasses import dataclass
@@ -45,6 +44,7 @@ from .._infra.errors import CertificateFormatError, InputFileError, SymbolicFric
 from .._model.parameters import Parameters
 from ._template import Template, register
 from .hunting_cycle import CycleClaims, decide_claims, polish, state_claims
+from ._memo import Memo
 from .hunting_proof import PRECISION, Box, CycleProof, box_around, prove_cycle, Check
 
 __all__ = ["SCHEMA", "HuntingCertificate", "HuntingReport", "verify_hunting", "verify_hunting_file", "write_hunting",
@@ -191,27 +191,16 @@ class HuntingReport:
 def verify_hunting(certificate: HuntingCertificate, *, source: str = "<certificate>") -> HuntingReport:
     """Re-run the proof (:func:`._proof.prove_cycle`) on the certificate's exact gains and box, and decide its ``cycle``."""
     key = (certificate.params, certificate.box, certificate.precision_bits)
-    proof = _SHARED[key] if _SHARED is not None and key in _SHARED else prove_cycle(*key[:2], precision=key[2])
-    if _SHARED is not None:
-        _SHARED[key] = proof
+    proof = _PROOFS.get(key, lambda: prove_cycle(*key[:2], precision=key[2]))
     _LAST_PROOF[:] = [(certificate, proof)]
     claims = () if certificate.cycle is None else decide_claims(
         certificate.params, proof, certificate.cycle, precision=certificate.precision_bits)
     return HuntingReport(source=source, certificate=certificate, proof=proof, claims=claims)
 
 
-_SHARED: dict | None = None
-
-
-@contextlib.contextmanager
-def shared_proofs():
-    """Within the block, files with the same gains, box and precision share one proof (they differ only in ``cycle`` or ``verdict``)."""
-    global _SHARED
-    saved, _SHARED = _SHARED, {}
-    try:
-        yield
-    finally:
-        _SHARED = saved
+_PROOFS = Memo()
+shared_proofs = _PROOFS.sharing
+"""Within the block, files with the same gains, box and precision share one proof (they differ only in ``cycle`` or ``verdict``)."""
 
 
 _LAST_PROOF: list = []

@@ -43,7 +43,7 @@ from .verify import Check, Inequality, Semidefinite, VerificationReport, decide
 
 __all__ = [
     "SCHEMA", "TEMPLATE_ID", "CONSTANTS", "OBLIGATIONS", "QuadraticCertificate", "QuadraticReport",
-    "QuadraticProvenance", "Copositive", "quadratic_premises", "verify_quadratic", "dumps_quadratic", "not_canonical", "canonical_staleness", "GainsAndBound", "PARAMETERS", "read_common", "QUADRATIC",
+    "QuadraticProvenance", "Copositive", "quadratic_premises", "verify_quadratic", "dumps_quadratic", "not_canonical", "canonical_staleness", "Gains", "GainsAndBound", "PARAMETERS", "read_common", "QUADRATIC",
 ]
 
 SCHEMA = "symbolic-friction/quadratic-certificate/v1"
@@ -87,11 +87,8 @@ class QuadraticProvenance:
         return {name: getattr(self, name) for name in _PROVENANCE}
 
 
-class GainsAndBound:
-    """What a certificate of the templates beyond the paper says of its gains and bound (no fields of its own).
-
-    A subclass has the gains ``k_p, k_i, k_v, f_c`` and ``overshoot_bound`` (decimal text).
-    """
+class Gains:
+    """A certificate's gains ``k_p, k_i, k_v, f_c`` (fields of the subclass), by name and as text."""
 
     @property
     def parameters(self) -> dict[str, Fraction]:
@@ -101,6 +98,13 @@ class GainsAndBound:
     def gains_text(self) -> str:
         """``"k_p=3, k_i=4, k_v=32/5, f_c=1"``."""
         return ", ".join(f"{name}={_f(value)}" for name, value in self.parameters.items())
+
+
+class GainsAndBound(Gains):
+    """What a certificate of the templates beyond the paper says of its gains and bound (no fields of its own).
+
+    A subclass has the gains ``k_p, k_i, k_v, f_c`` and ``overshoot_bound`` (decimal text).
+    """
 
     @property
     def kappa(self) -> Fraction:

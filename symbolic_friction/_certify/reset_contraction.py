@@ -52,6 +52,7 @@ from .._infra.errors import CertificateError, CertificateFormatError, ParameterE
 from .._infra.rational import format_rational as _f
 from .._model.parameters import Parameters
 from ._template import Template, register
+from .quadratic import PARAMETERS, Gains
 from .reset_contraction_proof import ContractionProof, decide_contraction
 from .verify import Check, VerificationReport
 
@@ -61,7 +62,6 @@ __all__ = ["SCHEMA", "TEMPLATE_ID", "ContractionCertificate", "ContractionProven
 
 SCHEMA = "symbolic-friction/reset-contraction-certificate/v1"
 TEMPLATE_ID = "reset-contraction/v1"
-PARAMETERS = ("k_p", "k_i", "k_v", "f_c")
 _TOP = ("schema", "template", "parameters", "slip", "overshoot", "rho", "radius", "dwell", "cycle_time", "settling")
 _PROVENANCE = ("package", "search", "label")
 MAX_CYCLES = 10_000
@@ -91,7 +91,7 @@ class ContractionProvenance:
 
 
 @dataclass(frozen=True)
-class ContractionCertificate:
+class ContractionCertificate(Gains):
     """A reset-PID contraction certificate: every number exact, of any sign (the signs are premises).
 
     Parameters
@@ -154,15 +154,6 @@ class ContractionCertificate:
             raise CertificateFormatError(f"settling.cycles must be an integer in [0, {MAX_CYCLES}]; got {self.cycles!r}")
         if not isinstance(self.provenance, ContractionProvenance):
             raise CertificateFormatError(f"provenance must be a ContractionProvenance; got {type(self.provenance).__name__}")
-
-    @property
-    def parameters(self) -> dict[str, Fraction]:
-        """The gains, by name."""
-        return {name: getattr(self, name) for name in PARAMETERS}
-
-    def gains_text(self) -> str:
-        """``"k_p=3, k_i=4, k_v=32/5, f_c=1"``."""
-        return ", ".join(f"{name}={_f(value)}" for name, value in self.parameters.items())
 
     @property
     def claim_column(self) -> str:

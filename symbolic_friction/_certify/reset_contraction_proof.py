@@ -64,13 +64,12 @@ comparison of balls that is not certain is *not proved*.
 
 from __future__ import annotations
 
-import contextlib
-from collections.abc import Iterator
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
 
 from .._infra.rational import format_rational as _f
+from ._memo import Memo
 from .hunting_proof import PRECISION, _Arb, _positive_on
 from .verify import Check
 
@@ -220,16 +219,15 @@ def _flow(cert: Any, params: Any) -> tuple[list[Check], list[Check], tuple[tuple
     q = M.q
     lo, hi, ta = cert.tau_lo, cert.tau_hi, cert.monotone_from
     key = (params, lo, hi, ta, ctx.prec)
-    if _SHARED is not None and key in _SHARED:
-        zero_check, end, e11, e21 = _SHARED[key]
-    else:
+
+    def enclose() -> tuple:
         def E(a: Fraction, b: Fraction) -> Any:
             return (M.A * M.ball(a, b)).exp()
 
         box = E(lo, hi)  # every τ of [τ_lo, τ_hi], τ* among them
-        zero_check, end, e11, e21 = _first_zero(M, E, lo, ta), E(hi, hi)[2, 0], box[0, 0], box[1, 0]
-        if _SHARED is not None:
-            _SHARED[key] = (zero_check, end, e11, e21)
+        return _first_zero(M, E, lo, ta), E(hi, hi)[2, 0], box[0, 0], box[1, 0]
+
+    zero_check, end, e11, e21 = _ENCLOSURES.get(key, enclose)
     first = [zero_check, _at("E31(τ_hi) < 0", end, "<")]
     rho, radius, f_c = q(cert.rho), q(cert.radius), q(cert.f_c)
     first.append(Check(OBLIGATION, "|E11| ≤ rho on [τ_lo, τ_hi]", f"|{_ball(e11)}| ≤ {_f(cert.rho)}", bool(abs(e11) <= rho)))
@@ -256,19 +254,10 @@ def _flow(cert: Any, params: Any) -> tuple[list[Check], list[Check], tuple[tuple
     return first, kind, ((_lower(e11), _upper(e11)), (_lower(e21), _upper(e21)))
 
 
-_SHARED: dict | None = None
-
-
-@contextlib.contextmanager
-def shared_enclosures() -> Iterator[None]:
-    """Within the block, files with the same gains and ``τ_lo, τ_hi, τ_a`` share the enclosures of ``E`` (the
-    self-check's false certificates differ mostly in other numbers)."""
-    global _SHARED
-    saved, _SHARED = _SHARED, {}
-    try:
-        yield
-    finally:
-        _SHARED = saved
+_ENCLOSURES = Memo()
+shared_enclosures = _ENCLOSURES.sharing
+"""Within the block, files with the same gains and ``τ_lo, τ_hi, τ_a`` share the enclosures of ``E`` (the
+self-check's false certificates differ mostly in other numbers)."""
 
 
 def _at(name: str, ball: Any, op: str) -> Check:
