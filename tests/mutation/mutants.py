@@ -48,6 +48,7 @@ _AL = "symbolic_friction/_crosscheck/_along.py"
 _PR = "symbolic_friction/_crosscheck/_property.py"
 _R = "symbolic_friction/_crosscheck/_run.py"
 _SI = "symbolic_friction/_simulation/_trajectories.py"
+_RC = "symbolic_friction/_certify/reset_contraction_proof.py"
 _KER = "symbolic_friction/_simulation/_kernel.py"
 _KF = "symbolic_friction/_simulation/_kernel_flow.py"
 _HP = "symbolic_friction/_certify/hunting_proof.py"
@@ -195,6 +196,29 @@ NEW: tuple[Mutant, ...] = (
            "e11 = w1 + w1 * K[b1 + 4] + w0 * K[b2 + 4]", "the stepped propagator's diagonal with w' for w''"),
     Mutant("ker.step_rows", "kernel", _KER, "e10 * ys + e11 * yp + e12 * yv,", "e10 * ys + e11 * yp + e21 * yv,",
            "the stepped propagator applied with e₂₁ for e₁₂"),
+    # the reset-contraction certificate's verifier (check's self-check: its false certificates)
+    Mutant("rc.rho_abs_dropped", "verifier", _RC, "bool(abs(e11) <= rho)", "bool(e11 <= rho)",
+           "|E₁₁| ≤ ρ decided without the absolute value (E₁₁ < 0 in case (a): any ρ passes)",
+           tests=("tests/certify/test_reset_contraction.py",)),
+    Mutant("rc.rho_one_allowed", "verifier", _RC, '_exact("rho < 1", cert.rho, "<", Fraction(1))',
+           '_exact("rho < 1", cert.rho, "<=", Fraction(1))', "ρ = 1 accepted (no contraction)",
+           tests=("tests/certify/test_reset_contraction.py",)),
+    Mutant("rc.dwell_term_dropped", "verifier", _RC, "bound = radius * (abs(e21) + rho * q(wait))",
+           "bound = radius * abs(e21)", "the radius premise without the dwell's wait",
+           tests=("tests/certify/test_reset_contraction.py",)),
+    Mutant("rc.settling_tol_doubled", "verifier", _RC, "value <= cert.tol)", "value <= 2 * cert.tol)",
+           "ρ^cycles compared with 2·tol", tests=("tests/certify/test_reset_contraction.py",)),
+    # reset PID (check's reset.kernel_binding sees a kernel that resets elsewhere or to elsewhere)
+    Mutant("ker.reset_to_wrong_side", "kernel", _KER, "base, offset = d, 0.0", "base, offset = -d, 0.0",
+           "a reset puts φ at -sign(σ) f_c (the stick goes on instead of ending)"),
+    Mutant("ker.reset_only_pushing_away", "kernel", _KER, "if d * phi_now < f_c:", "if d * phi_now <= 0.0:",
+           "the reset only where σφ ≤ 0 (not while φ is short of sign(σ) f_c on σ's side)"),
+    Mutant("ker.reset_ignores_dwell", "kernel", _KER, "t_allow = t if n_resets == 0 else max(t, t_reset + dwell)",
+           "t_allow = t", "resets without the dwell timer",
+           tests=("tests/simulation/test_reset.py::test_the_dwell_time_separates_resets",)),
+    Mutant("ker.reset_past_the_ramp", "kernel", _KER, "if t_allow < t_cross and t_allow < t_end:",
+           "if t_allow < t_end:", "a reset also after φ would have reached sign(σ) f_c by itself",
+           tests=("tests/simulation/test_reset.py::test_reset_trajectories_match_the_reference",)),
     Mutant("ker.stick_gap_fc", "kernel", _KER, "gap = -offset if base == d else (d - base) * f_c - offset",
            "gap = -offset if base == d else (d - base) - offset", "the stick duration without the factor f_c"),
     Mutant("ker.stick_gap_sign", "kernel", _KER, "gap = -offset if base == d else (d - base) * f_c - offset",
@@ -224,8 +248,8 @@ NEW: tuple[Mutant, ...] = (
            equivalent="τ = horizon exactly: FOUND then emits up to t_end and stops at t ≥ t_end; NONE emits up to t_end, the same samples, and the event at t_end is past the horizon"),
     Mutant("ker.final_sample_strict", "kernel", _KER, "while i < m and (ts[i] < t1 or (final and ts[i] <= t1)):",
            "while i < m and (ts[i] < t1 or (final and ts[i] < t1)):", "the last sample at t_end is never written"),
-    Mutant("ker.stick_exit_direction", "kernel", _KER, "d = 1 if sigma > 0.0 else -1\n                # distance",
-           "d = 1 if sigma >= 0.0 else -1\n                # distance", "a stick with σ > 0 … (σ ≥ 0: same, σ = 0 returns before)",
+    Mutant("ker.stick_exit_direction", "kernel", _KER, "d = 1 if sigma > 0.0 else -1\n                if dwell >= 0.0:",
+           "d = 1 if sigma >= 0.0 else -1\n                if dwell >= 0.0:", "a stick with σ > 0 … (σ ≥ 0: same, σ = 0 returns before)",
            equivalent="σ = 0 returns as an equilibrium two lines above, so σ ≥ 0 and σ > 0 agree wherever this line runs"),
     # ------------------------------------------------------------------ the closed form and the search
     Mutant("kf.scan_skips_last_partial_cell", "kernel", _KF,
