@@ -84,4 +84,5 @@ def test_the_checkout_configures_table_i_and_the_report():
     assert sorted(config.certificates) == sorted(
         [f"case_{c}_{m}.json" for c in "ab" for m in ("feasible", "tightest")] + hunting
         + ["box_case_a_10pct.json", "box_physical.json"] + [f"{d}/case_{c}.json" for d in ("quadratic", "sup_flow") for c in "ab"]
+        + ["reset/case_a_contraction.json"]
     )

@@ -275,3 +275,23 @@ def test_readme_documents_the_scene_format_of_the_module_docstring():
     expected = "\n".join(line[4:] if line.startswith("    ") else line for line in block.rstrip("\n").splitlines())
     readme = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
     assert "### Scene files" in readme and expected in readme
+
+
+def test_a_scene_can_ask_for_reset_pid_and_only_the_event_method_takes_it():
+    from symbolic_friction._infra.errors import SceneError
+    from symbolic_friction._studies.scenes import Scene, load_scene
+
+    scene = load_scene("reset-a")
+    assert scene.params.reset_dwell == Fraction(1, 100)
+    result = scene.run()
+    events = result.solutions[0].events if hasattr(result, "solutions") else result.trajectories.events(0)
+    assert any(e[1:] == (0, 0) for e in events)
+    text = 't_end = 1\ninitial_states = [[0, 1, 0]]\n[gains]\nk_p = 3\nk_i = 4\nk_v = "6.4"\nf_c = 1\nreset_dwell = "1/100"\n'
+    assert Scene.from_text(text).params.reset
+    with pytest.raises(SceneError, match="reset PID is simulated by method"):
+        Scene.from_text(text + '[method]\nname = "moreau"\n')
+    with pytest.raises(SceneError, match="reset_dwell > 0"):
+        Scene.from_text(text.replace('"1/100"', "0"))
+    physical = ('t_end = 1\ninitial_states = [[0, 1, 0]]\n[physical]\nm = 2\nk_p_bar = 6\nk_i_bar = 8\nk_d_bar = "12.8"\n'
+                'f_c_bar = 2\nreset_dwell = "1/50"\n')
+    assert Scene.from_text(physical).params.reset_dwell == Fraction(1, 50)

@@ -72,8 +72,9 @@ def _parse_params(doc: Mapping[str, Any]) -> Parameters:
     if "gains" in doc:
         table = _table(doc["gains"], "gains")
         keys = ("k_p", "k_i", "k_v", "f_c")
-        _check_keys(table, "gains", keys + ("f_s",), keys)  # f_s: static level above Coulomb (optional)
-        values = {k: _number(table[k], f"gains.{k}") for k in keys + ("f_s",) if k in table}
+        # f_s: static level above Coulomb; reset_dwell: reset PID's dwell time (both optional)
+        _check_keys(table, "gains", keys + ("f_s", "reset_dwell"), keys)
+        values = {k: _number(table[k], f"gains.{k}") for k in keys + ("f_s", "reset_dwell") if k in table}
         try:
             return Parameters(**values)
         except SymbolicFrictionError as exc:
@@ -81,10 +82,15 @@ def _parse_params(doc: Mapping[str, Any]) -> Parameters:
     if "physical" in doc:
         table = _table(doc["physical"], "physical")
         keys = ("m", "k_p_bar", "k_i_bar", "k_d_bar", "alpha_v", "f_c_bar", "f_s_bar")
-        _check_keys(table, "physical", keys, ("m", "k_p_bar", "k_i_bar", "k_d_bar", "f_c_bar"))
+        _check_keys(table, "physical", keys + ("reset_dwell",), ("m", "k_p_bar", "k_i_bar", "k_d_bar", "f_c_bar"))
         values = {k: _number(table[k], f"physical.{k}") for k in keys if k in table}
         try:
-            return Parameters.from_physical(**values)
+            params = Parameters.from_physical(**values)
+            if "reset_dwell" in table:
+                import dataclasses
+
+                params = dataclasses.replace(params, reset_dwell=_number(table["reset_dwell"], "physical.reset_dwell"))
+            return params
         except SymbolicFrictionError as exc:
             raise SceneError(f"physical: {exc}") from None
     raise SceneError("gains: missing table; give [gains] (k_p, k_i, k_v, f_c) or [physical] (m, k_p_bar, ...)")

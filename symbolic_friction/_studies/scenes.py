@@ -17,7 +17,7 @@ File format (every key is checked; unknown keys are errors)::
     outputs = ["trajectories", "events", "V", "V_hat", "distance", "figure"]
     format = "csv"                        # or "npz"
 
-    [gains]                               # normalised gains (or a [physical] table instead)
+    [gains]                               # normalised gains (or [physical]); optional f_s, reset_dwell
     k_p = 3
     k_i = 4
     k_v = "6.4"
@@ -182,6 +182,8 @@ class Scene:
                     f"friction.law: the {self.friction.name!r} law is simulated by method \"moreau\"; "
                     f"got method {self.method!r}"
                 )
+        if self.params.reset and not get_method(self.method).resets:
+            raise SceneError(f"gains.reset_dwell: reset PID is simulated by method \"event\"; got method {self.method!r}")
         knobs = dict(self.knobs)
         if len(knobs) != len(self.knobs):
             raise SceneError("method: a knob is given twice")
