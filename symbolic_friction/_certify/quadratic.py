@@ -43,7 +43,7 @@ from .verify import Check, Inequality, Semidefinite, VerificationReport, decide
 
 __all__ = [
     "SCHEMA", "TEMPLATE_ID", "CONSTANTS", "OBLIGATIONS", "QuadraticCertificate", "QuadraticReport",
-    "QuadraticProvenance", "Copositive", "quadratic_premises", "verify_quadratic", "dumps_quadratic", "not_canonical", "canonical_staleness", "Gains", "GainsAndBound", "PARAMETERS", "read_common", "QUADRATIC",
+    "QuadraticProvenance", "Copositive", "quadratic_premises", "verify_quadratic", "dumps_quadratic", "not_canonical", "canonical_staleness", "Gains", "GainsAndBound", "PARAMETERS", "check_provenance", "read_common", "QUADRATIC",
 ]
 
 SCHEMA = "symbolic-friction/quadratic-certificate/v1"
@@ -78,13 +78,18 @@ class QuadraticProvenance:
     package: str = "symbolic-friction"
 
     def __post_init__(self) -> None:
-        for name in _PROVENANCE:
-            value = getattr(self, name)
-            if not isinstance(value, str) or len(value) > 10_000:
-                raise CertificateFormatError(f"provenance.{name} must be a string of at most 10000 characters; got {value!r:.60}")
+        check_provenance(self, _PROVENANCE)
 
     def to_dict(self) -> dict[str, str]:
         return {name: getattr(self, name) for name in _PROVENANCE}
+
+
+def check_provenance(provenance: Any, names: tuple[str, ...]) -> None:
+    """Every provenance field in ``names`` is a string of at most 10,000 characters (informative, but bounded)."""
+    for name in names:
+        value = getattr(provenance, name)
+        if not isinstance(value, str) or len(value) > 10_000:
+            raise CertificateFormatError(f"provenance.{name} must be a string of at most 10000 characters; got {value!r:.60}")
 
 
 class Gains:

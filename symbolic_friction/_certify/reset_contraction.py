@@ -52,7 +52,7 @@ from .._infra.errors import CertificateError, CertificateFormatError, ParameterE
 from .._infra.rational import format_rational as _f
 from .._model.parameters import Parameters
 from ._template import Template, register
-from .quadratic import PARAMETERS, Gains
+from .quadratic import PARAMETERS, Gains, check_provenance
 from .reset_contraction_proof import ContractionProof, decide_contraction
 from .verify import Check, VerificationReport
 
@@ -84,10 +84,7 @@ class ContractionProvenance:
     package: str = "symbolic-friction"
 
     def __post_init__(self) -> None:
-        for name in _PROVENANCE:
-            value = getattr(self, name)
-            if not isinstance(value, str) or len(value) > 10_000:
-                raise CertificateFormatError(f"provenance.{name} must be a string of at most 10000 characters; got {value!r:.60}")
+        check_provenance(self, _PROVENANCE)
 
 
 @dataclass(frozen=True)

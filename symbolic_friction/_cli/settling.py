@@ -9,18 +9,13 @@ import argparse
 import textwrap
 
 from .._infra.options import count_option, read_reals, real_option
+from .hunting import _HELP as _GAIN_HELP
 from .._studies.settling import MAX_SAMPLES
 
 HELP = "compare the settling of PID and reset PID (exact trajectories) from one initial state, and write a figure"
 
 _NAMES = ("k_p", "k_i", "k_v", "f_c", "f_s")
-_HELP = {
-    "k_p": "normalised proportional gain k_p",
-    "k_i": "normalised integral gain k_i",
-    "k_v": "normalised velocity gain k_v",
-    "f_c": "normalised Coulomb (kinetic) friction level f_c",
-    "f_s": "normalised static friction level f_s ≥ f_c (default f_c)",
-}
+_HELP = {**_GAIN_HELP, "f_s": "normalised static friction level f_s ≥ f_c (default f_c)"}
 _EPILOG = """examples:
   symbolic-friction settling --k-p 3 --k-i 4 --k-v 6.4 --f-c 1 --z0 0,3,0
   symbolic-friction settling --k-p 0.66 --k-i 0.08 --k-v 1.5 --f-c 1 --z0 -5,0.3,1.2 --json
