@@ -35,6 +35,14 @@ pieces of ``U`` on ``R̂``) comes within 6 % of the friction-free limit ``sup_t 
 >>> verify_sup_flow(sup).proved, sup.overshoot_bound, len(sup.pieces)  # doctest: +SKIP
 (True, '1.44800', 33)
 
+Reset PID (beyond the paper) settles exponentially on Table I (a): ``|σ|`` shrinks by ``ρ ≤ 0.458633`` per slip,
+proved in arb balls:
+
+>>> from symbolic_friction.certificates import certify_contraction, verify_contraction
+>>> contraction = certify_contraction(sf.Parameters.table_i("a"))
+>>> verify_contraction(contraction).proved, contraction.rho
+(True, Fraction(458633, 1000000))
+
 What ``symbolic-friction certify`` does by default: the closed form, then the other searches cheapest first
 until κ is within 10 % of κ_lin's proven lower end (or 6 s are spent), the smallest proved κ kept:
 
@@ -70,6 +78,10 @@ _LAZY: dict[str, str] = {
     "verify_quadratic": "._certify.quadratic",
     "QuadraticCertificate": "._certify.quadratic",
     # the sup-flow template (beyond the paper: V_inf on R, time pieces of U on R-hat)
+    "certify_contraction": "._certify.reset_contraction",
+    "verify_contraction": "._certify.reset_contraction",
+    "load_contraction": "._certify.reset_contraction",
+    "ContractionCertificate": "._certify.reset_contraction",
     "certify_sup_flow": "._certify.sup_flow_search",
     "verify_sup_flow": "._certify.sup_flow",
     "load_sup_flow": "._certify.sup_flow",

@@ -1,8 +1,8 @@
 """The studies' parts: the cross-check's properties and estimates, hunting cycles, scenes,
 figures, the speed/accuracy trade-off, the extremes matrix and gain maps (κ of exactly verified
 closed-form certificates over a grid or a sample of gains: ``map_spec``, ``run_map``, ``read_map``, ``plot_map``),
-and reset PID against PID (settling-time ratios over a grid of gains and the stiction table:
-``settling_ratio_map``, ``plot_settling_map``, ``stiction_table``).
+and reset PID against PID (one initial state: ``compare_settling``; settling-time ratios over a grid of gains and
+the stiction table: ``settling_ratio_map``, ``plot_settling_map``, ``stiction_table``).
 """
 
 from __future__ import annotations
@@ -41,6 +41,8 @@ _LAZY: dict[str, str] = {
     "MapRun": "._studies.gainmap_run",
     "read_map": "._studies.gainmap_run",
     "plot_map": "._studies.gainmap_plot",
+    "compare_settling": "._studies.settling",
+    "SettlingComparison": "._studies.settling",
     "settling_ratio_map": "._studies.settling_map",
     "SettlingMap": "._studies.settling_map",
     "stiction_table": "._studies.settling_map",
