@@ -91,6 +91,7 @@ def registry() -> tuple[type[Obligation], ...]:
         ResetKernelBinding,
         ResetLeavesStick,
         ResetNoSecondJump,
+        ResetSameStickExits,
         ResetVJump,
     )
     from .sup_flow import Bounds, Exit, Nonincreasing, RestMinimum, SlipFlow, SupFlowStabilityBound
@@ -105,7 +106,8 @@ def registry() -> tuple[type[Obligation], ...]:
         Assumption1Encoding, CertificateVerifier, VerifierDecision, ClosedFormAllGains, ClosedFormMonotone, ClosedFormBalanced,
         QuadraticPStructure, QuadraticVDecrease, QuadraticURate, QuadraticUExit, QuadraticStabilityBound,
         SlipFlow, RestMinimum, Nonincreasing, Bounds, Exit, SupFlowStabilityBound,
-        ResetVJump, ResetNoSecondJump, ResetAttractor, ResetBasicConditions, ResetLeavesStick, ResetKernelBinding,
+        ResetVJump, ResetNoSecondJump, ResetAttractor, ResetBasicConditions, ResetLeavesStick, ResetSameStickExits,
+        ResetKernelBinding,
     )
 
 

@@ -14,6 +14,10 @@
   (the appendix's rows iii/ix, ``model.modes_runtime``) starts a slip toward the
   setpoint at once, during which Lemma 2 (``lemma2.dVdt``, ``V' ≤ -c v²``) makes
   ``V`` decrease strictly: no solution with a jump keeps ``V`` constant off 𝒜.
+* ``reset.same_stick_exits`` — a jump keeps ``σ`` and the stick still ends at
+  ``(σ, sign(σ) f_s, 0)``, no later than without it: PID and reset PID pass through
+  the same stick exits (with ``f_s > f_c``, the same hunting map, so PID's proved
+  cycle is reset PID's), and resets never slow the approach.
 * ``reset.kernel_binding`` — the event kernel's resets are the model's: from exact
   stick states it jumps exactly when the model's ``D`` says so, to ``G(x)``.
 
@@ -42,7 +46,7 @@ from ._shared import attractor_x, sgn_sets
 from .lemma2 import friction_form, friction_minimum
 
 __all__ = ["ResetVJump", "ResetNoSecondJump", "ResetAttractor", "ResetBasicConditions", "ResetLeavesStick",
-           "ResetKernelBinding", "OBLIGATIONS"]
+           "ResetSameStickExits", "ResetKernelBinding", "OBLIGATIONS"]
 
 
 @dataclass(frozen=True)
@@ -233,6 +237,44 @@ class ResetLeavesStick(Obligation):
         return Outcome(True, f"{n} post-jump states: a slip toward the setpoint at once (f_s = f_c)")
 
 
+class ResetSameStickExits(Obligation):
+    id = "reset.same_stick_exits"
+    paper = "beyond the paper: reset PID; the stick of eq. (subcasesAffine:f0) with a static level f_s ≥ f_c"
+    statement = ("a jump during a stick keeps σ and leaves φ⁺ short of or at sign(σ) f_s, so the stick still ends at "
+                 "(σ, sign(σ) f_s, 0): PID and reset PID have the same stick exits (the same hunting map when f_s > f_c), "
+                 "and a jump only shortens the stick")
+    method = ("in a stick σ' = 0, φ' = σ; from the jump's φ⁺ = f_c s (s = sign σ) the exit φ = s f_s is reached after "
+              "(s f_s − φ⁺)/σ ≥ 0, and from any φ in D after (s f_s − φ)/σ ≥ that: exact signs for σ ≷ 0 and f_s = f_c + e, e ≥ 0")
+
+    def derive(self) -> JumpSubject:
+        return _subject()
+
+    def verify(self, subject: JumpSubject) -> Outcome:
+        S = subject
+        excess = pos("e_x")
+        details = []
+        for f_s, f_label in ((S.g.f_c, "f_s = f_c"), (S.g.f_c + excess, "f_s > f_c")):
+            for s_label, sign, sigma in sign_classes("sigma_x"):
+                if sign == 0:
+                    continue  # σ = 0: no exit (an equilibrium in 𝒜)
+                for label, _, phi, _ in phi_classes(S.g.f_c, "_x"):
+                    margins = S.margins(sigma, phi, 0, abs(sigma), abs(phi), S.g.f_c, f_s, 0, 0)
+                    if sign_of(margins[2]) == -1:
+                        continue  # not in D
+                    post = S.jump_map_x(sigma, phi, 0, S.g.f_c, sp.Integer(sign))
+                    if post[0] != sigma or post[2] != 0:
+                        return Outcome.fail(f"{f_label}, σ {s_label}, {label}: the jump changes σ or v: {post}")
+                    after = sp.factor((sign * f_s - post[1]) / sigma)  # stick time left after the jump
+                    before = sp.factor((sign * f_s - phi) / sigma)  # without it
+                    if sign_of(after) not in (0, 1):
+                        return Outcome.fail(f"{f_label}, σ {s_label}, {label}: after the jump the exit is {after} time units away, not ≥ 0")
+                    if sign_of(sp.factor(before - after)) not in (0, 1):
+                        return Outcome.fail(f"{f_label}, σ {s_label}, {label}: the jump lengthens the stick by {sp.factor(after - before)}")
+                details.append((f"{f_label},\ \sigma {s_label}",
+                                f"x_{{exit}} = (\sigma, {latex(sign * f_s)}, 0),\ t_{{left}} = {latex(sp.factor((sign * f_s - S.jump_map_x(sigma, 0, 0, S.g.f_c, sign)[1]) / sigma))}"))
+        return Outcome(True, "the stick ends at (σ, sign(σ) f_s, 0) with or without a jump, no later with it", tuple(details))
+
+
 class ResetKernelBinding(Obligation):
     id = "reset.kernel_binding"
     paper = "beyond the paper: reset PID; binds the event kernel to _model.reset"
@@ -299,4 +341,5 @@ class ResetKernelBinding(Obligation):
         return Outcome(True, f"{n} stick states and {walked} stick starts along trajectories: the kernel's resets are the model's")
 
 
-OBLIGATIONS = (ResetVJump, ResetNoSecondJump, ResetAttractor, ResetBasicConditions, ResetLeavesStick, ResetKernelBinding)
+OBLIGATIONS = (ResetVJump, ResetNoSecondJump, ResetAttractor, ResetBasicConditions, ResetLeavesStick, ResetSameStickExits,
+               ResetKernelBinding)

@@ -110,3 +110,26 @@ def test_jump_map_in_z_is_the_jump_map_in_x():
         post = np.array(model.jump_map_z(z[0], z[1], z[2], p.k_p, p.k_i, p.f_c, sign_s), dtype=object)
         x = z_to_x(p, post)
         assert x[1] == p.f_c * (-sign_s) and x[0] == -p.k_i * s
+
+
+def test_same_stick_exits_fails_for_a_jump_that_moves_sigma():
+    o = ob.ResetSameStickExits()
+    bad = dataclasses.replace(o.derive(), jump_map_x=lambda s, p, v, f_c, sg: (2 * s, f_c * sg, v))
+    out = o.verify(bad)
+    assert not out.holds and "changes σ" in out.reason
+
+
+def test_same_stick_exits_fails_for_a_jump_past_the_exit():
+    """φ⁺ = 2 f_c sign(σ) lies beyond the exit sign(σ) f_s when f_s = f_c: the stick would have to run backwards."""
+    o = ob.ResetSameStickExits()
+    bad = dataclasses.replace(o.derive(), jump_map_x=lambda s, p, v, f_c, sg: (s, 2 * f_c * sg, v))
+    out = o.verify(bad)
+    assert not out.holds and "not ≥ 0" in out.reason
+
+
+def test_same_stick_exits_fails_for_a_jump_that_lengthens_the_stick():
+    """φ⁺ = -f_c sign(σ) (the wrong side) keeps the exit but makes the stick longer than without the jump."""
+    o = ob.ResetSameStickExits()
+    bad = dataclasses.replace(o.derive(), jump_map_x=lambda s, p, v, f_c, sg: (s, -f_c * sg, v))
+    out = o.verify(bad)
+    assert not out.holds and "lengthens" in out.reason
