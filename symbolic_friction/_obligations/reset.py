@@ -270,8 +270,8 @@ class ResetSameStickExits(Obligation):
                         return Outcome.fail(f"{f_label}, σ {s_label}, {label}: after the jump the exit is {after} time units away, not ≥ 0")
                     if sign_of(sp.factor(before - after)) not in (0, 1):
                         return Outcome.fail(f"{f_label}, σ {s_label}, {label}: the jump lengthens the stick by {sp.factor(after - before)}")
-                details.append((f"{f_label},\ \sigma {s_label}",
-                                f"x_{{exit}} = (\sigma, {latex(sign * f_s)}, 0),\ t_{{left}} = {latex(sp.factor((sign * f_s - S.jump_map_x(sigma, 0, 0, S.g.f_c, sign)[1]) / sigma))}"))
+                details.append((rf"{f_label},\ \sigma {s_label}",
+                                rf"x_{{exit}} = (\sigma, {latex(sign * f_s)}, 0),\ t_{{left}} = {latex(sp.factor((sign * f_s - S.jump_map_x(sigma, 0, 0, S.g.f_c, sign)[1]) / sigma))}"))
         return Outcome(True, "the stick ends at (σ, sign(σ) f_s, 0) with or without a jump, no later with it", tuple(details))
 
 
