@@ -52,7 +52,7 @@ from .._infra.errors import CertificateError, CertificateFormatError, ParameterE
 from .._infra.rational import format_rational as _f
 from .._model.parameters import Parameters
 from ._template import Template, register
-from .quadratic import PARAMETERS, Gains, check_provenance
+from .quadratic import PARAMETERS, Gains, canonical_staleness, check_provenance
 from .reset_contraction_proof import ContractionProof, decide_contraction
 from .verify import Check, VerificationReport
 
@@ -448,19 +448,13 @@ def _drift(certificate: ContractionCertificate, path: Path) -> str:
     return ""
 
 
-def _stale(certificate: ContractionCertificate, path: Path) -> str:
-    from .quadratic import not_canonical
-
-    return not_canonical(dumps_contraction(certificate), path)
-
-
 RESET_CONTRACTION = register(Template(
     id=TEMPLATE_ID,
     schema=SCHEMA,
     read=lambda data, source: ContractionCertificate.from_dict(data, source=source),
     verify=lambda certificate, source: verify_contraction(certificate, source=source),
     dumps=dumps_contraction,
-    stale=_stale,
+    stale=canonical_staleness(dumps_contraction),
     drift=_drift,
     regenerate=regenerate_contraction,
     claim=lambda c: (f"reset PID: ρ ≤ {float(c.rho):.6g}, |σ| ≤ {_f(c.tol)}·|σ_0| by t = {float(c.settling_time):.6g} "

@@ -33,6 +33,7 @@ at ``v = 0``, where ``V = (k_v/k_i)σ²`` and ``|x|_𝒜 = |σ|``).
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any, Callable
@@ -314,8 +315,6 @@ class ResetKernelBinding(Obligation):
         walked = 0
         # dwell 6 is longer than a slip from a stick (τ* = 4.136): there the timer, not the law, decides
         for dwell, z0 in ((Fraction(1, 100), (0.0, 3.0, 0.0)), (Fraction(6), (0.0, 3.0, 0.0)), (Fraction(6), (-1.0, 2.0, -0.5))):
-            import dataclasses
-
             sol = simulate(dataclasses.replace(params, reset_dwell=dwell), z0, 60.0)
             events, states = sol.events, sol.event_x
             last = None

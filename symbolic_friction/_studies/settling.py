@@ -280,9 +280,8 @@ def compare_settling(
     with_reset = replace(params, reset_dwell=dwell)
     plain = params.without_reset()
     hunting_pid = hunting_verdict(plain, prove=prove_hunting)
-    # the same stick-exit map (module docstring): PID's verdict holds for reset PID, said so
-    hunting_reset = (hunting_pid[:-1] + _SAME_MAP + ")" if hunting_pid.endswith(")") and plain.stiction
-                     else hunting_verdict(with_reset, prove=False))
+    # the same stick-exit map (reset.same_stick_exits): PID's verdict holds for reset PID, said so
+    hunting_reset = hunting_verdict(with_reset, prove=prove_hunting)
     pid_traj = simulate_trajectory(plain, z, float(t_end), samples)
     reset_traj = simulate_trajectory(with_reset, z, float(t_end), samples)
     import numpy as np
@@ -290,7 +289,7 @@ def compare_settling(
     level = float(tol) * (abs(float(z[1])) if z[1] != 0 else float(np.nanmax(np.abs(pid_traj.s))))
     pid = _run("pid", plain, pid_traj, level, hunting_pid)
     if pid.settling_time is not None and pid_refuted(pid_traj, reset_traj, level):
-        pid = replace(pid, settling_time=None, hunting=pid.hunting)  # settled on [0, t_end] only by a long stick
+        pid = replace(pid, settling_time=None)  # settled on [0, t_end] only by a long stick
     return SettlingComparison(
         params=plain, z0=z, tol=tol, t_end=float(t_end), dwell=with_reset.reset_dwell,
         pid=pid, reset=_run("reset", with_reset, reset_traj, level, hunting_reset),
