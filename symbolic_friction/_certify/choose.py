@@ -39,13 +39,14 @@ def searchable_templates() -> dict[str, Template]:
 
     Each instantiates only obligations that ``check`` proves (their ids:
     :data:`.certificate.OBLIGATIONS`, :data:`.quadratic.OBLIGATIONS`,
-    :data:`.sup_flow.OBLIGATIONS`; a test holds them to the registry of obligations).
+    :data:`.sup_flow_v2.OBLIGATIONS`; a test holds them to the registry of obligations).  The sup-flow
+    searches write version 2 (:mod:`.sup_flow_v2`); version 1 files are still read and verified.
     """
     from .pipeline import STABILITY
     from .quadratic import QUADRATIC
-    from .sup_flow import SUP_FLOW
+    from .sup_flow_v2 import SUP_FLOW_V2
 
-    return {t.name: t for t in (STABILITY, QUADRATIC, SUP_FLOW)}
+    return {t.name: t for t in (STABILITY, QUADRATIC, SUP_FLOW_V2)}
 
 
 def paper_only_options(*, mode: str | None = None, margin: object = None, search: str | None = None,

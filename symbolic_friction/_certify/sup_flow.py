@@ -111,25 +111,31 @@ class SupFlowPiece:
     start: Fraction
     end: Fraction | None
     constants: dict[str, Fraction]
+    names: ClassVar[tuple[str, ...]] = PIECE_CONSTANTS
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "start", _exact(self.start, "piece start"))
         if self.end is not None:
             object.__setattr__(self, "end", _exact(self.end, "piece end"))
-        if sorted(self.constants) != sorted(PIECE_CONSTANTS):
-            raise CertificateFormatError(f"a piece's constants must be exactly {', '.join(PIECE_CONSTANTS)}; "
+        if sorted(self.constants) != sorted(self.names):
+            raise CertificateFormatError(f"a piece's constants must be exactly {', '.join(self.names)}; "
                                          f"got {', '.join(sorted(self.constants))}")
-        object.__setattr__(self, "constants", {n: _exact(self.constants[n], f"piece {n}") for n in PIECE_CONSTANTS})
+        object.__setattr__(self, "constants", {n: _exact(self.constants[n], f"piece {n}") for n in self.names})
 
     def k_matrix(self) -> tuple[tuple[Fraction, ...], ...]:
         c = self.constants
         return quad.u_matrix_entries(c["k11"], c["k13"], c["k22"], c["k23"], c["k33"])
 
+    def signed_forms(self) -> tuple[tuple[int, tuple[tuple[Fraction, ...], ...]], ...]:
+        """``(s, K)`` for each sign ``s`` of ``σv``: here one ``K`` for both."""
+        k = self.k_matrix()
+        return ((1, k), (-1, k))
+
     def interval_text(self) -> str:
         return f"[{_f(self.start)}, {'∞' if self.end is None else _f(self.end)})"
 
     def to_dict(self) -> dict[str, str]:
-        out = {name: _f(self.constants[name]) for name in PIECE_CONSTANTS}
+        out = {name: _f(self.constants[name]) for name in self.names}
         out["start"] = _f(self.start)
         out["end"] = INFINITY if self.end is None else _f(self.end)
         return out
@@ -152,18 +158,22 @@ class SupFlowCertificate(GainsAndBound):
     pieces: tuple[SupFlowPiece, ...]
     overshoot_bound: str
     provenance: SupFlowProvenance = field(default_factory=SupFlowProvenance)
+    schema: ClassVar[str] = SCHEMA
+    template_id: ClassVar[str] = TEMPLATE_ID
+    constant_names: ClassVar[tuple[str, ...]] = CONSTANTS
+    piece_type: ClassVar[type[SupFlowPiece]] = SupFlowPiece
 
     def __post_init__(self) -> None:
         for name in PARAMETERS:
             object.__setattr__(self, name, _exact(getattr(self, name), f"parameters.{name}"))
-        names = sorted(self.constants)
-        if names not in (sorted(CONSTANTS), sorted(CONSTANTS + TAIL_CONSTANTS)):
-            raise CertificateFormatError(f"constants must be exactly {', '.join(CONSTANTS)}, with or without all of "
+        names, own = sorted(self.constants), self.constant_names
+        if names not in (sorted(own), sorted(own + TAIL_CONSTANTS)):
+            raise CertificateFormatError(f"constants must be exactly {', '.join(own)}, with or without all of "
                                          f"{', '.join(TAIL_CONSTANTS)}; got {', '.join(names)}")
-        object.__setattr__(self, "constants", {n: _exact(self.constants[n], f"constants.{n}") for n in CONSTANTS + TAIL_CONSTANTS
+        object.__setattr__(self, "constants", {n: _exact(self.constants[n], f"constants.{n}") for n in own + TAIL_CONSTANTS
                                                if n in self.constants})
         pieces = tuple(self.pieces)
-        if not 1 <= len(pieces) <= MAX_PIECES or not all(isinstance(p, SupFlowPiece) for p in pieces):
+        if not 1 <= len(pieces) <= MAX_PIECES or not all(type(p) is self.piece_type for p in pieces):
             raise CertificateFormatError(f"a sup-flow certificate has 1 to {MAX_PIECES} pieces; got {len(pieces)}")
         object.__setattr__(self, "pieces", pieces)
 
@@ -179,17 +189,25 @@ class SupFlowCertificate(GainsAndBound):
         c = {name[len("tail_p"):]: self.constants[name] for name in TAIL_CONSTANTS}
         return tuple(tuple(c[f"{min(i, j)}{max(i, j)}"] for j in (1, 2, 3)) for i in (1, 2, 3))
 
+    def premises(self) -> list[Any]:
+        """Every premise of this version, in proof order (:func:`sup_flow_premises`)."""
+        return sup_flow_premises(self)
+
+    def drag_maps(self) -> tuple[tuple[int, Any], ...]:
+        """``(s, D_ℓ)`` of the friction-drag split for each sign (none here: v1 has no ``ℓ``)."""
+        return ()
+
     def to_dict(self) -> dict[str, Any]:
-        return {**self.common_dict(SCHEMA, TEMPLATE_ID, CONSTANTS + TAIL_CONSTANTS),
+        return {**self.common_dict(self.schema, self.template_id, self.constant_names + TAIL_CONSTANTS),
                 "pieces": [piece.to_dict() for piece in self.pieces]}
 
     @classmethod
     def from_dict(cls, data: object, *, source: str = "<string>") -> "SupFlowCertificate":
         from .certificate import _check_keys, _signed_rational_field
 
-        params, constants, provenance, bound = read_common(data, source, what="sup-flow", schema=SCHEMA,
-                                                           template_id=TEMPLATE_ID, top=_TOP, constants=CONSTANTS,
-                                                           optional_constants=TAIL_CONSTANTS)
+        params, constants, provenance, bound = read_common(data, source, what="sup-flow", schema=cls.schema,
+                                                           template_id=cls.template_id, top=_TOP,
+                                                           constants=cls.constant_names, optional_constants=TAIL_CONSTANTS)
         raw = data["pieces"]  # type: ignore[index]
         if not isinstance(raw, list) or not 1 <= len(raw) <= MAX_PIECES:
             shown = len(raw) if isinstance(raw, list) else type(raw).__name__
@@ -199,21 +217,23 @@ class SupFlowCertificate(GainsAndBound):
             where = f"pieces[{i}]"
             if not isinstance(item, dict):
                 raise CertificateFormatError(f"{source}: {where} must be a JSON object; got {type(item).__name__}")
-            _check_keys(item, required=("start", "end", *PIECE_CONSTANTS), optional=(), where=where)
+            names = cls.piece_type.names
+            _check_keys(item, required=("start", "end", *names), optional=(), where=where)
             end = None if item["end"] == INFINITY else _signed_rational_field(item["end"], f"{where}.end")
-            pieces.append(SupFlowPiece(
+            pieces.append(cls.piece_type(
                 start=_signed_rational_field(item["start"], f"{where}.start"), end=end,
-                constants={n: _signed_rational_field(item[n], f"{where}.{n}") for n in PIECE_CONSTANTS}))
+                constants={n: _signed_rational_field(item[n], f"{where}.{n}") for n in names}))
         return cls(**params, constants=constants, pieces=tuple(pieces), overshoot_bound=bound, provenance=provenance)
 
 
 # -- the premises that need the flow: decided in arb balls, interval by interval ------------------
 
 
-def sup_flow_premises(cert: SupFlowCertificate) -> list[Any]:
-    """Every premise of a sup-flow certificate, in proof order."""
+def frame_premises(cert: SupFlowCertificate) -> list[Any]:
+    """The premises every sup-flow version shares before its forms: Assumption 1, ``f_c > 0``, pieces that
+    cover ``[0, ∞)``, ``T ≥ 0``, the tail's ``p > 0``, ``P − pI ⪰ 0`` and ``−(AᵀP + PA) ⪰ 0``."""
     k_p, k_i, k_v, f_c = cert.k_p, cert.k_i, cert.k_v, cert.f_c
-    const, pieces = cert.constants, cert.pieces
+    pieces = cert.pieces
     zero = k_i - k_i
     out: list[Any] = [
         Inequality("lemma2.P", "k_i > 0", k_i, ">", zero),
@@ -230,12 +250,36 @@ def sup_flow_premises(cert: SupFlowCertificate) -> list[Any]:
     out.append(Inequality("sup_flow.exit", "T ≥ 0 (the last piece starts at or after 0)", pieces[-1].start, ">=", zero))
     p_tail = cert.tail_matrix()
     whose = "the tail's P" if cert.own_tail else "the paper's P"
-    p = const["p"]
+    p = cert.constants["p"]
     out += [
         Inequality("sup_flow.exit", "p > 0", p, ">", zero),
         Semidefinite("sup_flow.exit", f"P − p·I ⪰ 0 ({whose})", _sub(p_tail, _scaled_identity(3, p))),
         Semidefinite("sup_flow.exit" if cert.own_tail else "lemma2.dVdt", f"−(AᵀP + PA) ⪰ 0 ({whose})",
                      tuple(tuple(-x for x in row) for row in quad.lyapunov_rate_entries(k_p, k_i, k_v, p_tail))),
+    ]
+    return out
+
+
+def bound_premises(cert: SupFlowCertificate, obligation: str) -> list[Any]:
+    """``κ > 0``, ``κ² ≥ c₂`` and ``κ² ≥ γ_i`` for every piece (``obligation``: the version's stability bound)."""
+    kappa, zero = cert.kappa, Fraction(0)
+    out: list[Any] = [
+        Inequality(obligation, "overshoot_bound > 0", kappa, ">", zero),
+        Inequality(obligation, "overshoot_bound² ≥ c2", kappa * kappa, ">=", cert.constants["c2"]),
+    ]
+    out += [Inequality(obligation, f"overshoot_bound² ≥ gamma (piece {i + 1})", kappa * kappa, ">=",
+                       piece.constants["gamma"]) for i, piece in enumerate(cert.pieces)]
+    return out
+
+
+def sup_flow_premises(cert: SupFlowCertificate) -> list[Any]:
+    """Every premise of a sup-flow certificate, in proof order."""
+    k_p, k_i, k_v = cert.k_p, cert.k_i, cert.k_v
+    pieces = cert.pieces
+    zero = k_i - k_i
+    out = frame_premises(cert)
+    p_tail = cert.tail_matrix()
+    out += [
         FlowNorm("sup_flow.bounds", "c2 ≥ ‖e^(At)‖² for every t ≥ 0", cert, p_tail),
         Copositive("sup_flow.bounds", "K1 − I copositive (piece 1)", _sub(pieces[0].k_matrix(), _scaled_identity(3, zero + 1))),
     ]
@@ -252,14 +296,7 @@ def sup_flow_premises(cert: SupFlowCertificate) -> list[Any]:
                               _sub(_scaled_identity(3, piece.constants["gamma"]), k)))
         out.append(FlowExit("sup_flow.exit", f"{tag}: U ≥ |e^(At)w|² on the exits of R̂ for t in {piece.interval_text()}", cert,
                             p_tail, i))
-    kappa = cert.kappa
-    out += [
-        Inequality("sup_flow.stability_bound", "overshoot_bound > 0", kappa, ">", zero),
-        Inequality("sup_flow.stability_bound", "overshoot_bound² ≥ c2", kappa * kappa, ">=", const["c2"]),
-    ]
-    out += [Inequality("sup_flow.stability_bound", f"overshoot_bound² ≥ gamma (piece {i + 1})", kappa * kappa, ">=",
-                       piece.constants["gamma"]) for i, piece in enumerate(pieces)]
-    return out
+    return out + bound_premises(cert, "sup_flow.stability_bound")
 
 
 def _decide(premise: Any, budget: Budget | None = None) -> Check:
@@ -286,7 +323,7 @@ def verify_sup_flow(certificate: SupFlowCertificate, *, source: str = "<certific
     if not isinstance(certificate, SupFlowCertificate):
         raise TypeError(f"verify_sup_flow needs a SupFlowCertificate; got {type(certificate).__name__}")
     checks, structural, budget = [], True, Budget(max_parts)
-    for premise in sup_flow_premises(certificate):
+    for premise in certificate.premises():
         if isinstance(premise, Inequality) and premise.obligation in ("lemma2.P", "sup_flow.exit"):
             check = _decide(premise)
             structural = structural and check.holds
@@ -301,7 +338,10 @@ def verify_sup_flow(certificate: SupFlowCertificate, *, source: str = "<certific
 
 
 def load_sup_flow(path: str | Path) -> SupFlowCertificate:
-    """Read a sup-flow certificate file strictly (bounded read; not verified).
+    """Read a sup-flow certificate file of either version strictly (bounded read; not verified).
+
+    The file's ``template`` (or, without it, its ``schema``) selects version 1 or version 2
+    (:class:`.sup_flow_v2.SupFlowCertificateV2`).
 
     Raises
     ------
@@ -309,8 +349,14 @@ def load_sup_flow(path: str | Path) -> SupFlowCertificate:
         If the file cannot be read, is not strict JSON or is not a sup-flow certificate.
     """
     from ._json import read_json
+    from .sup_flow_v2 import SCHEMA as SCHEMA_V2
+    from .sup_flow_v2 import TEMPLATE_ID as TEMPLATE_ID_V2
+    from .sup_flow_v2 import SupFlowCertificateV2
 
-    return SupFlowCertificate.from_dict(read_json(path), source=str(path))
+    data = read_json(path)
+    v2 = isinstance(data, dict) and (data.get("template") == TEMPLATE_ID_V2
+                                     or ("template" not in data and data.get("schema") == SCHEMA_V2))
+    return (SupFlowCertificateV2 if v2 else SupFlowCertificate).from_dict(data, source=str(path))
 
 
 def dumps_sup_flow(certificate: SupFlowCertificate) -> str:

@@ -160,24 +160,31 @@ def _upper(ball: Any) -> Fraction:
     return _end(ball.upper(), down=False)
 
 
-def _exit_holds(k: Any, gram: Any, *, end: Any = _lower) -> tuple[bool, str]:
+def _exit_holds(forms: Any, gram: Any, *, end: Any = _lower) -> tuple[bool, str]:
     """Every exit form, with each entry replaced by one end of its ball, copositive (exactly).
 
-    Copositivity is monotone in the entries: the rational matrix of lower ends
-    being copositive shows it for every ``G`` in the enclosure; the matrix of
-    upper ends (``end=_upper``) *not* being copositive shows that no ``G`` in
-    it is (at a point ``t``: the premise is false there).
+    ``forms`` holds ``(s, K, D)`` per sign ``s``: the 2×2 forms of both exit
+    planes with ``K`` and, where ``D`` (the drag exit map ``D_ℓ``) is given,
+    the 3×3 form ``K − DᵀGD``.  Copositivity is monotone in the entries: the
+    rational matrix of lower ends being copositive shows it for every ``G`` in
+    the enclosure; the matrix of upper ends (``end=_upper``) *not* being
+    copositive shows that no ``G`` in it is (at a point ``t``: the premise is
+    false there).
     """
     from .copositive import decide_copositive
 
-    for s in (1, -1):
-        for plane, form in zip(model.EXIT_PLANES, model.exit_forms(k, gram, _arb(Fraction(s)))):
+    for s, k, d in forms:
+        named = list(zip(model.EXIT_PLANES, model.exit_forms(k, gram, _arb(Fraction(s)))))
+        if d is not None:
+            named.append(("f = ℓᵀy", model.pullback_gap(k, gram, d)))
+        for plane, form in named:
             if end is _lower and _lower_ends_clearly_copositive(form):
                 continue  # proved without building Fractions (the common case); anything else is decided exactly
             pick = min if end is _lower else max
+            n = len(form)
             try:
-                off = pick(end(form[0][1]), end(form[1][0]))
-                rows = ((end(form[0][0]), off), (off, end(form[1][1])))
+                rows = tuple(tuple(end(form[i][i]) if i == j else pick(end(form[i][j]), end(form[j][i])) for j in range(n))
+                             for i in range(n))
             except _TooWide as exc:
                 return end is not _lower, f"{plane}: {exc}"  # decides nothing: neither proved nor refuted
             decision = decide_copositive(rows)
@@ -187,7 +194,13 @@ def _exit_holds(k: Any, gram: Any, *, end: Any = _lower) -> tuple[bool, str]:
 
 
 def _lower_ends_clearly_copositive(form: Any) -> bool:
-    """A sufficient test, in arb, that the 2×2 matrix of the lower ends of ``form``'s balls is copositive.
+    """A sufficient test, in arb, that the matrix of the lower ends of ``form``'s balls is copositive.
+
+    A 3×3 form (the drag exit) is proved here when the symmetric matrix of the
+    lower ends (the smaller of each off-diagonal pair) has every entry ``≥ 0``,
+    or is positive definite for certain (its leading principal minors' balls
+    are positive); either makes it copositive.  Anything else is decided
+    exactly by the caller.
 
     With ``a``, ``c`` the diagonal's and ``b`` the smaller off-diagonal lower
     end (exact points), it asks arb whether ``a ≥ 0``, ``c ≥ 0`` and
@@ -197,6 +210,18 @@ def _lower_ends_clearly_copositive(form: Any) -> bool:
     Fractions.  True proves the form; False decides nothing (the caller then
     decides exactly), so a weaker test here costs time, never soundness.
     """
+    if len(form) == 3:
+        low = [[form[i][j].lower() for j in range(3)] for i in range(3)]
+        if not all(x.is_finite() for row in low for x in row):
+            return False
+        off = [[low[i][j] if i == j else min(low[i][j], low[j][i]) for j in range(3)] for i in range(3)]
+        if all(off[i][j] >= 0 for i in range(3) for j in range(3)):
+            return True  # every entry ≥ 0
+        # positive definite (leading principal minors > 0, in arb) implies copositive
+        m2 = off[0][0] * off[1][1] - off[0][1] * off[0][1]
+        m3 = (off[0][0] * (off[1][1] * off[2][2] - off[1][2] * off[1][2]) - off[0][1] * (off[0][1] * off[2][2] - off[1][2] * off[0][2])
+              + off[0][2] * (off[0][1] * off[1][2] - off[1][1] * off[0][2]))
+        return bool(off[0][0] > 0 and m2 > 0 and m3 > 0)
     a, c = form[0][0].lower(), form[1][1].lower()
     b = min(form[0][1].lower(), form[1][0].lower())
     if not (a.is_finite() and b.is_finite() and c.is_finite()):
@@ -243,17 +268,30 @@ def _bisect(a: Fraction, b: Fraction, test: Any, refute: Any, budget: Budget) ->
     return done, ""
 
 
-def _norm_refuted(cert: Any, mu: Any, t: Fraction) -> tuple[bool, str]:
-    """``‖e^{At}‖₂² > c₂`` shown at the point ``t`` (the Rayleigh quotient of ``e^{At}ᵀe^{At}`` at a float guess of
-    its top eigenvector, in arb; a lower end above ``c₂``)."""
+def _pullbacks(gram: Any, maps: Any) -> list[Any]:
+    """``G`` and ``DᵀGD`` for each drag map ``D`` (arb matrices): the Grams ``c₂`` must bound."""
+    import flint
+
+    out = [gram]
+    for d in maps:
+        m = flint.arb_mat([[x for x in row] for row in d])
+        out.append(m.transpose() * gram * m)
+    return out
+
+
+def _norm_refuted(cert: Any, mu: Any, t: Fraction, maps: Any = ()) -> tuple[bool, str]:
+    """``‖e^{At}D‖₂² > c₂`` shown at the point ``t`` for ``D = I`` or a drag map (the Rayleigh quotient of
+    ``DᵀGD`` at a float guess of its top eigenvector, in arb; a lower end above ``c₂``)."""
     import numpy as np
 
     e = _flow(cert, t, t)
-    g = e.transpose() * e
-    guess = np.linalg.eigh(np.array([[float(g[i, j].mid()) for j in range(3)] for i in range(3)]))[1][:, -1]
-    v = [_arb(Fraction(float(x))) for x in guess]
-    q = sum(v[i] * g[i, j] * v[j] for i in range(3) for j in range(3)) / sum(x * x for x in v)
-    return bool(q > mu), "‖e^(At)‖² > c2 there"
+    for i, g in enumerate(_pullbacks(e.transpose() * e, maps)):
+        guess = np.linalg.eigh(np.array([[float(g[i, j].mid()) for j in range(3)] for i in range(3)]))[1][:, -1]
+        v = [_arb(Fraction(float(x))) for x in guess]
+        q = sum(v[i] * g[i, j] * v[j] for i in range(3) for j in range(3)) / sum(x * x for x in v)
+        if q > mu:
+            return True, "‖e^(At)‖² > c2 there" if i == 0 else "‖e^(At)·D_ℓ‖² > c2 there"
+    return False, "‖e^(At)‖² > c2 there"
 
 
 def decide_flow(premise: FlowNorm | FlowExit, budget: Budget) -> Check:
@@ -266,27 +304,30 @@ def decide_flow(premise: FlowNorm | FlowExit, budget: Budget) -> Check:
     flint.ctx.prec = PRECISION
     try:
         horizon = cert.pieces[-1].start
+        maps = [tuple(tuple(_arb(x) for x in row) for row in d) for _, d in cert.drag_maps()]
         if isinstance(premise, FlowNorm):
             mu = _arb(cert.constants["c2"])
-            if not _below(mu, flint.arb_mat([list(r) for r in _tail_gram(premise, horizon)])):
+            tail = flint.arb_mat([list(r) for r in _tail_gram(premise, horizon)])
+            if not all(_below(mu, g) for g in _pullbacks(tail, maps)):
                 return Check(premise.obligation, premise.name, f"the tail form at T = {_f(horizon)} is not below c2", False)
 
             def below(lo: Fraction, hi: Fraction) -> tuple[bool, str]:
                 e = _flow(cert, lo, hi)
-                return _below(mu, e.transpose() * e), "‖e^(At)‖² ≥ c2 or too close to it"
+                return all(_below(mu, g) for g in _pullbacks(e.transpose() * e, maps)), "‖e^(At)‖² ≥ c2 or too close to it"
 
-            parts, why = _bisect(Fraction(0), horizon, below, lambda t: _norm_refuted(cert, mu, t), budget)
+            parts, why = _bisect(Fraction(0), horizon, below, lambda t: _norm_refuted(cert, mu, t, maps), budget)
             text = f"c2 = {_f(cert.constants['c2'])} on [0, {_f(horizon)}] in {parts} parts and past it by P"
             return Check(premise.obligation, premise.name, why or text, not why)
         piece = cert.pieces[premise.index]
-        k = tuple(tuple(_arb(x) for x in row) for row in piece.k_matrix())
+        drag = dict(zip([s for s, _ in cert.drag_maps()], maps))
+        forms = [(s, tuple(tuple(_arb(x) for x in row) for row in k), drag.get(s)) for s, k in piece.signed_forms()]
         if piece.end is None:
-            holds, why = _exit_holds(k, _tail_gram(premise, piece.start))
+            holds, why = _exit_holds(forms, _tail_gram(premise, piece.start))
             return Check(premise.obligation, premise.name, why or f"past T = {_f(piece.start)} by P", holds)
         if not piece.start < piece.end:
             return Check(premise.obligation, premise.name, f"empty piece {piece.interval_text()}", False)
-        parts, why = _bisect(piece.start, piece.end, lambda lo, hi: _exit_holds(k, _gram(_flow(cert, lo, hi))),
-                             lambda t: _not(_exit_holds(k, _gram(_flow(cert, t, t)), end=_upper)), budget)
+        parts, why = _bisect(piece.start, piece.end, lambda lo, hi: _exit_holds(forms, _gram(_flow(cert, lo, hi))),
+                             lambda t: _not(_exit_holds(forms, _gram(_flow(cert, t, t)), end=_upper)), budget)
         return Check(premise.obligation, premise.name, why or f"on {piece.interval_text()} in {parts} parts", not why)
     finally:
         flint.ctx.prec = old

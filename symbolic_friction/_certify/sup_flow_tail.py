@@ -38,7 +38,7 @@ SOLVER = "CLARABEL"
 """The solver of both SDPs (recorded in the provenance)."""
 
 
-def joint_tail(k: tuple[float, float, float], *, margin: float) -> tuple[Any, dict[str, float]]:
+def joint_tail(k: tuple[float, float, float], *, margin: float, layout: Any = None) -> tuple[Any, dict[str, float]]:
     """``P`` and ``U`` found together: minimise ``t`` with ``I ⪯ P ⪯ tI``, ``AᵀP + PA ⪯ 0``, ``γ ≤ t`` and the
     piece's premises on ``U`` with the exit forms' Gram ``P`` itself (affine in both; ``p = 1``).
 
@@ -49,36 +49,46 @@ def joint_tail(k: tuple[float, float, float], *, margin: float) -> tuple[Any, di
 
     from ._conic import Program
     from .lyapunov_tail import lyapunov_constraints
-    from .sup_flow_search import _PieceProblem, exit_constraints, piece_constraints
+    from .sup_flow_search import Layout
 
+    layout = layout or Layout(version=1)
     program = Program()
     p, t = lyapunov_constraints(program, k)
-    variables = [program.variable() for _ in _PieceProblem.names]
-    rows, gamma = piece_constraints(program, k, variables, first=True, margin=margin)
-    exit_constraints(program, rows, p, t * margin)
+    variables = [program.variable() for _ in layout.names]
+    forms, gamma = layout.constraints(program, k, variables, first=True, margin=margin)
+    layout.exits(program, forms, p, t * margin)
     program.nonneg(t - gamma)
     status, x = program.solve(t)
     if not x:
         raise CertificateError(f"the joint SDP for the tail's P and U is {status}")
     return (np.array([[Program.value(p[i][j], x) for j in range(3)] for i in range(3)]),
-            {n: Program.value(v, x) for n, v in zip(_PieceProblem.names, variables)})
+            {n: Program.value(v, x) for n, v in zip(layout.names, variables)})
 
 
-def _c2_above(p_matrix: tuple[tuple[Fraction, ...], ...], p: Fraction, estimate: float) -> Fraction:
-    """A decimal ``c₂`` with ``c₂I − P/p ≻ 0`` exactly (leading principal minors positive)."""
+def _c2_above(p_matrix: tuple[tuple[Fraction, ...], ...], p: Fraction, estimate: float, layout: Any = None) -> Fraction:
+    """A decimal ``c₂`` with ``c₂I − DᵀPD/p ≻ 0`` exactly (leading principal minors positive) for ``D = I`` and
+    the drag maps of ``layout`` (version 2 with ``ℓ ≠ 0``)."""
+    import numpy as np
+
+    from .._model import sup_flow as model
     from .rounding import round_significant
     from .verify import Semidefinite
 
+    maps = [] if layout is None or not layout.drag else [model.drag_exit_map(Fraction(s), layout.ell) for s in (1, -1)]
+    grams = [p_matrix] + [model.pullback_gap(tuple(tuple(Fraction(0) for _ in range(3)) for _ in range(3)),
+                                             p_matrix, d) for d in maps]
+    grams = [g if i == 0 else tuple(tuple(-x for x in row) for row in g) for i, g in enumerate(grams)]
+    estimate = max([estimate] + [float(np.linalg.eigvalsh(np.array(g, dtype=float))[-1]) / float(p) for g in grams[1:]])
     c2 = round_significant(estimate * (1 + 1e-9), 12, direction="up")
     for _ in range(200):
-        rows = tuple(tuple((c2 if i == j else 0) - p_matrix[i][j] / p for j in range(3)) for i in range(3))
-        if all(d > 0 for _, d in Semidefinite("", "", rows).minors()):
+        if all(all(d > 0 for _, d in Semidefinite("", "", tuple(tuple((c2 if i == j else 0) - g[i][j] / p for j in range(3))
+                                                               for i in range(3))).minors()) for g in grams):
             return c2
         c2 *= Fraction(1001, 1000)
     raise CertificateError("cannot bound λ_max(P)/p above")
 
 
-def certify_sup_flow_tail(params: Parameters, *, label: str = "") -> "SupFlowCertificate":
+def certify_sup_flow_tail(params: Parameters, *, label: str = "", layout: Any = None) -> "SupFlowCertificate":
     """Search, round and exactly verify a one-piece sup-flow certificate (the tail's own ``P`` at ``T = 0``).
 
     Parameters
@@ -87,6 +97,10 @@ def certify_sup_flow_tail(params: Parameters, *, label: str = "") -> "SupFlowCer
         Gains satisfying Assumption 1, ``f_s = f_c``.
     label : str, keyword-only
         Written into the provenance.
+    layout : sup_flow_search.Layout, keyword-only
+        Version 1 or version 2 of the format (:mod:`.sup_flow_v2`) and its ``ℓ``; default: each of
+        :data:`.sup_flow_search.LAYOUTS` (version 2 with and without the friction-drag split), keeping the
+        smallest proved κ.
 
     Raises
     ------
@@ -112,12 +126,17 @@ def certify_sup_flow_tail(params: Parameters, *, label: str = "") -> "SupFlowCer
         raise CertificateError(f"the gains of {params} are beyond the range of the floats the SDPs work in")
     k = (params.k_p, params.k_i, params.k_v)
     proved, failures = [], []
-    candidates = [("the best-conditioned P", lambda: (best_conditioned_lyapunov((k_p, k_i, k_v)), None)),
-                  ("P and U together", lambda: joint_tail((k_p, k_i, k_v), margin=MARGIN))]
-    for what, find in candidates:
+    from .sup_flow_search import LAYOUTS
+
+    layouts = LAYOUTS if layout is None else (layout,)
+    best_p = best_conditioned_lyapunov((k_p, k_i, k_v))
+    candidates = [(f"the best-conditioned P, {lay.title}", lambda lay=lay: (best_p, None), lay) for lay in layouts]
+    candidates += [(f"P and U together, {lay.title}", lambda lay=lay: joint_tail((k_p, k_i, k_v), margin=MARGIN, layout=lay), lay)
+                   for lay in layouts]
+    for what, find, lay in candidates:
         try:
             p_float, values = find()
-            certificate = _one_piece(params, exact_lyapunov(k, p_float), values, label=label)
+            certificate = _one_piece(params, exact_lyapunov(k, p_float), values, label=label, layout=lay)
         except CertificateError as exc:
             failures.append(f"{what}: {exc}")
             continue
@@ -131,20 +150,22 @@ def certify_sup_flow_tail(params: Parameters, *, label: str = "") -> "SupFlowCer
     return min(proved, key=lambda c: c.kappa)
 
 
-def _one_piece(params: Parameters, p_exact: Any, values: dict[str, float] | None, *, label: str) -> "SupFlowCertificate":
+def _one_piece(params: Parameters, p_exact: Any, values: dict[str, float] | None, *, label: str,
+               layout: Any) -> "SupFlowCertificate":
     """The certificate with the tail's exact ``P`` and ``U`` (``values``, or solved here for the Gram ``P/p``)."""
     import numpy as np
 
     from .rounding import sqrt_decimal_up
-    from .sup_flow import TAIL_CONSTANTS, SupFlowCertificate, SupFlowPiece, SupFlowProvenance
-    from .sup_flow_search import MARGIN, _p_below, _PieceProblem, rounded_constants
+    from .sup_flow import TAIL_CONSTANTS, SupFlowProvenance
+    from .sup_flow_search import MARGIN, _p_below, _PieceProblem, layout_types, rounded_constants
 
+    certificate_type, piece_type = layout_types(layout)
     p_float = np.array(p_exact, dtype=float)
     eig = np.linalg.eigvalsh(p_float)
     p = _p_below(p_exact, float(eig[0]))
-    c2_floor = _c2_above(p_exact, p, float(eig[-1]) / float(p))
+    c2_floor = _c2_above(p_exact, p, float(eig[-1]) / float(p), layout)
     if values is None:
-        problem = _PieceProblem(params.as_floats()[:3], first=True, grams=1)
+        problem = _PieceProblem(params.as_floats()[:3], first=True, grams=1, layout=layout)
         status = ""
         for margin in (MARGIN, MARGIN * 10, MARGIN * 100):
             status, values = problem.solve([p_float / float(p)], margin)
@@ -152,10 +173,12 @@ def _one_piece(params: Parameters, p_exact: Any, values: dict[str, float] | None
                 break
         else:
             raise CertificateError(f"the SDP for U is {status} at every margin tried")
-    piece = SupFlowPiece(start=Fraction(0), end=None, constants=rounded_constants(values))
+    piece = piece_type(start=Fraction(0), end=None, constants=rounded_constants(values))
     kappa_sq = max(c2_floor, piece.constants["gamma"])
     tail = {name: p_exact[int(name[-2]) - 1][int(name[-1]) - 1] for name in TAIL_CONSTANTS}
-    return SupFlowCertificate(
+    if layout.version == 2:
+        tail.update({f"ell{j + 1}": layout.ell[j] for j in range(3)})
+    return certificate_type(
         k_p=params.k_p, k_i=params.k_i, k_v=params.k_v, f_c=params.f_c, constants={"c2": kappa_sq, "p": p, **tail},
         pieces=(piece,), overshoot_bound=sqrt_decimal_up(kappa_sq),
         provenance=SupFlowProvenance(search="sdp", solver=SOLVER, solver_status="optimal",

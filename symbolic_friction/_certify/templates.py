@@ -42,8 +42,9 @@ def builtin_templates() -> tuple[Template, ...]:
     from .quadratic import QUADRATIC
     from .reset_contraction import RESET_CONTRACTION
     from .sup_flow import SUP_FLOW
+    from .sup_flow_v2 import SUP_FLOW_V2
 
-    first = (STABILITY, HUNTING, BOX, QUADRATIC, SUP_FLOW, RESET_CONTRACTION)
+    first = (STABILITY, HUNTING, BOX, QUADRATIC, SUP_FLOW, SUP_FLOW_V2, RESET_CONTRACTION)
     return first + tuple(t for t in registered() if t not in first)
 
 

@@ -146,8 +146,8 @@ class Claims:
         verifying it: its gains and κ."""
         from .._certify import quadratic, sup_flow
 
-        module = sup_flow if isinstance(certificate, sup_flow.SupFlowCertificate) else quadratic
-        TEMPLATE_ID = module.TEMPLATE_ID
+        # a sup-flow certificate of either version names its own template id
+        TEMPLATE_ID = certificate.template_id if isinstance(certificate, sup_flow.SupFlowCertificate) else quadratic.TEMPLATE_ID
 
         bound = certificate.overshoot_bound
         try:

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 __all__ = ["SKIPPED", "CHECKED", "default_certificate_files", "default_certificate_selection"]
 
-CHECKED = ("lyapunov-pair/v1", "quadratic/v1", "sup-flow/v1")
+CHECKED = ("lyapunov-pair/v1", "quadratic/v1", "sup-flow/v1", "sup-flow/v2")
 """The templates whose certificates ``crosscheck`` tests on trajectories (the paper's; the quadratic and sup-flow ones' κ)."""
 
 

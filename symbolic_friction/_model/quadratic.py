@@ -48,6 +48,9 @@ __all__ = [
     "u_rate_entries",
     "band_rate_entries",
     "exit_entries",
+    "u_matrix_signed",
+    "drag_rate_entries",
+    "drag_band_entries",
 ]
 
 Matrix = tuple[tuple[Any, ...], ...]
@@ -123,3 +126,37 @@ def exit_entries(k: Matrix, p: Matrix) -> tuple[Matrix, Matrix]:
     cross = k[0][2] - p[1][1]
     at_edge = ((k[0][0] - p[0][0], cross), (cross, k[2][2] - p[2][2]))
     return at_rest, at_edge
+
+
+# -- sup-flow/v2: one form per sign of σv (K₁₂ kept) and the friction-drag split ----------------------------
+
+
+def u_matrix_signed(k11: Any, k12: Any, k13: Any, k22: Any, k23: Any, k33: Any) -> Matrix:
+    """``K`` of ``U = yᵀKy`` with ``K₁₂`` kept: the sup-flow/v2 form of one sign ``s`` of ``σv``.
+
+    The rate form's ``(1, 1)`` entry is ``2sK₁₂`` (:func:`u_rate_entries` with ``B_s``), so a form used only
+    where ``sign(σv) = s`` may have ``sK₁₂ ≥ 0`` instead of ``K₁₂ = 0``.
+    """
+    return ((k11, k12, k13), (k12, k22, k23), (k13, k23, k33))
+
+
+def drag_rate_entries(k: Matrix, b: Matrix, ell: tuple[Any, Any, Any]) -> Matrix:
+    """``−(K B + Bᵀ K) + K e₃ℓᵀ + ℓ e₃ᵀK``: ``U̇ ≤ −yᵀ(this)y`` where the friction excess ``f > ℓᵀy``.
+
+    ``U̇ = −yᵀ(−(KB + BᵀK))y − 2(Ky)₃ f`` (:func:`u_rate_entries`) and ``(Ky)₃ ≥ 0``, so
+    ``f > ℓᵀy`` gives ``−2(Ky)₃ f ≤ −2(Ky)₃ ℓᵀy = −yᵀ(K e₃ℓᵀ + ℓ e₃ᵀK)y``.  ``ℓ = 0`` is :func:`u_rate_entries`.
+    """
+    rate = u_rate_entries(k, b)
+    return tuple(tuple(rate[i][j] + k[i][2] * ell[j] + ell[i] * k[j][2] for j in range(3)) for i in range(3))
+
+
+def drag_band_entries(k_i: Any, k_v: Any, k: Matrix, s: Any, ell: tuple[Any, Any, Any]) -> Matrix:
+    """:func:`band_rate_entries` plus the band's part of ``K e₃ℓᵀ + ℓ e₃ᵀK`` (rows and columns ``|σ|``, ``v``).
+
+    Inside the band ``y₂ = 0``, so the drag adds ``[[2K₁₃ℓ₁, K₁₃ℓ₃ + K₃₃ℓ₁], [·, 2K₃₃ℓ₃]]``; its
+    ``(1, 1)`` entry fills the band form's zero diagonal entry.
+    """
+    band = band_rate_entries(k_i, k_v, k, s)
+    l1, l3 = ell[0], ell[2]
+    drag = ((2 * k[0][2] * l1, k[0][2] * l3 + k[2][2] * l1), (k[0][2] * l3 + k[2][2] * l1, 2 * k[2][2] * l3))
+    return tuple(tuple(band[i][j] + drag[i][j] for j in range(2)) for i in range(2))

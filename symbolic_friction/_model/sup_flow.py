@@ -29,7 +29,7 @@ from __future__ import annotations
 
 from typing import Any
 
-__all__ = ["EXIT_PLANES", "exit_map", "exit_forms", "tail_gram"]
+__all__ = ["EXIT_PLANES", "exit_map", "exit_forms", "tail_gram", "drag_exit_map", "pullback_gap", "coupling_block"]
 
 Matrix = tuple[tuple[Any, ...], ...]
 
@@ -80,3 +80,36 @@ def tail_gram(flow: Matrix, p_matrix: Matrix, p: Any) -> Matrix:
     """``(1/p)·Mᵀ P M`` with ``M = e^{AT}``: it bounds ``|e^{At}w|²`` for every ``t ≥ T`` (module docstring)."""
     pm = tuple(tuple(sum((p_matrix[i][k] * flow[k][j] for k in range(3)), p - p) for j in range(3)) for i in range(3))
     return tuple(tuple(sum((flow[k][i] * pm[k][j] for k in range(3)), p - p) / p for j in range(3)) for i in range(3))
+
+
+
+# -- sup-flow/v2: the friction-drag split ---------------------------------------------------------------------
+
+
+def drag_exit_map(s: Any, ell: tuple[Any, Any, Any]) -> Matrix:
+    """The 3×3 ``D_ℓ`` with ``x − f_c e₂ = D_ℓ y`` on ``R̂ ∩ {v > 0}`` where the friction excess ``f = ℓᵀy``.
+
+    On ``R̂ ∩ {v > 0}`` (``φ < f_c``) ``x − f_c e₂ = (s·y₁, −(y₂ + f), y₃)`` with
+    ``f = f_c − φ − |dz(φ)| ≥ 0`` (``2f_c`` outside the band, ``f_c − φ`` inside), ``s = sign σ``;
+    ``ℓ = 0`` gives ``diag(s, −1, 1)``, an isometry.
+    """
+    zero = s - s
+    one = zero + 1
+    return ((s, zero, zero), (-ell[0], -one - ell[1], -ell[2]), (zero, zero, one))
+
+
+def pullback_gap(m: Matrix, gram: Matrix, d: Matrix) -> Matrix:
+    """``M − DᵀGD`` (3×3): ``yᵀMy − |e^{At}Dy|²`` when ``G = e^{At}ᵀe^{At}``.
+
+    With ``M = K`` and ``D = D_ℓ`` (:func:`drag_exit_map`) it says ``U ≥ |e^{At}w|²`` where a solution leaves
+    ``{f > ℓᵀy}``; with ``M = c₂I`` that ``c₂|y|² ≥ |e^{At}D_ℓy|²``, the bound of ``V_∞`` on ``{f ≤ ℓᵀy}``.
+    """
+    zero = gram[0][0] - gram[0][0]
+    dgd = tuple(tuple(sum((d[a][i] * gram[a][b] * d[b][j] for a in range(3) for b in range(3)), zero) for j in range(3))
+                for i in range(3))
+    return tuple(tuple(m[i][j] - dgd[i][j] for j in range(3)) for i in range(3))
+
+
+def coupling_block(k_plus: Matrix, k_minus: Matrix) -> Matrix:
+    """``(K⁺ − K⁻)`` on ``(|dz φ|, |v|)``: copositive, it says ``U⁻ ≤ U⁺`` on ``σ = 0`` (``y₁ = 0``)."""
+    return tuple(tuple(k_plus[i][j] - k_minus[i][j] for j in (1, 2)) for i in (1, 2))

@@ -14,7 +14,7 @@ from symbolic_friction._certify import sup_flow, sup_flow_enclosure
 from symbolic_friction._certify.sup_flow import SupFlowCertificate, verify_sup_flow
 from symbolic_friction._infra.errors import CertificateFormatError, ParameterError
 
-PROOFS = Path(__file__).resolve().parents[2] / "proofs" / "sup_flow"
+PROOFS = Path(__file__).resolve().parent / "data" / "sup_flow_v1"  # version 1 files (proofs/sup_flow/ is version 2 now)
 BOUNDS = {"a": Fraction("1.716"), "b": Fraction("2.996")}
 """1.25 × the worst overshoot exact trajectories reach (1.3725 and 2.397)."""
 
@@ -271,8 +271,9 @@ def test_ball_ends_stay_bounded_and_outward():
         sup_flow_enclosure._end(huge, down=True)
     k = ((flint.arb(1), 0, 0), (0, flint.arb(1), 0), (0, 0, flint.arb(1)))
     gram = ((huge, 0 * huge, 0 * huge), (0 * huge, flint.arb(0), flint.arb(0)), (0 * huge, flint.arb(0), flint.arb(0)))
-    assert sup_flow_enclosure._exit_holds(k, gram)[0] is False  # not proved
-    assert sup_flow_enclosure._exit_holds(k, gram, end=sup_flow_enclosure._upper)[0] is True  # and not refuted either
+    forms = ((1, k, None), (-1, k, None))
+    assert sup_flow_enclosure._exit_holds(forms, gram)[0] is False  # not proved
+    assert sup_flow_enclosure._exit_holds(forms, gram, end=sup_flow_enclosure._upper)[0] is True  # and not refuted either
 
 
 @pytest.mark.parametrize("where, key, value, premise", [

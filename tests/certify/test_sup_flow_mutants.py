@@ -17,6 +17,11 @@ GAINS = SimpleNamespace(k_p=Fraction(3), k_i=Fraction(4), k_v=Fraction(32, 5))
 """Table I (a)'s gains, in the shape the flow enclosure reads."""
 
 
+
+def _v1(k):
+    """Version 1's forms for ``_exit_holds``: one ``K`` for both signs of ``σ``, no drag map."""
+    return ((1, k, None), (-1, k, None))
+
 def _entries(m):
     return [m[i, j] for i in range(3) for j in range(3)]
 
@@ -130,7 +135,7 @@ from pathlib import Path  # noqa: E402
 
 from symbolic_friction._certify.sup_flow import TAIL_CONSTANTS, SupFlowCertificate, sup_flow_premises  # noqa: E402
 
-PROOFS = Path(__file__).resolve().parents[2] / "proofs" / "sup_flow"
+PROOFS = Path(__file__).resolve().parent / "data" / "sup_flow_v1"  # version 1 files (proofs/sup_flow/ is version 2 now)
 
 
 def _certificate(**constants):
@@ -275,12 +280,12 @@ def test_exit_holds_looks_at_both_signs_of_sigma():
     k = _arbs(((Fraction(3, 2), 0, 0), (0, Fraction(3, 2), 0), (0, 0, 2)))
     gram = _arbs(((1, 1, 0), (1, 1, 0), (0, 0, 0)))
     for end in (E._lower, E._upper):
-        holds, why = E._exit_holds(k, gram, end=end)
+        holds, why = E._exit_holds(_v1(k), gram, end=end)
         assert holds is False and why.startswith("v = 0, sign σ = −: "), why
     gram = _arbs(((1, -1, 0), (-1, 1, 0), (0, 0, 0)))
-    holds, why = E._exit_holds(k, gram)
+    holds, why = E._exit_holds(_v1(k), gram)
     assert holds is False and why.startswith("v = 0, sign σ = +: "), why
-    assert E._exit_holds(_arbs(((2, 0, 0), (0, 2, 0), (0, 0, 2))), gram) == (True, "")
+    assert E._exit_holds(_v1(_arbs(((2, 0, 0), (0, 2, 0), (0, 0, 2)))), gram) == (True, "")
 
 
 def test_exit_holds_reads_the_off_diagonal_not_a_diagonal_entry():
@@ -288,7 +293,7 @@ def test_exit_holds_reads_the_off_diagonal_not_a_diagonal_entry():
     k = _arbs(((Fraction(101, 100), 0, 0), (0, 3, 0), (0, 0, 5)))
     gram = _arbs(((1, -1, 0), (-1, 1, 0), (0, 0, 0)))
     for end in (E._lower, E._upper):
-        holds, why = E._exit_holds(k, gram, end=end)
+        holds, why = E._exit_holds(_v1(k), gram, end=end)
         assert holds is False and why.startswith("v = 0, sign σ = +: "), why
 
 
@@ -296,8 +301,8 @@ def test_exit_holds_takes_the_worse_end_of_the_two_off_diagonal_balls():
     # an enclosure whose two off-diagonal entries differ: the proof takes the lower (−1), the refutation the upper (+1)
     k = _arbs(((1, 0, 0), (0, 1, 0), (0, 0, 1)))
     gram = _arbs(((Fraction(1, 2), -1, 0), (1, Fraction(1, 2), 0), (0, 0, 0)))
-    assert E._exit_holds(k, gram)[0] is False
-    assert E._exit_holds(k, gram, end=E._upper) == (True, "")
+    assert E._exit_holds(_v1(k), gram)[0] is False
+    assert E._exit_holds(_v1(k), gram, end=E._upper) == (True, "")
 
 
 # -- verify_sup_flow: one budget, the enclosures not evaluated after a structural failure --------------
@@ -684,7 +689,7 @@ def test_exit_holds_decides_the_other_plane_after_the_shortcut_proves_one():
     # σ > 0: the form on v = 0 is clearly copositive, the one on φ = f_c has the diagonal entry 1 − 2 < 0
     k = _arbs(((1, 0, 0), (0, 1, 0), (0, 0, 1)))
     gram = _arbs(((0, 0, 0), (0, 0, 0), (0, 0, 2)))
-    holds, why = E._exit_holds(k, gram)
+    holds, why = E._exit_holds(_v1(k), gram)
     assert holds is False and why.startswith("φ = f_c, sign σ = +: "), why
 
 
@@ -696,7 +701,7 @@ def test_the_shortcut_spares_the_exact_decision_of_a_clearly_copositive_form(mon
 
     monkeypatch.setattr(copositive, "decide_copositive", exact)
     k = _arbs(((2, 0, 0), (0, 2, 0), (0, 0, 2)))
-    assert E._exit_holds(k, _arbs(((0, 0, 0), (0, 0, 0), (0, 0, 0)))) == (True, "")
+    assert E._exit_holds(_v1(k), _arbs(((0, 0, 0), (0, 0, 0), (0, 0, 0)))) == (True, "")
 
 
 def test_the_reader_names_its_source_in_the_shared_checks_and_defaults_to_string():

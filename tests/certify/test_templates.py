@@ -106,9 +106,9 @@ def test_the_package_templates_are_the_schema_defaults():
     assert (stability.id, stability.default) == ("lyapunov-pair/v1", True)
     assert (hunting.id, hunting.default) == ("hunting-cycle/v1", True)
     ids = [t.id for t in builtin_templates()]
-    assert ids[:6] == ["lyapunov-pair/v1", "hunting-cycle/v1", "lyapunov-box/v1", "quadratic/v1", "sup-flow/v1",
-                       "reset-contraction/v1"]
-    reset = builtin_templates()[5]
+    assert ids[:7] == ["lyapunov-pair/v1", "hunting-cycle/v1", "lyapunov-box/v1", "quadratic/v1", "sup-flow/v1",
+                       "sup-flow/v2", "reset-contraction/v1"]
+    reset = builtin_templates()[6]
     assert reset.default and reset.schema == "symbolic-friction/reset-contraction-certificate/v1" and reset.regenerate
 
 

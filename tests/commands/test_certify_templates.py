@@ -29,7 +29,7 @@ def test_templates_know_their_names():
     templates = searchable_templates()
     assert list(templates) == ["paper", "quadratic", "sup-flow"]
     assert templates["paper"].id == "lyapunov-pair/v1" and templates["quadratic"].id == "quadratic/v1"
-    assert templates["sup-flow"].id == "sup-flow/v1"
+    assert templates["sup-flow"].id == "sup-flow/v2"
     assert all(t.name == name for name, t in templates.items())
 
 
@@ -54,12 +54,12 @@ def test_auto_keeps_the_sup_flow_certificate_for_table_i_and_names_the_others(tm
     # a budget no machine exhausts: the time pieces are halved to their end, so the file is Table I's committed one
     assert main(["certify", *CASE_A, "--out", str(tmp_path), "--budget", "3600"]) == 0
     first, against, wrote = capsys.readouterr().out.splitlines()
-    assert re.search(r"κ 1\.44800 in [0-9]+\.[0-9]{2} s; paper", first)  # every search says how long it took
-    assert _untimed(first) == ("template sup-flow (pieces) (auto: the smallest proved κ): κ 1.44800; paper: κ 3.46703; "
-                               "sup-flow (one piece): κ 1.79444; quadratic: κ 1.80833")
-    # κ against the proven lower end of κ_lin = 1.3732677…: 1.44800/1.37326771 = 1.05442… rounded up
-    assert against == "κ ≤ 1.0545·κ_lin (κ_lin ≥ 1.3732677, proven)"
-    assert wrote.startswith("wrote ") and "(sup-flow template)" in wrote and "<= 1.44800·|x(0)|_A" in wrote
+    assert re.search(r"κ 1\.37852 in [0-9]+\.[0-9]{2} s; paper", first)  # every search says how long it took
+    assert _untimed(first) == ("template sup-flow (pieces) (auto: the smallest proved κ): κ 1.37852; paper: κ 3.46703; "
+                               "sup-flow (one piece): κ 1.77986; quadratic: κ 1.80833")
+    # κ against the proven lower end of κ_lin = 1.3732677…: 1.37852/1.37326771 = 1.003824… rounded up
+    assert against == "κ ≤ 1.0039·κ_lin (κ_lin ≥ 1.3732677, proven)"
+    assert wrote.startswith("wrote ") and "(sup-flow template)" in wrote and "<= 1.37852·|x(0)|_A" in wrote
     path = _one(tmp_path)
     assert path.name.endswith("_sup-flow.json")
     committed = json.loads((Path(__file__).resolve().parents[2] / "proofs" / "sup_flow" / "case_a.json").read_text())
@@ -201,9 +201,9 @@ def test_table_i_with_the_quadratic_template_writes_proofs_quadratic(tmp_path, c
 
 def test_the_choice_is_the_smallest_proved_kappa():
     choice = certify_template(Parameters.table_i("b"), budget=None)
-    assert choice.template.name == "sup-flow" and choice.certificate.overshoot_bound == "2.40132"
+    assert choice.template.name == "sup-flow" and choice.certificate.overshoot_bound == "2.39826"
     assert choice.chosen.title == "sup-flow (pieces)"
-    assert [a.describe() for a in choice.others] == ["paper: κ 7.88526", "sup-flow (one piece): κ 3.03474",
+    assert [a.describe() for a in choice.others] == ["paper: κ 7.88526", "sup-flow (one piece): κ 2.99848",
                                                      "quadratic: κ 3.27300"]
     assert choice.target == choice.kappa_lin_lower * Fraction(11, 10) and choice.ratio < Fraction(1003, 1000)
 
