@@ -20,6 +20,19 @@ breaks and the exact set of checks that fail:
   it shares with the quadratic template are decided by the same functions, and
   broken by the quadratic files), and two true ones: five pieces, and one
   piece ``[0, ∞)`` closed by the tail at ``T = 0``;
+* sup-flow version-2 certificates (:mod:`.sup_flow_v2`), one per premise only
+  that version has (:data:`SUP_FLOW_V2_PREMISES`: ``ℓ ≥ 0``, ``c₂`` against
+  the flow *and* the drag maps ``e^{At}D_ℓ``, ``K⁺ − I`` and ``K⁻ − I``, per
+  sign ``sK₁₂ ≥ 0``, the drag rate and band forms, ``K₃ⱼ ≥ 0`` and
+  ``γI − K^±``, the coupling ``U⁻ ≤ U⁺`` on ``σ = 0``, the exits where only
+  the drag exit form fails on a finite piece and past ``T``, where only the
+  planes fail for one sign, and without the drag split, and the bound under
+  its own obligation; with the premises that fail with it where they are not
+  independent: ``K^± − I`` is implied by the exits at ``t = 0``, the band form
+  of ``s = +1`` by ``K⁺₃ⱼ ≥ 0`` and the exits), on a one-piece true certificate
+  with the drag split (its frame is version 1's, decided by the same function
+  and broken by the sup-flow files), and three true ones: that piece
+  ``[0, ∞)``, the same split at ``t = 1/2``, and one without the drag split;
 * hunting certificates: a box around a later zero of ``v``, a box that
   holds no zero, boxes shifted so that the zero lies just outside each end
   in ``σ`` and in ``τ`` (the Krawczyk inclusion, both ends), ``σ_lo = 0``, a
@@ -39,9 +52,9 @@ route as ``symbolic-friction verify`` and holds only if each false one is
 refused *by the verifier* (exit 1 of ``verify``) naming exactly its
 manifest's checks, each true one is proved, and every premise of the
 stability, quadratic and reset-contraction verifiers (and each sup-flow
-premise of :data:`SUP_FLOW_PREMISES`) has a false certificate.  A file the
-reader refuses as malformed (exit 2 of ``verify``), or one the verifier
-raises on, counts as not refused.  A dropped premise, a broken python-flint
+premise of :data:`SUP_FLOW_PREMISES` and :data:`SUP_FLOW_V2_PREMISES`) has a
+false certificate.  A file the reader refuses as malformed (exit 2 of
+``verify``), or one the verifier raises on, counts as not refused.  A dropped premise, a broken python-flint
 or sympy, or a patched install then fails ``check``.
 """
 
@@ -54,7 +67,7 @@ from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
-__all__ = ["DIRECTORY", "SUP_FLOW_PREMISES", "Refusal", "SelfCheck", "refuse_false_certificates", "expected_failures", "named_failures"]
+__all__ = ["DIRECTORY", "SUP_FLOW_PREMISES", "SUP_FLOW_V2_PREMISES", "Refusal", "SelfCheck", "refuse_false_certificates", "expected_failures", "named_failures"]
 
 DIRECTORY = Path(__file__).with_name("false_certificates")
 """Where the known-false (and the true) certificates are shipped."""
@@ -126,9 +139,29 @@ SUP_FLOW_PREMISES: tuple[str, ...] = (
 """The sup-flow premises a shipped false certificate must break (those only the sup-flow template has, on the
 five-piece true certificate the false ones are edited from)."""
 
+SUP_FLOW_V2_PREMISES: tuple[str, ...] = (
+    "ell1 ≥ 0", "ell2 ≥ 0", "ell3 ≥ 0",
+    "c2 ≥ ‖e^(At)‖² for every t ≥ 0 and c2 ≥ ‖e^(At)·D_ℓ‖² (both signs)",
+    "K+1 − I copositive (piece 1)", "K−1 − I copositive (piece 1)",
+    "piece 1: K+12 ≥ 0", "piece 1: drag rate form of K+ (s = +1) copositive", "piece 1: drag band form of K+ (s = +1) copositive",
+    "piece 1: K+31 ≥ 0", "piece 1: K+32 ≥ 0", "piece 1: K+33 ≥ 0", "piece 1: gamma·I − K+ copositive",
+    "piece 1: −K−12 ≥ 0", "piece 1: drag rate form of K− (s = −1) copositive", "piece 1: drag band form of K− (s = −1) copositive",
+    "piece 1: K−31 ≥ 0", "piece 1: K−32 ≥ 0", "piece 1: K−33 ≥ 0", "piece 1: gamma·I − K− copositive",
+    "piece 1: coupling (K+ − K−) on (|dz φ|, |v|) copositive",
+    "piece 1: U± ≥ |e^(At)w|² on the exits of R̂ and of f > ℓᵀy for t in [0, 1/2)",
+    "piece 2: U± ≥ |e^(At)w|² on the exits of R̂ and of f > ℓᵀy for t in [1/2, ∞)",
+    "piece 1: U± ≥ |e^(At)w|² on the exits of R̂ and of f > ℓᵀy for t in [0, ∞)",
+    "piece 1: U± ≥ |e^(At)w|² on the exits of R̂ for t in [0, ∞)",
+    "overshoot_bound > 0", "overshoot_bound² ≥ c2", "overshoot_bound² ≥ gamma (piece 1)",
+)
+"""The sup-flow version-2 premises a shipped false certificate must break (those only version 2 has, named on its
+true certificates: one piece ``[0, ∞)`` with the drag split, split at ``t = 1/2``, and one piece without the split,
+whose exits are the planes alone; the bound's premises are listed here as they are version 2's obligation)."""
+
 
 def _premise_names() -> dict[str, list[str]]:
-    """Every premise name of the stability and the quadratic verifier (on a stand-in whose numbers are all 1)."""
+    """Every premise name a false certificate must break, per manifest ``template``: those of the stability and the
+    quadratic verifier (on a stand-in whose numbers are all 1), and the listed sup-flow and reset-contraction ones."""
     from .quadratic import CONSTANTS, quadratic_premises
     from .verify import premises
 
@@ -141,7 +174,8 @@ def _premise_names() -> dict[str, list[str]]:
     from .reset_contraction_proof import PREMISES as RESET_PREMISES
 
     return {"stability": [p.name for p in premises(One())], "quadratic": [p.name for p in quadratic_premises(One())],
-            "sup-flow": list(SUP_FLOW_PREMISES), "reset-contraction": list(RESET_PREMISES)}
+            "sup-flow": list(SUP_FLOW_PREMISES), "sup-flow/v2": list(SUP_FLOW_V2_PREMISES),
+            "reset-contraction": list(RESET_PREMISES)}
 
 
 def _decide(data: object, source: str) -> Any:

@@ -338,10 +338,9 @@ def verify_sup_flow(certificate: SupFlowCertificate, *, source: str = "<certific
 
 
 def load_sup_flow(path: str | Path) -> SupFlowCertificate:
-    """Read a sup-flow certificate file of either version strictly (bounded read; not verified).
+    """Read a version-1 sup-flow certificate file strictly (bounded read; not verified).
 
-    The file's ``template`` (or, without it, its ``schema``) selects version 1 or version 2
-    (:class:`.sup_flow_v2.SupFlowCertificateV2`).
+    :func:`.sup_flow_v2.load_sup_flow` reads either version.
 
     Raises
     ------
@@ -349,14 +348,8 @@ def load_sup_flow(path: str | Path) -> SupFlowCertificate:
         If the file cannot be read, is not strict JSON or is not a sup-flow certificate.
     """
     from ._json import read_json
-    from .sup_flow_v2 import SCHEMA as SCHEMA_V2
-    from .sup_flow_v2 import TEMPLATE_ID as TEMPLATE_ID_V2
-    from .sup_flow_v2 import SupFlowCertificateV2
 
-    data = read_json(path)
-    v2 = isinstance(data, dict) and (data.get("template") == TEMPLATE_ID_V2
-                                     or ("template" not in data and data.get("schema") == SCHEMA_V2))
-    return (SupFlowCertificateV2 if v2 else SupFlowCertificate).from_dict(data, source=str(path))
+    return SupFlowCertificate.from_dict(read_json(path), source=str(path))
 
 
 def dumps_sup_flow(certificate: SupFlowCertificate) -> str:

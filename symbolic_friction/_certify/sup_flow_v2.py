@@ -44,6 +44,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from fractions import Fraction
+from pathlib import Path
 from typing import Any, ClassVar
 
 from .._model import quadratic as quad
@@ -62,7 +63,7 @@ from .sup_flow_enclosure import FlowExit, FlowNorm
 from .verify import Inequality
 
 __all__ = ["SCHEMA", "TEMPLATE_ID", "CONSTANTS", "PIECE_CONSTANTS", "OBLIGATIONS", "SupFlowPieceV2",
-           "SupFlowCertificateV2", "sup_flow_v2_premises", "SUP_FLOW_V2"]
+           "SupFlowCertificateV2", "sup_flow_v2_premises", "load_sup_flow", "SUP_FLOW_V2"]
 
 SCHEMA = "symbolic-friction/sup-flow-certificate/v2"
 TEMPLATE_ID = "sup-flow/v2"
@@ -160,6 +161,29 @@ def sup_flow_v2_premises(cert: SupFlowCertificateV2) -> list[Any]:
         out.append(FlowExit("sup_flow_v2.exit", f"{tag}: U± ≥ |e^(At)w|² on {where} for t in {piece.interval_text()}",
                             cert, cert.tail_matrix(), i))
     return out + bound_premises(cert, "sup_flow_v2.stability_bound")
+
+
+def load_sup_flow(path: str | Path) -> SupFlowCertificate:
+    """Read a sup-flow certificate file of either version strictly (bounded read; not verified).
+
+    The file's ``template`` member (``sup-flow/v1`` or ``sup-flow/v2``) selects the reader.
+
+    Raises
+    ------
+    InputFileError, CertificateFormatError
+        If the file cannot be read, is not strict JSON or is not a sup-flow certificate.
+
+    Examples
+    --------
+    >>> cert = load_sup_flow("proofs/sup_flow/case_a.json")  # doctest: +SKIP
+    >>> cert.template_id, cert.overshoot_bound  # doctest: +SKIP
+    ('sup-flow/v2', '1.37852')
+    """
+    from ._json import read_json
+
+    data = read_json(path)
+    v2 = isinstance(data, dict) and data.get("template") == TEMPLATE_ID
+    return (SupFlowCertificateV2 if v2 else SupFlowCertificate).from_dict(data, source=str(path))
 
 
 SUP_FLOW_V2 = register(Template(

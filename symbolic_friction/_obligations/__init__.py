@@ -41,11 +41,13 @@ def obligation_modules() -> tuple[ModuleType, ...]:
         remark,
         reset,
         sup_flow,
+        sup_flow_v2,
         table1,
     )
 
     return (coordinates, regularization, assumption1, equilibria, distance, model, lemma1, lemma2, remark,
-            claim1, prop1, lemma3, cor1, table1, certificate, closed_form, quadratic, sup_flow, reset)
+            claim1, prop1, lemma3, cor1, table1, certificate, closed_form, quadratic, sup_flow, sup_flow_v2,
+            reset)
 
 
 def registry() -> tuple[type[Obligation], ...]:
@@ -95,6 +97,7 @@ def registry() -> tuple[type[Obligation], ...]:
         ResetVJump,
     )
     from .sup_flow import Bounds, Exit, Nonincreasing, RestMinimum, SlipFlow, SupFlowStabilityBound
+    from .sup_flow_v2 import DragRegion, ExitV2, SignCrossing, StabilityBoundV2, URateV2
     from .table1 import TableI
 
     return (
@@ -106,6 +109,7 @@ def registry() -> tuple[type[Obligation], ...]:
         Assumption1Encoding, CertificateVerifier, VerifierDecision, ClosedFormAllGains, ClosedFormMonotone, ClosedFormBalanced,
         QuadraticPStructure, QuadraticVDecrease, QuadraticURate, QuadraticUExit, QuadraticStabilityBound,
         SlipFlow, RestMinimum, Nonincreasing, Bounds, Exit, SupFlowStabilityBound,
+        URateV2, SignCrossing, DragRegion, ExitV2, StabilityBoundV2,
         ResetVJump, ResetNoSecondJump, ResetAttractor, ResetBasicConditions, ResetLeavesStick, ResetSameStickExits,
         ResetKernelBinding,
     )

@@ -125,10 +125,11 @@ def _sup_flow_base() -> dict:
     from symbolic_friction import Parameters
     from symbolic_friction._certify.rounding import sqrt_decimal_up
     from symbolic_friction._certify.sup_flow import dumps_sup_flow
-    from symbolic_friction._certify.sup_flow_search import certify_sup_flow
+    from symbolic_friction._certify.sup_flow_search import Layout, certify_sup_flow
     from symbolic_friction._infra.rational import format_rational
 
-    data = json.loads(dumps_sup_flow(certify_sup_flow(Parameters(k_p=11, k_i=6, k_v=6, f_c=1), max_pieces=3, rel_tol=0.5)))
+    data = json.loads(dumps_sup_flow(certify_sup_flow(Parameters(k_p=11, k_i=6, k_v=6, f_c=1), max_pieces=3, rel_tol=0.5,
+                                                      layout=Layout(version=1))))
     del data["provenance"]
     for piece in data["pieces"]:
         _scale(piece, F(2))
@@ -136,6 +137,170 @@ def _sup_flow_base() -> dict:
     data["constants"]["c2"] = format_rational(F(data["constants"]["c2"]) * 2)
     data["overshoot_bound"] = sqrt_decimal_up(max([F(data["constants"]["c2"])] + [F(q["gamma"]) for q in data["pieces"]]))
     return data
+
+
+# -- sup-flow/v2 certificates: the premises only version 2 has (the frame it shares with version 1 -- Assumption 1, the
+# pieces, the tail's P -- is decided by the same function and broken by the sup-flow files), on a one-piece true certificate
+# [0, ∞) with the friction-drag split (the tail at T = 0), its split [0, 1/2) + [1/2, ∞) (a finite piece), and one without
+# the split (ℓ = 0: then the exits are version 1's planes only): (file stem, premise, base, edit of the parsed file).
+# Where a premise is implied by others it fails with them (the comments say why), and the manifest lists them all.
+V2_ELL = (F(1, 100), F(1, 100), F(1, 100))
+"""``ℓ`` of the shipped version-2 files: the search's ``(1/1000, 0, 1/1000)`` raised, which adds ``Ke₃ℓᵀ + ℓe₃ᵀK ≥ 0``
+(entrywise: ``K₃ⱼ ≥ 0``) to every drag rate and band form, so that the forms the SDP left on the boundary have room."""
+V2_WIDE_ELL = (F(1, 10), F(1, 10), F(1, 10))
+"""A larger ``ℓ`` for the exit files: it widens the gap between the drag exit form and the planes' forms."""
+SUP_FLOW_V2 = [
+    # ℓ₁ < 0 makes the band forms' (1, 1) entry 2K₁₃ℓ₁ negative for both signs (K₁₃ > 0): they fail with it
+    ("ell1_negative", "ell1 ≥ 0", "one", lambda d: _v2_set(d, c={"ell1": F(-1, 10**6)})),
+    ("ell2_negative", "ell2 ≥ 0", "one", lambda d: _v2_set(d, c={"ell2": F(-1, 10**6)})),
+    ("ell3_negative", "ell3 ≥ 0", "one", lambda d: _v2_set(d, c={"ell3": F(-1, 10**6)})),
+    # c2 between sup‖e^(At)‖² (here λ_max(P/p), the tail at T = 0) and the drag maps' λ_max(D_ℓᵀPD_ℓ/p)
+    ("c2_drag", "c2 ≥ ‖e^(At)‖² for every t ≥ 0 and c2 ≥ ‖e^(At)·D_ℓ‖² (both signs)", "one",
+     lambda d: _v2_set(d, c={"c2": _v2_c2_between(d)})),
+    # K±₁₁ < 1: the exits at t = 0 (G = P/p ⪰ I) need K₁₁ ≥ G₁₁ ≥ 1, so the exit premise fails with it
+    ("u_lower_plus", "K+1 − I copositive (piece 1)", "one", lambda d: _v2_set(d, p={"kp11": F(9, 10)})),
+    ("u_lower_minus", "K−1 − I copositive (piece 1)", "one", lambda d: _v2_set(d, p={"km11": F(9, 10)})),
+    # K⁺₁₂ < 0 keeps the drag rate form's (1, 1) entry 2K₁₂ + 2K₁₃ℓ₁ ≥ 0; K₂₃ raised makes up the (2, 3) entry it took
+    ("k12_plus", "piece 1: K+12 ≥ 0", "one", lambda d: _v2_set(d, p={"kp12": F(-1, 1000), "kp23": _v2(d, "kp23") + 2})),
+    ("k12_minus", "piece 1: −K−12 ≥ 0", "one",
+     lambda d: _v2_set(d, p={"km12": F(1, 1000), "km23": _v2(d, "km23") + F(1, 4)})),
+    ("rate_plus", "piece 1: drag rate form of K+ (s = +1) copositive", "one", lambda d: _v2_set(d, p={"kp12": 0})),
+    ("rate_minus", "piece 1: drag rate form of K− (s = −1) copositive", "one", lambda d: _v2_set(d, p={"km12": 0})),
+    # the band form of s = +1 is copositive when K₁₁, K₁₃, K₃₃, ℓ ≥ 0, and K₁₁ ≥ 0 is implied by the exits: K⁺₁₃ < 0
+    # is the least that breaks it (with K+31 ≥ 0)
+    ("band_plus", "piece 1: drag band form of K+ (s = +1) copositive", "one", lambda d: _v2_set(d, p={"kp13": F(-1, 10**6)})),
+    ("band_minus", "piece 1: drag band form of K− (s = −1) copositive", "one",
+     lambda d: _v2_set(d, p={"km11": _v2(d, "km11") * F(11, 10)})),
+    # K⁺₁₃ < 0 with ℓ₁ = 0 (else the band form's (1, 1) entry 2K₁₃ℓ₁ < 0), and K⁻₁₁ lowered so that the band form of
+    # s = −1 keeps its off-diagonal entry −k_i·K₁₁ + (k_v + ℓ₃)·K₁₃ ≥ 0 without ℓ₁
+    ("k31_plus", "piece 1: K+31 ≥ 0", "one", lambda d: _v2_set(
+        d, c={"ell1": 0}, p={"kp13": F(-1, 10**6), "km11": _v2(d, "km13") * (F(d["parameters"]["k_v"]) + F(d["constants"]["ell3"]))
+                             / F(d["parameters"]["k_i"]) * F(999, 1000)})),
+    # K⁻₁₃ < 0 breaks the band form of s = −1: its (1, 1) entry 2K₁₃ℓ₁ < 0, or with ℓ₁ = 0 its off-diagonal entry
+    # −k_i·K₁₁ + (k_v + ℓ₃)·K₁₃ < 0; K⁻₁₃ also carries the rate form of s = −1 (it fails too)
+    ("k31_minus", "piece 1: K−31 ≥ 0", "one", lambda d: _v2_set(d, p={"km13": F(-1, 10**6)})),
+    # K₂₃ < 0 is the rate form's (2, 2) entry 2K₂₃(1 + ℓ₂) < 0; K⁺₃₃ raised keeps the coupling
+    ("k32_plus", "piece 1: K+32 ≥ 0", "one", lambda d: _v2_set(d, p={"kp23": F(-1, 10**6), "kp33": _v2(d, "kp33") + F(1, 10)})),
+    ("k32_minus", "piece 1: K−32 ≥ 0", "one", lambda d: _v2_set(d, p={"km23": F(-1, 10**6)})),
+    # K₃₃ < 0: the exit at φ = f_c needs K₃₃ ≥ G₃₃ > 0, K − I its diagonal, the coupling K⁺₃₃ ≥ K⁻₃₃
+    ("k33_plus", "piece 1: K+33 ≥ 0", "one", lambda d: _v2_set(d, p={"kp33": F(-1, 10**6)})),
+    ("k33_minus", "piece 1: K−33 ≥ 0", "one", lambda d: _v2_set(d, p={"km33": F(-1, 10**6)})),
+    # K⁺ scaled up (every cone premise and the coupling are kept, the exits only gain); γ between K⁺'s least γ and K⁻'s
+    ("u_upper_plus", "piece 1: gamma·I − K+ copositive", "one", lambda d: _v2_scale(d, 0, plus=F(6, 5))),
+    ("u_upper_minus", "piece 1: gamma·I − K− copositive", "one", lambda d: _v2_set(d, p={"gamma": _v2_gamma_between(d)})),
+    # K⁻ scaled up: U⁻ > U⁺ on σ = 0 (every other premise of the piece is kept, γ has room)
+    ("coupling", "piece 1: coupling (K+ − K−) on (|dz φ|, |v|) copositive", "one", lambda d: _v2_scale(d, 0, minus=F(21, 20))),
+    # K± scaled to just above where the planes bind (1/2 of the doubled K), below where the drag exit form of s = −1
+    # does: only that form fails
+    ("exit_tail", "piece 1: U± ≥ |e^(At)w|² on the exits of R̂ and of f > ℓᵀy for t in [0, ∞)", "one",
+     lambda d: _v2_scale(d, 0, plus=F(501, 1000), minus=F(501, 1000))),
+    # a finite piece: K± of [0, 1/2) scaled so that the planes hold on the whole piece and, with the wider ℓ, the drag
+    # exit form of s = −1 does not (near t = 0.02)
+    ("exit", "piece 1: U± ≥ |e^(At)w|² on the exits of R̂ and of f > ℓᵀy for t in [0, 1/2)", "two",
+     lambda d: (_v2_set(d, c=_ell(V2_WIDE_ELL)), _v2_scale(d, 0, plus=F(9, 20), minus=F(9, 20)))),
+    # past T = 1/2, K⁻ scaled below the planes' bound at y = e₁ (K⁻₁₁ ≥ G₁₁), where the drag exit form is lower
+    # (w = (−y₁, −ℓ₁y₁, 0) there): only the planes of s = −1 fail, the drag exit form holds
+    ("exit_plane", "piece 2: U± ≥ |e^(At)w|² on the exits of R̂ and of f > ℓᵀy for t in [1/2, ∞)", "two",
+     lambda d: (_v2_set(d, c=_ell(V2_WIDE_ELL)), _v2_scale(d, 1, minus=F(43, 100)))),
+    ("exit_no_drag", "piece 1: U± ≥ |e^(At)w|² on the exits of R̂ for t in [0, ∞)", "no_drag",
+     lambda d: _v2_scale(d, 0, plus=F(49, 100), minus=F(49, 100))),
+    ("kappa_positive", "overshoot_bound > 0", "one", lambda d: d.update(overshoot_bound="-" + d["overshoot_bound"])),
+    ("kappa_c2", "overshoot_bound² ≥ c2", "one", lambda d: _v2_set(d, c={"c2": F(d["overshoot_bound"]) ** 2 * F(1001, 1000)})),
+    ("kappa_gamma", "overshoot_bound² ≥ gamma (piece 1)", "one",
+     lambda d: _v2_set(d, p={"gamma": F(d["overshoot_bound"]) ** 2 * F(1001, 1000)})),
+]
+_V2_ENTRIES = ("11", "12", "13", "22", "23", "33")
+
+
+def _ell(ell: tuple) -> dict:
+    return {f"ell{j + 1}": ell[j] for j in range(3)}
+
+
+def _v2(data: dict, name: str, piece: int = 0) -> F:
+    return F(data["pieces"][piece][name])
+
+
+def _v2_set(data: dict, *, c: dict | None = None, p: dict | None = None, piece: int = 0) -> None:
+    from symbolic_friction._infra.rational import format_rational
+
+    data["constants"].update({k: format_rational(F(v)) for k, v in (c or {}).items()})
+    data["pieces"][piece].update({k: format_rational(F(v)) for k, v in (p or {}).items()})
+
+
+def _v2_scale(data: dict, piece: int, *, plus: F = F(1), minus: F = F(1)) -> None:
+    """``K⁺`` and ``K⁻`` of ``piece`` times ``plus`` and ``minus`` (every cone premise of a form is homogeneous in it)."""
+    _v2_set(data, piece=piece, p={tag + e: _v2(data, tag + e, piece) * factor
+                                  for tag, factor in (("kp", plus), ("km", minus)) for e in _V2_ENTRIES})
+
+
+def _v2_c2_between(data: dict) -> F:
+    """A ``c₂`` above ``λ_max(P/p)`` (the flow's bound past ``T = 0``) and below ``λ_max(D_ℓᵀPD_ℓ/p)`` for some sign."""
+    import numpy as np
+
+    from symbolic_friction._certify.sup_flow_v2 import SupFlowCertificateV2
+
+    cert = SupFlowCertificateV2.from_dict(data)
+    gram = np.array(cert.tail_matrix(), dtype=float) / float(cert.constants["p"])
+    plain = float(np.linalg.eigvalsh(gram)[-1])
+    drag = max(float(np.linalg.eigvalsh(np.array(d, dtype=float).T @ gram @ np.array(d, dtype=float))[-1])
+               for _, d in cert.drag_maps())
+    c2 = F(round((plain + drag) / 2 * 10**4), 10**4)
+    assert plain * (1 + 1e-5) < c2 < drag * (1 - 1e-5), (plain, c2, drag)
+    return c2
+
+
+def _least_gamma(k: tuple) -> F:
+    """The least ``γ`` with ``γI − K`` copositive, to within 2⁻⁴⁰ of its bound (bisection, exact decisions)."""
+    from symbolic_friction._certify.copositive import decide_copositive
+
+    lo, hi = F(0), F(sum(abs(x) for row in k for x in row))
+    for _ in range(40):
+        mid = (lo + hi) / 2
+        if decide_copositive([[(mid if i == j else 0) - k[i][j] for j in range(3)] for i in range(3)]).holds:
+            hi = mid
+        else:
+            lo = mid
+    return hi
+
+
+def _v2_gamma_between(data: dict) -> F:
+    """A ``γ`` above ``K⁺``'s least ``γ`` and below ``K⁻``'s (piece 1)."""
+    from symbolic_friction._certify.sup_flow_v2 import SupFlowCertificateV2
+
+    piece = SupFlowCertificateV2.from_dict(data).pieces[0]
+    plus, minus = _least_gamma(piece.form(1)), _least_gamma(piece.form(-1))
+    gamma = F(round((plus + minus) * 500), 1000)
+    assert plus < gamma < minus, (plus, gamma, minus)
+    return gamma
+
+
+def _sup_flow_v2_bases() -> dict[str, dict]:
+    """True version-2 certificates with room, from the one-piece search (:func:`.sup_flow_tail.certify_sup_flow_tail`:
+    the tail's own ``P`` at ``T = 0``; a certificate of pieces takes ten times as long to verify) on the gains of the
+    sup-flow files: ``"one"`` with the drag split, ``"two"`` the same split at ``t = 1/2`` (the tail's ``K`` holds on any
+    finite piece: ``|e^(At)w|² ≤ |w|²_P/p``), ``"no_drag"`` searched with ``ℓ = 0``.  ``K±`` and ``c₂`` doubled, ``γ``
+    times 11/5 and (with the drag split) ``ℓ`` raised to :data:`V2_ELL`, so that every premise has room."""
+    from symbolic_friction import Parameters
+    from symbolic_friction._certify.rounding import sqrt_decimal_up
+    from symbolic_friction._certify.sup_flow import dumps_sup_flow
+    from symbolic_friction._certify.sup_flow_search import ELL, Layout
+    from symbolic_friction._certify.sup_flow_tail import certify_sup_flow_tail
+    from symbolic_friction._infra.rational import format_rational
+
+    gains = Parameters(k_p=11, k_i=6, k_v=6, f_c=1)
+    bases = {}
+    for key, ell in (("one", ELL), ("no_drag", (F(0), F(0), F(0)))):
+        data = json.loads(dumps_sup_flow(certify_sup_flow_tail(gains, layout=Layout(version=2, ell=ell))))
+        del data["provenance"]
+        _v2_scale(data, 0, plus=F(2), minus=F(2))
+        _v2_set(data, c={"c2": F(data["constants"]["c2"]) * 2, **(_ell(V2_ELL) if any(ell) else {})},
+                p={"gamma": _v2(data, "gamma") * F(11, 5)})
+        data["overshoot_bound"] = sqrt_decimal_up(max(F(data["constants"]["c2"]), _v2(data, "gamma")))
+        bases[key] = data
+    two = copy.deepcopy(bases["one"])
+    two["pieces"] = [dict(two["pieces"][0], end=format_rational(F(1, 2))), dict(two["pieces"][0], start=format_rational(F(1, 2)))]
+    bases["two"] = two
+    return bases
 
 
 def _quadratic(edits: dict | None = None) -> dict:
@@ -206,6 +371,17 @@ def forged() -> tuple[dict[str, str], list[dict]]:
         name = f"sup-flow_{stem}.json"
         files[name] = _text(data)
         manifest.append({"file": name, "template": "sup-flow", "premise": premise, "fails": expected_failures(data)})
+    v2 = _sup_flow_v2_bases()
+    for key, suffix in (("one", ""), ("two", "_pieces"), ("no_drag", "_no_drag")):
+        name = f"true_sup_flow_v2{suffix}.json"
+        files[name] = _text(v2[key])
+        manifest.append({"file": name, "template": "sup-flow/v2", "premise": None, "fails": []})
+    for stem, premise, key, edit in SUP_FLOW_V2:
+        data = copy.deepcopy(v2[key])
+        edit(data)
+        name = f"sup-flow-v2_{stem}.json"
+        files[name] = _text(data)
+        manifest.append({"file": name, "template": "sup-flow/v2", "premise": premise, "fails": expected_failures(data)})
     for name, premise, data in _reset_contraction():
         files[name] = _text(data)
         manifest.append({"file": name, "template": "reset-contraction", "premise": premise,

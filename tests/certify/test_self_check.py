@@ -45,6 +45,20 @@ def test_every_premise_has_a_false_certificate_that_names_it():
         names |= {p.name for p in sup_flow_premises(SupFlowCertificate.from_dict(data))}
     assert set(SUP_FLOW_PREMISES) <= names and len(SUP_FLOW_PREMISES) == 12
     assert sorted(e["premise"] for e in FALSE if e["template"] == "sup-flow") == sorted(SUP_FLOW_PREMISES)
+    # sup-flow/v2: every premise of its one-piece true files (with and without the drag split) that its frame (version
+    # 1's, broken by the sup-flow files) does not hold, the no-drag file's c2 premise being version 1's own (same name,
+    # same decision), and the exits of the two-piece file (a finite piece, and the tail past T > 0)
+    from symbolic_friction._certify.self_check import SUP_FLOW_V2_PREMISES
+    from symbolic_friction._certify.sup_flow import FlowExit, frame_premises
+    from symbolic_friction._certify.sup_flow_v2 import SupFlowCertificateV2
+
+    own = set()
+    for name in ("true_sup_flow_v2.json", "true_sup_flow_v2_pieces.json", "true_sup_flow_v2_no_drag.json"):
+        cert = SupFlowCertificateV2.from_dict(json.loads((DIRECTORY / name).read_text(encoding="utf-8")))
+        frame = {p.name for p in frame_premises(cert)} | {"c2 ≥ ‖e^(At)‖² for every t ≥ 0"}
+        own |= {p.name for p in cert.premises() if p.name not in frame and (len(cert.pieces) == 1 or isinstance(p, FlowExit))}
+    assert own == set(SUP_FLOW_V2_PREMISES) and len(SUP_FLOW_V2_PREMISES) == 28
+    assert sorted(e["premise"] for e in FALSE if e["template"] == "sup-flow/v2") == sorted(SUP_FLOW_V2_PREMISES)
     # reset contraction: every premise of either kind (overshoot or not) of file
     from symbolic_friction._certify.reset_contraction_proof import PREMISES as RESET
 
@@ -55,6 +69,9 @@ def test_every_premise_has_a_false_certificate_that_names_it():
     # where the premises are independent, exactly that premise fails
     alone = [e for e in FALSE if e["fails"] == [e["premise"]]]
     assert len(alone) >= 40
+    # sup-flow/v2: alone where the premises are independent (the others are implied by the exits, K3j ≥ 0 or ℓ ≥ 0)
+    v2 = {e["premise"] for e in alone if e["template"] == "sup-flow/v2"}
+    assert len(v2) == 19, sorted(v2)
 
 
 class _Ones:
@@ -69,7 +86,7 @@ class _Ones:
 def test_the_self_check_passes_on_this_install():
     result = refuse_false_certificates()
     assert result.ok and result.uncovered == ()
-    assert len(result.refusals) == len(MANIFEST) == 107
+    assert len(result.refusals) == len(MANIFEST) == 138
 
 
 @pytest.mark.parametrize("entry", FALSE, ids=lambda e: e["file"])
@@ -95,7 +112,7 @@ def test_the_sign_premises_are_refused_by_the_verifier_through_the_console_scrip
     import subprocess
     import sys
 
-    assert len(SIGNS) == 21
+    assert len(SIGNS) == 22
     run = subprocess.run([sys.executable, "-m", "symbolic_friction", "verify", *(str(DIRECTORY / e["file"]) for e in SIGNS)],
                          capture_output=True, text=True, timeout=120)
     assert run.returncode == 1 and "MALFORMED" not in run.stdout and "error" not in run.stderr, run.stderr
@@ -110,10 +127,11 @@ def test_the_sign_premises_are_refused_by_the_verifier_through_the_console_scrip
 
 def test_the_true_controls_are_proved(capsys):
     for name in ("true_stability.json", "true_hunting.json", "true_quadratic.json", "true_sup_flow.json",
-                 "true_sup_flow_single.json", "true_reset_contraction.json", "true_reset_contraction_dwell.json",
+                 "true_sup_flow_single.json", "true_sup_flow_v2.json", "true_sup_flow_v2_pieces.json",
+                 "true_sup_flow_v2_no_drag.json", "true_reset_contraction.json", "true_reset_contraction_dwell.json",
                  "true_reset_contraction_no_overshoot.json"):
         assert main(["verify", str(DIRECTORY / name)]) == 0
-    assert capsys.readouterr().out.count("PROVED ") == 8
+    assert capsys.readouterr().out.count("PROVED ") == 11
 
 
 # -- breaking the verifier breaks the self-check ----------------------------------------------------------
@@ -138,6 +156,25 @@ def test_leading_minors_only_fail_the_self_check(monkeypatch):
         (tuple(range(k)), verify_module._det([row[:k] for row in self.matrix[:k]])) for k in (1, 2, 3)])
     result = refuse_false_certificates()
     assert not result.ok
+
+
+def test_a_sup_flow_v2_without_its_drag_premises_fails_the_self_check(monkeypatch):
+    """Deciding c₂ and the exits without the drag maps ``D_ℓ`` proves the files where only they fail; dropping the
+    coupling premise proves the coupling file."""
+    from symbolic_friction._certify import sup_flow_enclosure, sup_flow_v2
+
+    real_exit = sup_flow_enclosure._exit_holds
+    monkeypatch.setattr(sup_flow_enclosure, "_pullbacks", lambda gram, maps: [gram])
+    monkeypatch.setattr(sup_flow_enclosure, "_exit_holds",
+                        lambda forms, gram, **kw: real_exit([(s, k, None) for s, k, _ in forms], gram, **kw))
+    # the files where only a drag premise fails are proved; the one where the planes fail is still refused
+    assert _failed(refuse_false_certificates()) == ["sup-flow-v2_c2_drag.json", "sup-flow-v2_exit_tail.json",
+                                                     "sup-flow-v2_exit.json"]
+    monkeypatch.undo()
+    real = sup_flow_v2.sup_flow_v2_premises
+    monkeypatch.setattr(sup_flow_v2, "sup_flow_v2_premises", lambda cert: [p for p in real(cert) if "coupling" not in p.name])
+    # the coupling file is proved; the K+33 file no longer names the coupling, which fails with it
+    assert set(_failed(refuse_false_certificates())) == {"sup-flow-v2_coupling.json", "sup-flow-v2_k33_plus.json"}
 
 
 def test_a_non_strict_decision_fails_the_self_check(monkeypatch):
