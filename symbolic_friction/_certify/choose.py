@@ -208,7 +208,7 @@ DEFAULT_KAPPA_TOL = Fraction(1, 10)
 """``auto`` stops once a proved κ is at most ``(1 + this)`` times the proven lower end of κ_lin."""
 MAX_KAPPA_TOL = 1000
 """The largest ``kappa_tol`` taken (``κ`` within ``1001·κ_lin``: the closed form's floor on most gains)."""
-DEFAULT_BUDGET = 6.0
+DEFAULT_BUDGET = 5.0
 """Seconds ``auto`` spends on one gain set before it keeps what it has (a search is not started past it)."""
 STIFFNESS_LIMIT = 1e3
 """Time pieces are not searched where the flow's fastest and slowest rates are further apart than this: their

@@ -94,7 +94,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         "pieces until κ is within Q (relative) of the largest pointwise κ at their corners")
     parser.add_argument("--budget", default=None, metavar="SECONDS",
                         help="one gain set: start no further search after this many seconds and keep the smallest κ "
-                        "proved so far (default 6; the cheap searches take well under a second)")
+                        "proved so far (default 5; the cheap searches take well under a second)")
     parser.add_argument("--out", default="proofs", metavar="DIR", help="output directory (default: proofs)")
     parser.add_argument(
         "--name",

@@ -388,6 +388,33 @@ SUP_FLOW_TAIL = (
 )
 MUTANTS = MUTANTS + SUP_FLOW_TAIL
 
+_SF2 = "symbolic_friction/_certify/sup_flow_v2.py"
+_MQ = "symbolic_friction/_model/quadratic.py"
+_MS = "symbolic_friction/_model/sup_flow.py"
+_SFE = "symbolic_friction/_certify/sup_flow_enclosure.py"
+SUP_FLOW_V2 = (
+    Mutant("sf2.k12_sign", "verifier", _SF2, 's * k[0][1], ">=", zero))', 'abs(k[0][1]), ">=", zero))',
+           "K±₁₂ of either sign accepted (the rate form's (1,1) entry 2sK₁₂ may be negative)"),
+    Mutant("sf2.coupling_swapped", "verifier", _SF2, "model.coupling_block(piece.form(1), piece.form(-1))",
+           "model.coupling_block(piece.form(-1), piece.form(1))", "U⁺ ≤ U⁻ on σ = 0 asked instead of U⁻ ≤ U⁺"),
+    Mutant("sf2.ell_sign", "verifier", _SF2, 'f"ell{j + 1} ≥ 0", ell[j], ">=", zero)', 'f"ell{j + 1} ≥ 0", abs(ell[j]), ">=", zero)',
+           "a negative ℓ accepted"),
+    Mutant("sf2.no_drag_maps", "verifier", _SF2, "        if not any(self.ell):\n            return ()",
+           "        if any(self.ell) or True:\n            return ()",
+           "the drag exit form and c₂ ≥ ‖e^{At}D_ℓ‖² never decided"),
+    Mutant("sf2.forms_same_sign", "verifier", _SF2, "return ((1, self.form(1)), (-1, self.form(-1)))",
+           "return ((1, self.form(1)), (-1, self.form(1)))", "the exits of σ < 0 decided with K⁺"),
+    Mutant("mq.drag_rate_sign", "model", _MQ, "rate[i][j] + k[i][2] * ell[j] + ell[i] * k[j][2]",
+           "rate[i][j] + 2 * (k[i][2] * ell[j] + ell[i] * k[j][2])", "the friction drag counted twice in the rate form"),
+    Mutant("mq.drag_band_entry", "model", _MQ, "drag = ((2 * k[0][2] * l1, k[0][2] * l3 + k[2][2] * l1)",
+           "drag = ((2 * k[0][2] * l1 + k[2][2], k[0][2] * l3 + k[2][2] * l1)", "the band's drag block gains K₃₃ on its diagonal"),
+    Mutant("ms.drag_map_sign", "model", _MS, "return ((s, zero, zero), (-ell[0], -one - ell[1], -ell[2]), (zero, zero, one))",
+           "return ((s, zero, zero), (ell[0], -one - ell[1], ell[2]), (zero, zero, one))", "D_ℓ with +ℓ: the exit point moved"),
+    Mutant("sfe.drag_pullback_skipped", "verifier", _SFE, "    for d in maps:\n        m = flint.arb_mat",
+           "    for d in maps[:0]:\n        m = flint.arb_mat", "c₂ not held against ‖e^{At}D_ℓ‖²"),
+)
+MUTANTS = MUTANTS + SUP_FLOW_V2
+
 KERNEL_RESIDUAL = (
     Mutant("ker.event_residual", "kernel", _KER, "ev_res[n_ev] = residual", "ev_res[n_ev] = 0.0",
            "the residual abs(v) at an event is dropped (the mode table's v = 0 at events is then vacuous)",
