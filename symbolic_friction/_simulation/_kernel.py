@@ -90,7 +90,17 @@ def to_x(K, z, x):
 
 
 @kernel
-def _emit(K, q, t0, t1, final, mode, sigma, base, offset, ts, i, out_x, out_z, out_mode):
+def _keep(state, spacing, e00, e01, e02, e10, e11, e12, e20, e21, e22):
+    """Keep the propagator of ``spacing`` in ``state`` for the next slip (:func:`_emit`)."""
+    e = S_E
+    state[S_SPACING] = spacing
+    state[e], state[e + 1], state[e + 2] = e00, e01, e02
+    state[e + 3], state[e + 4], state[e + 5] = e10, e11, e12
+    state[e + 6], state[e + 7], state[e + 8] = e20, e21, e22
+
+
+@kernel
+def _emit(K, q, t0, t1, final, mode, sigma, base, offset, ts, i, out_x, out_z, out_mode, state):
     """Dense output of one segment: the samples ``t0 ≤ ts[i] < t1`` (``≤ t1`` when ``final``).
 
     A sample at an event time belongs to the segment that starts there.
@@ -102,6 +112,11 @@ def _emit(K, q, t0, t1, final, mode, sigma, base, offset, ts, i, out_x, out_z, o
     them are instead stepped from the previous one with the exact propagator
     ``e^{AΔ} = w''(Δ) I + w'(Δ) B1 + w(Δ) B2`` (nine products); the closed form
     restarts every run, so rounding never accumulates over more than a few steps.
+    The propagator of a spacing is computed when a sample is first stepped with
+    it (a slip with one or two samples, or on stiff gains, where the closed form
+    always runs, never needs it), and kept in ``state`` (``S_SPACING``, ``S_E``)
+    for the next slip with the same spacing to the last bit: reset PID's
+    trajectories are slip after slip, each on the same grid.
     """
     f_c = K[I_FC]
     m = ts.size
@@ -110,6 +125,7 @@ def _emit(K, q, t0, t1, final, mode, sigma, base, offset, ts, i, out_x, out_z, o
     run = STEP_RUN  # the first slip sample is always in closed form
     prev = 0.0
     spacing = -1.0
+    ready = False  # whether e00 … e22 are the propagator of spacing
     e00 = e01 = e02 = e10 = e11 = e12 = e20 = e21 = e22 = 0.0
     ys = yp = yv = 0.0
     while i < m and (ts[i] < t1 or (final and ts[i] <= t1)):
@@ -121,17 +137,16 @@ def _emit(K, q, t0, t1, final, mode, sigma, base, offset, ts, i, out_x, out_z, o
             step = tau - prev
             same = abs(step - spacing) <= 8.0 * EPS * (abs(t_i) + abs(t0))
             if run < STEP_RUN and same and K[I_STIFF] == 0.0:
-                ys, yp, yv = (
-                    e00 * ys + e01 * yp + e02 * yv,
-                    e10 * ys + e11 * yp + e12 * yv,
-                    e20 * ys + e21 * yp + e22 * yv,
-                )
-                run += 1
-            else:
-                ys, yp, yv = flow(K, q, tau)
-                if not same and step > 0.0:
-                    # a new spacing: its propagator, from the same w as the closed form
-                    w0, w1, w2 = w3(K, step)
+                if not ready and state[S_SPACING] == spacing:
+                    # computed for an earlier slip, from the same w3(K, spacing): the same numbers
+                    e = S_E
+                    e00, e01, e02 = float(state[e]), float(state[e + 1]), float(state[e + 2])
+                    e10, e11, e12 = float(state[e + 3]), float(state[e + 4]), float(state[e + 5])
+                    e20, e21, e22 = float(state[e + 6]), float(state[e + 7]), float(state[e + 8])
+                    ready = True
+                if not ready:
+                    # the spacing's propagator, from the same w as the closed form
+                    w0, w1, w2 = w3(K, spacing)
                     e00 = w2 + w1 * K[b1] + w0 * K[b2]
                     e01 = w1 * K[b1 + 1] + w0 * K[b2 + 1]
                     e02 = w1 * K[b1 + 2] + w0 * K[b2 + 2]
@@ -141,7 +156,19 @@ def _emit(K, q, t0, t1, final, mode, sigma, base, offset, ts, i, out_x, out_z, o
                     e20 = w1 * K[b1 + 6] + w0 * K[b2 + 6]
                     e21 = w1 * K[b1 + 7] + w0 * K[b2 + 7]
                     e22 = w2 + w1 * K[b1 + 8] + w0 * K[b2 + 8]
-                    spacing = step
+                    ready = True
+                    _keep(state, spacing, e00, e01, e02, e10, e11, e12, e20, e21, e22)
+                ys, yp, yv = (
+                    e00 * ys + e01 * yp + e02 * yv,
+                    e10 * ys + e11 * yp + e12 * yv,
+                    e20 * ys + e21 * yp + e22 * yv,
+                )
+                run += 1
+            else:
+                ys, yp, yv = flow(K, q, tau)
+                if not same and step > 0.0:
+                    spacing = step  # a new spacing
+                    ready = False
                 run = 0
             prev = tau
             # the closed form keeps v's sign up to rounding; the mode fixes it
@@ -159,12 +186,41 @@ def _emit(K, q, t0, t1, final, mode, sigma, base, offset, ts, i, out_x, out_z, o
 
 
 @kernel
+def _flow_star(g0, g1, g2, q):
+    """:func:`flow` from ``(g0, g1, g2) = _basis(K, τ)`` computed before: the same products, in the same order."""
+    return (
+        g0 * q[0] + g1 * q[3] + g2 * q[6],
+        g0 * q[1] + g1 * q[4] + g2 * q[7],
+        g0 * q[2] + g1 * q[5] + g2 * q[8],
+    )
+
+
+@kernel
 def _finite(a, b, c):
     return abs(a) <= 1.7976931348623157e308 and abs(b) <= 1.7976931348623157e308 and abs(c) <= 1.7976931348623157e308
 
 
 @kernel
-def trajectory(K, W, N, z0, x0, t_end, max_events, ts, out_x, out_z, out_mode, ev_t, ev_x, ev_m, ev_res):
+def _save(state, turn, i, n_ev, t, sigma, v, base, offset, mode, n_resets, t_reset, q):
+    """Write the event loop's state into ``state`` (the layout ``S_*`` of :mod:`._kernel_layout`)."""
+    state[S_SAVED] = 1.0
+    state[S_TURN] = turn
+    state[S_I] = i
+    state[S_N_EV] = n_ev
+    state[S_T] = t
+    state[S_SIGMA] = sigma
+    state[S_V] = v
+    state[S_BASE] = base
+    state[S_OFFSET] = offset
+    state[S_MODE] = mode
+    state[S_RESETS] = n_resets
+    state[S_T_RESET] = t_reset
+    for c in range(9):
+        state[S_Q + c] = q[c]
+
+
+@kernel
+def trajectory(K, W, N, z0, x0, t_end, max_events, ts, out_x, out_z, out_mode, ev_t, ev_x, ev_m, ev_res, state):
     """The solution from ``x0 = T z0`` on ``[0, t_end]``: samples at ``ts`` and every event.
 
     Parameters
@@ -187,8 +243,12 @@ def trajectory(K, W, N, z0, x0, t_end, max_events, ts, out_x, out_z, out_mode, e
         Filled with each event's time, state (``v = 0``), modes before and
         after, and ``|v|`` that the closed form gave at the event before it
         was set to 0; padded with NaN, NaN, 0, 0.  If more than
-        ``E < max_events`` events occur, the status is ``BUFFER_FULL`` (call
-        again with room for more).
+        ``E < max_events`` events occur, the status is ``BUFFER_FULL``: call
+        again with room for more, the events so far copied into it, the same
+        samples and ``state``, and the loop goes on where it stopped.
+    state : ndarray, shape (S_SIZE,)
+        Zeros for a fresh start; after ``BUFFER_FULL``, the loop's state
+        (``S_*`` of :mod:`._kernel_layout`), nothing else filled or padded yet.
 
     Returns
     -------
@@ -197,32 +257,52 @@ def trajectory(K, W, N, z0, x0, t_end, max_events, ts, out_x, out_z, out_mode, e
     f_c = K[I_FC]
     f_s, excess = K[I_FS], K[I_EXCESS]
     dwell = K[I_DWELL]  # < 0: the paper's PID
-    n_resets = 0
-    t_reset = 0.0
     cap = ev_t.size
     m = ts.size
-    i = 0
-    n_ev = 0
     status = T_END
-    t = 0.0
-    q = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
-    to_x(K, z0, x0)
-    sigma, phi, v = float(x0[0]), float(x0[1]), float(x0[2])
-    if not _finite(sigma, phi, v):
-        status = NONFINITE
-        base, offset, mode = 0, 0.0, 0
-    elif v != 0.0:
-        base, offset, mode = 0, phi, (1 if v > 0.0 else -1)
+    if state[S_SAVED] != 0.0:
+        # resumed after BUFFER_FULL with a larger event buffer: x0 and the samples before i are filled
+        first = int(state[S_TURN])
+        i, n_ev = int(state[S_I]), int(state[S_N_EV])
+        n_resets, t_reset = int(state[S_RESETS]), float(state[S_T_RESET])
+        t, sigma, v = float(state[S_T]), float(state[S_SIGMA]), float(state[S_V])
+        base, offset, mode = int(state[S_BASE]), float(state[S_OFFSET]), int(state[S_MODE])
+        c = S_Q
+        q = (float(state[c]), float(state[c + 1]), float(state[c + 2]), float(state[c + 3]), float(state[c + 4]),
+             float(state[c + 5]), float(state[c + 6]), float(state[c + 7]), float(state[c + 8]))
     else:
-        # φ = -k_i e_i - k_p s is rounded: a few ulps of its terms
-        tol = SNAP_ULPS * EPS * (K[I_GAIN_KI] * abs(float(z0[0])) + K[I_GAIN_KP] * abs(float(z0[1])))
-        base, offset, mode = mode_at_rest(sigma, 0, phi, f_c, tol, excess)
+        first = 0
+        n_resets = 0
+        t_reset = 0.0
+        i = 0
+        n_ev = 0
+        t = 0.0
+        q = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+        to_x(K, z0, x0)
+        sigma, phi, v = float(x0[0]), float(x0[1]), float(x0[2])
+        if not _finite(sigma, phi, v):
+            status = NONFINITE
+            base, offset, mode = 0, 0.0, 0
+        elif v != 0.0:
+            base, offset, mode = 0, phi, (1 if v > 0.0 else -1)
+        else:
+            # φ = -k_i e_i - k_p s is rounded: a few ulps of its terms
+            tol = SNAP_ULPS * EPS * (K[I_GAIN_KI] * abs(float(z0[0])) + K[I_GAIN_KP] * abs(float(z0[1])))
+            base, offset, mode = mode_at_rest(sigma, 0, phi, f_c, tol, excess)
+    # e^{Aτ*}'s three scalar functions at τ* = K[I_STICK_SLIP_T], the length of every slip that leaves a stick:
+    # evaluated at the first such slip of the call, then reused (reset PID slips from a stick after every reset)
+    star = False
+    g0_star = g1_star = g2_star = 0.0
     if status == T_END:
         # grazing contacts continue a slip without an event; bound the loop anyway
-        for _ in range(4 * max_events + 16):
+        for turn in range(first, 4 * max_events + 16):
+            if n_ev >= cap:
+                # a turn writes at most one event: with none left, save the state for a call with more room
+                _save(state, turn, i, n_ev, t, sigma, v, base, offset, mode, n_resets, t_reset, q)
+                return BUFFER_FULL, n_ev, t
             if mode == 0:
                 if sigma == 0.0:
-                    i = _emit(K, q, t, t_end, True, 0, sigma, base, offset, ts, i, out_x, out_z, out_mode)
+                    i = _emit(K, q, t, t_end, True, 0, sigma, base, offset, ts, i, out_x, out_z, out_mode, state)
                     status = EQUILIBRIUM
                     t = t_end
                     break
@@ -241,10 +321,9 @@ def trajectory(K, W, N, z0, x0, t_end, max_events, ts, out_x, out_z, out_mode, e
                         t_allow = t if n_resets == 0 else max(t, t_reset + dwell)
                         t_cross = t + (d * f_c - phi_now) / sigma
                         if t_allow < t_cross and t_allow < t_end:
-                            i = _emit(K, q, t, t_allow, False, 0, sigma, base, offset, ts, i, out_x, out_z, out_mode)
-                            if n_ev >= cap:
-                                status = BUFFER_FULL
-                                break
+                            if i < m and ts[i] < t_allow:  # a reset right after a slip: usually no sample
+                                i = _emit(K, q, t, t_allow, False, 0, sigma, base, offset, ts, i,
+                                          out_x, out_z, out_mode, state)
                             ev_t[n_ev] = t_allow
                             ev_x[n_ev, 0] = sigma
                             ev_x[n_ev, 1] = phi_now + sigma * (t_allow - t)
@@ -258,7 +337,8 @@ def trajectory(K, W, N, z0, x0, t_end, max_events, ts, out_x, out_z, out_mode, e
                             t_reset = t
                             base, offset = d, 0.0
                             if n_ev >= max_events:
-                                i = _emit(K, q, t, t, True, mode, sigma, base, offset, ts, i, out_x, out_z, out_mode)
+                                i = _emit(K, q, t, t, True, mode, sigma, base, offset, ts, i,
+                                          out_x, out_z, out_mode, state)
                                 status = MAX_EVENTS
                                 break
                             continue
@@ -268,15 +348,13 @@ def trajectory(K, W, N, z0, x0, t_end, max_events, ts, out_x, out_z, out_mode, e
                     gap += d * excess
                 t_next = t + gap / sigma
                 if t_next >= t_end:
-                    i = _emit(K, q, t, t_end, True, 0, sigma, base, offset, ts, i, out_x, out_z, out_mode)
+                    i = _emit(K, q, t, t_end, True, 0, sigma, base, offset, ts, i, out_x, out_z, out_mode, state)
                     t = t_end
                     break
-                i = _emit(K, q, t, t_next, False, 0, sigma, base, offset, ts, i, out_x, out_z, out_mode)
+                if i < m and ts[i] < t_next:  # after a reset the stick ends at once: no sample
+                    i = _emit(K, q, t, t_next, False, 0, sigma, base, offset, ts, i, out_x, out_z, out_mode, state)
                 # rows (iii)/(ix): slip d; with stiction from φ = d·f_s, with a jump in v' to d·(f_s - f_c)
                 t, base, offset, mode = t_next, d, (d * excess if excess != 0.0 else 0.0), d
-                if n_ev >= cap:
-                    status = BUFFER_FULL
-                    break
                 ev_t[n_ev] = t
                 ev_x[n_ev, 0] = sigma
                 ev_x[n_ev, 1] = d * f_s
@@ -298,7 +376,13 @@ def trajectory(K, W, N, z0, x0, t_end, max_events, ts, out_x, out_z, out_mode, e
                     # leaving a stick (rows iii/ix): the slip's length is known for this gain set
                     tau = K[I_STICK_SLIP_T]
                     found = FOUND if tau <= horizon else NONE
-                    ys, yp, yv = flow(K, q, min(tau, horizon))
+                    if found == FOUND:
+                        if not star:
+                            g0_star, g1_star, g2_star = _basis(K, tau)
+                            star = True
+                        ys, yp, yv = _flow_star(g0_star, g1_star, g2_star, q)
+                    else:
+                        ys, yp, yv = flow(K, q, horizon)
                 elif p0 == 0.0 and v0 == 0.0 and horizon <= K[I_STICK_SLIP_H]:
                     found, tau = NONE, horizon  # w has no zero within the cached horizon
                     ys, yp, yv = flow(K, q, horizon)
@@ -306,15 +390,15 @@ def trajectory(K, W, N, z0, x0, t_end, max_events, ts, out_x, out_z, out_mode, e
                     found, tau, ys, yp, yv = first_zero(K, W, N, s0, p0, v0, d, horizon)
                 if found == UNDECIDED:
                     # the search could not decide where this slip ends: stop at its start, never guess
-                    i = _emit(K, q, t, t, True, d, sigma, base, offset, ts, i, out_x, out_z, out_mode)
+                    i = _emit(K, q, t, t, True, d, sigma, base, offset, ts, i, out_x, out_z, out_mode, state)
                     status = NO_DECISION
                     break
                 if found == NONE:
-                    i = _emit(K, q, t, t_end, True, d, sigma, base, offset, ts, i, out_x, out_z, out_mode)
+                    i = _emit(K, q, t, t_end, True, d, sigma, base, offset, ts, i, out_x, out_z, out_mode, state)
                     t = t_end
                     break
                 t_next = t + tau
-                i = _emit(K, q, t, t_next, False, d, sigma, base, offset, ts, i, out_x, out_z, out_mode)
+                i = _emit(K, q, t, t_next, False, d, sigma, base, offset, ts, i, out_x, out_z, out_mode, state)
                 residual = abs(yv)
                 if max(abs(ys), abs(yp), abs(yv)) <= UNDERFLOW:  # decayed onto x*_k ∈ 𝒜
                     ys, yp = 0.0, 0.0
@@ -322,9 +406,6 @@ def trajectory(K, W, N, z0, x0, t_end, max_events, ts, out_x, out_z, out_mode, e
                 base, offset, new_mode = mode_after_slip(ys, yp, d, f_c, tol, excess)
                 t, sigma, v = t_next, ys, 0.0
                 if new_mode != d:  # else a grazing contact: the slip goes on
-                    if n_ev >= cap:
-                        status = BUFFER_FULL
-                        break
                     ev_t[n_ev] = t
                     ev_x[n_ev, 0] = sigma
                     ev_x[n_ev, 1] = base * f_c + offset
@@ -335,15 +416,15 @@ def trajectory(K, W, N, z0, x0, t_end, max_events, ts, out_x, out_z, out_mode, e
                     n_ev += 1
                     mode = new_mode
                 if t >= t_end:
-                    i = _emit(K, q, t, t_end, True, mode, sigma, base, offset, ts, i, out_x, out_z, out_mode)
+                    i = _emit(K, q, t, t_end, True, mode, sigma, base, offset, ts, i, out_x, out_z, out_mode, state)
                     t = t_end
                     break
             if n_ev >= max_events:
-                i = _emit(K, q, t, t, True, mode, sigma, base, offset, ts, i, out_x, out_z, out_mode)
+                i = _emit(K, q, t, t, True, mode, sigma, base, offset, ts, i, out_x, out_z, out_mode, state)
                 status = MAX_EVENTS
                 break
         else:
-            i = _emit(K, q, t, t, True, mode, sigma, base, offset, ts, i, out_x, out_z, out_mode)
+            i = _emit(K, q, t, t, True, mode, sigma, base, offset, ts, i, out_x, out_z, out_mode, state)
             status = MAX_EVENTS
     if status == T_END or status == EQUILIBRIUM:
         # x finite but z = T⁻¹ x overflowing is leaving the range of float64 too
@@ -378,13 +459,21 @@ def trajectory(K, W, N, z0, x0, t_end, max_events, ts, out_x, out_z, out_mode, e
 
 @parallel
 def trajectories(
-    K, W, N, Z0, X0, t_end, max_events, ts, out_x, out_z, out_mode, ev_t, ev_x, ev_m, ev_res, status, n_ev, t_stop
+    K, W, N, Z0, X0, t_end, max_events, ts, out_x, out_z, out_mode, ev_t, ev_x, ev_m, ev_res, state,
+    status, n_ev, t_stop, rows,
 ):
-    """:func:`trajectory` for every row of ``Z0``/``X0`` (in parallel when compiled)."""
-    for j in prange(Z0.shape[0]):
+    """:func:`trajectory` for the rows ``rows`` of ``Z0``, ``X0``, ``out_*``, ``state`` (shape (N, S_SIZE)),
+    ``status``, ``n_ev`` and ``t_stop`` (in parallel when compiled).
+
+    Row ``rows[r]`` has its events in row ``r`` of ``ev_t``, ``ev_x``, ``ev_m``,
+    ``ev_res``, so that the trajectories that go on after ``BUFFER_FULL`` get
+    larger event buffers while their samples stay where they are.
+    """
+    for r in prange(rows.size):
+        j = rows[r]
         st, ne, ts_ = trajectory(
             K, W, N, Z0[j], X0[j], t_end, max_events, ts,
-            out_x[j], out_z[j], out_mode[j], ev_t[j], ev_x[j], ev_m[j], ev_res[j],
+            out_x[j], out_z[j], out_mode[j], ev_t[r], ev_x[r], ev_m[r], ev_res[r], state[j],
         )
         status[j] = st
         n_ev[j] = ne

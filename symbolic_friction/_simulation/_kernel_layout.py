@@ -70,6 +70,19 @@ NONE, FOUND, UNDECIDED = 0, 1, 2
 # -- statuses --------------------------------------------------------------------
 T_END, MAX_EVENTS, EQUILIBRIUM, NONFINITE, BUFFER_FULL, NO_DECISION = 0, 1, 2, 3, 4, 5
 
+# -- the event loop's state, saved when its event buffer is full ------------------
+# A call of the loop that stops with BUFFER_FULL writes here everything the loop carries from one turn to
+# the next; called again with the same samples, its events so far in a larger buffer and this state, it
+# goes on where it stopped, so the trajectory is the one a single call with the larger buffer gives, bit
+# for bit, and nothing is computed twice (event.run).  S_SAVED is 0 for a fresh start; integers are
+# stored as floats (exact below 2⁵³).
+S_SAVED, S_TURN, S_I, S_N_EV, S_T, S_SIGMA, S_V, S_BASE, S_OFFSET, S_MODE, S_RESETS, S_T_RESET = range(12)
+S_Q = 12  # the nine numbers of the last slip (slip_q), which the dense output after the loop may use
+# The dense output's propagator e^{AΔ} (nine entries, row-major) for the spacing Δ at S_SPACING (0: none yet),
+# kept from one slip to the next: the samples of a uniform grid have one Δ, to the last bit, in every slip.
+S_SPACING, S_E = 21, 22
+S_SIZE = 31
+
 # A slip that has decayed to within this (absolute) distance of its equilibrium
 # x*_k = (0, k f_c, 0), a point of 𝒜, cannot be followed further in double
 # precision (the closed form's products become subnormal and v = 0 by

@@ -61,14 +61,22 @@ from .._infra.errors import SimulationError
 from .._model.parameters import Parameters
 from ._base import SimulationMethod, Solution
 from ._jit import kernel, plain, spent_in_plain
+from ._kernel_layout import BUFFER_FULL, I_DWELL, I_STICK_SLIP_H, I_STICK_SLIP_T, S_SIZE
 from ._trajectories import Status, Trajectories
 from .search import slip_model
 
 __all__ = ["EventDriven", "run"]
 
-# Room for this many events per trajectory on the first pass; a trajectory
-# with more is run again with room for max_events (its kernel call says so).
+# Room for this many events per trajectory on the first pass (reset PID: _first_room).  A trajectory
+# with more stops (BUFFER_FULL) with its loop's state saved and goes on from there in a larger buffer
+# (_next_room, at most max_events): nothing is computed twice, and the padding the kernel writes stays
+# within a few times the events it holds (a buffer of max_events = 100 000 slots per trajectory, which
+# the trajectories used to be run again with, cost more than the trajectory itself).
 _FIRST_ROOM = 32
+# A larger buffer has at least _GROWTH times the room of the last, at most _MAX_GROWTH times.
+_GROWTH, _MAX_GROWTH = 4, 64
+# reset PID's first pass: room for at most this many events per trajectory (memory)
+_RESET_ROOM_CAP = 4096
 # the kernel's status codes (T_END, MAX_EVENTS, EQUILIBRIUM, NONFINITE) as names
 _STATUS_NAMES = np.array(
     [Status.T_END, Status.MAX_EVENTS, Status.EQUILIBRIUM, Status.NONFINITE, "buffer full", Status.UNDECIDED], dtype=object
@@ -80,35 +88,67 @@ def _check_positive_int(name: str, value: Any, minimum: int) -> None:
         raise SimulationError(f"{name} must be an integer ≥ {minimum}; got {value!r}")
 
 
-def _kernel_pass(consts, k, Z0, X0, t_end, max_events, ts, room):
-    """One call of the kernel on every row; the buffers it fills (padding included)."""
-    n, m = Z0.shape[0], ts.size
+def _first_room(K, t_end: float, max_events: int) -> int:
+    """Event slots per trajectory for the first pass of the kernel.
+
+    :data:`_FIRST_ROOM` for the paper's PID.  With resets (``K[I_DWELL] ≥ 0``)
+    a stick ends at once in a slip from ``(σ, ±f_c, 0)``, whose length is the
+    same ``τ*`` for every ``σ`` (``K[I_STICK_SLIP_T]``, with ``f_s = f_c``), so
+    a trajectory has about three events (a reset, the stick's end, the slip's
+    end) per ``τ*``.  Room for that many (up to :data:`_RESET_ROOM_CAP`) spares
+    reset PID's trajectories the further passes, each a launch of the kernel,
+    that a smaller buffer would take.  The room changes no result.
+    """
+    room = _FIRST_ROOM
+    if K[I_DWELL] >= 0.0 and K[I_STICK_SLIP_T] <= K[I_STICK_SLIP_H]:
+        room += int(min(3.0 * t_end / K[I_STICK_SLIP_T], _RESET_ROOM_CAP))
+    return int(min(max_events, room))
+
+
+def _next_room(room: int, n_ev: np.ndarray, t_stop: np.ndarray, t_end: float, max_events: int) -> int:
+    """The room of the next pass for trajectories that filled ``room`` slots with ``n_ev`` events by ``t_stop``.
+
+    Their events so far, at the rate they came, extrapolated to ``t_end``
+    with a quarter more, within :data:`_GROWTH` and :data:`_MAX_GROWTH` times
+    ``room`` and at most ``max_events``: usually one more pass.
+    """
+    with np.errstate(divide="ignore", invalid="ignore"):
+        rate = np.max(n_ev / t_stop)
+    want = 1.25 * rate * t_end if np.isfinite(rate) else math.inf
+    return int(min(max_events, _MAX_GROWTH * room, max(_GROWTH * room, want)))
+
+
+def _event_buffers(n: int, room: int) -> list[np.ndarray]:
+    """``ev_t, ev_x, ev_m, ev_res`` for ``n`` trajectories of at most ``room`` events (uninitialised)."""
+    return [np.empty((n, room)), np.empty((n, room, 3)), np.empty((n, room, 2), dtype=np.int8), np.empty((n, room))]
+
+
+def _kernel_call(consts, k, Z0, X0, t_end, max_events, ts, out, state, rows, events):
+    """The kernel on the trajectories ``rows``: into ``out = [out_x, out_z, out_mode, status, n_ev, t_stop]`` and
+    ``state`` (one row per trajectory) and ``events = [ev_t, ev_x, ev_m, ev_res]`` (one row per entry of ``rows``)."""
+    out_x, out_z, out_mode, status, n_ev, t_stop = out
     with np.errstate(over="ignore", invalid="ignore"):  # plain Python on numpy scalars: overflow is a status
-        return _kernel_call(consts, k, Z0, X0, t_end, max_events, ts, room, n, m)
+        if rows.size == 1:  # no parallel region for one trajectory
+            j = int(rows[0])
+            status[j], n_ev[j], t_stop[j] = k.trajectory(
+                *consts, Z0[j], X0[j], t_end, max_events, ts, out_x[j], out_z[j], out_mode[j],
+                *(a[0] for a in events), state[j],
+            )
+        else:
+            k.trajectories(
+                *consts, Z0, X0, t_end, max_events, ts, out_x, out_z, out_mode, *events, state, status, n_ev, t_stop, rows
+            )
 
 
-def _kernel_call(consts, k, Z0, X0, t_end, max_events, ts, room, n, m):
-    out_x, out_z = np.empty((2, n, m, 3))
-    out_mode = np.empty((n, m), dtype=np.int8)
-    ev_t = np.empty((n, room))
-    ev_x = np.empty((n, room, 3))
-    ev_m = np.empty((n, room, 2), dtype=np.int8)
-    ev_res = np.empty((n, room))
-    if n == 1:  # no parallel region for one trajectory
-        code, n_ev, t_stop = k.trajectory(
-            *consts, Z0[0], X0[0], t_end, max_events, ts,
-            out_x[0], out_z[0], out_mode[0], ev_t[0], ev_x[0], ev_m[0], ev_res[0],
-        )
-        status, n_ev, t_stop = np.array([code]), np.array([n_ev]), np.array([t_stop])
-    else:
-        status = np.empty(n, dtype=np.int64)
-        n_ev = np.empty(n, dtype=np.int64)
-        t_stop = np.empty(n)
-        k.trajectories(
-            *consts, Z0, X0, t_end, max_events, ts,
-            out_x, out_z, out_mode, ev_t, ev_x, ev_m, ev_res, status, n_ev, t_stop,
-        )
-    return [out_x, out_z, out_mode, ev_t, ev_x, ev_m, ev_res, status, n_ev, t_stop]
+def _fit(a: np.ndarray, width: int, fill) -> np.ndarray:
+    """``a`` with its event axis (axis 1) cut or padded with ``fill`` to ``width``."""
+    if a.shape[1] > width:
+        return a[:, :width]
+    if a.shape[1] < width:
+        pad = [(0, 0)] * a.ndim
+        pad[1] = (0, width - a.shape[1])
+        return np.pad(a, pad, constant_values=fill)
+    return a
 
 
 def run(
@@ -130,28 +170,40 @@ def run(
     is_plain = k is plain()
     consts = model.constants(not is_plain)
     start = time.perf_counter()
-    room = int(min(max_events, _FIRST_ROOM))
-    out = _kernel_pass(consts, k, Z0, X0, t_end, max_events, ts, room)
-    status, n_ev = out[7], out[8]
-    again = np.flatnonzero(status == 4)  # BUFFER_FULL: more events than the first pass had room for
-    if again.size:
-        more = _kernel_pass(consts, k, Z0[again], np.empty((again.size, 3)), t_end, max_events, ts, int(max_events))
-        n_ev[again] = more[8]
+    n, m = Z0.shape[0], ts.size
+    x, z = np.empty((2, n, m, 3))
+    out = [x, z, np.empty((n, m), dtype=np.int8), np.empty(n, dtype=np.int64), np.empty(n, dtype=np.int64), np.empty(n)]
+    state = np.zeros((n, S_SIZE))
+    room = _first_room(consts[0], t_end, max_events)
+    rows = np.arange(n)
+    events = _event_buffers(n, room)
+    _kernel_call(consts, k, Z0, X0, t_end, max_events, ts, out, state, rows, events)
+    first = events
+    resumed = []  # (rows, their event buffers), round by round, of the trajectories that went on
+    full = out[3] == BUFFER_FULL  # more events than the buffer had room for
+    while full.any() and room < max_events:  # (a buffer of max_events slots is never full)
+        # the full rows go on where they stopped, their events so far copied into larger buffers
+        rows, events = rows[full], [a[full] for a in events]
+        room = _next_room(room, out[4][rows], out[5][rows], t_end, max_events)
+        larger = _event_buffers(rows.size, room)
+        for new, old in zip(larger, events):
+            new[:, : old.shape[1]] = old
+        events = larger
+        _kernel_call(consts, k, Z0, X0, t_end, max_events, ts, out, state, rows, events)
+        resumed.append((rows, events))
+        full = out[3][rows] == BUFFER_FULL
     if is_plain:
         spent_in_plain(time.perf_counter() - start)
+    n_ev = out[4]
     width = int(n_ev.max())
-    for j in (3, 4, 5, 6):  # the event axis, cut or padded to the most events of any row
-        a = out[j]
-        if a.shape[1] > width:
-            out[j] = a[:, :width]
-        elif a.shape[1] < width:
-            pad = [(0, 0)] * a.ndim
-            pad[1] = (0, width - a.shape[1])
-            out[j] = np.pad(a, pad, constant_values=np.nan if j in (3, 4) else 0)
-    if again.size:
-        for j in range(10):
-            out[j][again] = more[j][:, :width] if j in (3, 4, 5, 6) else more[j]
-    x, z, mode, ev_t, ev_x, ev_m, ev_res, status, n_ev, t_stop = out
+    fills = (np.nan, np.nan, 0, 0)  # the kernel's padding of ev_t, ev_x, ev_m, ev_res
+    # the event axis, cut or padded to the most events of any row; a later round's rows overwrite an earlier one's
+    ev = [_fit(a, width, fill) for a, fill in zip(first, fills)]
+    for rows, events in resumed:
+        for a, b, fill in zip(ev, events, fills):
+            a[rows] = _fit(b, width, fill)
+    x, z, mode, status, n_ev, t_stop = out
+    ev_t, ev_x, ev_m, ev_res = ev
     return Trajectories._unchecked(
         params=params,
         method="event",
@@ -185,24 +237,30 @@ def run_one(params: Parameters, z0: np.ndarray, t_end: float, ts: np.ndarray, *,
     Z0 = np.array(z0, dtype=float).reshape(1, 3)
     X0 = np.empty((1, 3))
     ts = np.ascontiguousarray(ts, dtype=float)
-    room = int(min(max_events, _FIRST_ROOM))
+    room = _first_room(consts[0], t_end, max_events)
+    x, z = np.empty((2, 1, m, 3))  # one allocation, two C-contiguous halves
+    mode = np.empty((1, m), dtype=np.int8)
+    ev_t, ev_x, ev_m, ev_res = _event_buffers(1, room)
+    state = np.zeros(S_SIZE)
     while True:
-        x, z = np.empty((2, 1, m, 3))  # one allocation, two C-contiguous halves
-        mode = np.empty((1, m), dtype=np.int8)
-        ev_t, ev_x = np.empty((1, room)), np.empty((1, room, 3))
-        ev_m, ev_res = np.empty((1, room, 2), dtype=np.int8), np.empty((1, room))
         if is_plain:
             with np.errstate(over="ignore", invalid="ignore"):  # overflow is reported as a status
                 code, n, t_stop = k.trajectory(
-                    *consts, Z0[0], X0[0], t_end, max_events, ts, x[0], z[0], mode[0], ev_t[0], ev_x[0], ev_m[0], ev_res[0]
+                    *consts, Z0[0], X0[0], t_end, max_events, ts, x[0], z[0], mode[0],
+                    ev_t[0], ev_x[0], ev_m[0], ev_res[0], state,
                 )
         else:
             code, n, t_stop = k.trajectory(
-                *consts, Z0[0], X0[0], t_end, max_events, ts, x[0], z[0], mode[0], ev_t[0], ev_x[0], ev_m[0], ev_res[0]
+                *consts, Z0[0], X0[0], t_end, max_events, ts, x[0], z[0], mode[0], ev_t[0], ev_x[0], ev_m[0], ev_res[0], state
             )
-        if code != 4 or room >= max_events:  # 4: BUFFER_FULL, run again with room for max_events
+        if code != BUFFER_FULL or room >= max_events:  # (a buffer of max_events slots is never full)
             break
-        room = int(max_events)
+        # go on where the kernel stopped, the events so far in a larger buffer (the comment at _FIRST_ROOM)
+        room = _next_room(room, np.array([n]), np.array([t_stop]), t_end, max_events)
+        larger = _event_buffers(1, room)
+        for new, old in zip(larger, (ev_t, ev_x, ev_m, ev_res)):
+            new[:, : old.shape[1]] = old
+        ev_t, ev_x, ev_m, ev_res = larger
     if is_plain:
         spent_in_plain(time.perf_counter() - start)
     return Trajectories._unchecked(

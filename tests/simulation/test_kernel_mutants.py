@@ -135,7 +135,7 @@ def test_event_residual_is_v_where_the_slip_ended(name, monkeypatch):
     if f_s is not None:
         params = _scaled(params, F(1), f_s)
     ends = []
-    for fn in ("first_zero", "flow"):
+    for fn in ("first_zero", "flow", "_flow_star"):  # _flow_star: a slip from a stick, of the known length τ*
         original = getattr(_kernel, fn)
 
         def spy(*a, _original=original, _fn=fn):
@@ -152,7 +152,7 @@ def test_event_residual_is_v_where_the_slip_ended(name, monkeypatch):
     room = 200
     ev_t, ev_x, ev_m, ev_res = np.empty(room), np.empty((room, 3)), np.empty((room, 2), dtype=np.int8), np.empty(room)
     code, n_ev, _ = _kernel.trajectory(K, W, N, np.array(z0, float), np.empty(3), T_END, room, ts,
-                                       out_x, out_z, out_mode, ev_t, ev_x, ev_m, ev_res)
+                                       out_x, out_z, out_mode, ev_t, ev_x, ev_m, ev_res, np.zeros(_kernel.S_SIZE))
     slip_ends = [j for j in range(n_ev) if ev_m[j, 0] != 0]
     assert code == 0 and len(slip_ends) >= 4
     # every slip's end is an event here (no grazing contact): the i-th slip end is the i-th such event
