@@ -75,10 +75,19 @@ def q(value: object) -> Fraction:
         raise Malformed(f"not an exact number: {value!r}")
     if isinstance(value, str) and (len(value) > MAX_DIGITS or not value.strip() or "_" in value):
         raise Malformed(f"not an exact number: {value[:40]!r}")
+    if isinstance(value, str) and ("e" in value.lower()) and abs(int(_exponent(value))) > MAX_DIGITS:
+        raise Malformed(f"an exponent beyond ±{MAX_DIGITS}: {value[:40]!r}")  # "1e10000000" would take seconds
     try:
         return Fraction(value)
     except (ValueError, ZeroDivisionError):
         raise Malformed(f"not an exact number: {value!r}") from None
+
+
+def _exponent(text: str) -> int:
+    try:
+        return int(text.lower().rsplit("e", 1)[1])
+    except ValueError:
+        raise Malformed(f"not an exact number: {text[:40]!r}") from None
 
 
 def det(m: list[list[Fraction]]) -> Fraction:
