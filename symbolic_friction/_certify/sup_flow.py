@@ -185,6 +185,9 @@ class SupFlowCertificate(GainsAndBound):
     def tail_matrix(self) -> tuple[tuple[Fraction, ...], ...]:
         """The tail's ``P``: the file's own (symmetric, from its six entries) or the paper's."""
         if not self.own_tail:
+            if self.k_i == 0:
+                # the paper's P divides by k_i; the premise k_i > 0 refuses the file, and no traceback comes first
+                return tuple(tuple(Fraction(0) for _ in range(3)) for _ in range(3))
             return tuple(tuple(Fraction(x) for x in row) for row in lyapunov_matrix_entries(self.k_p, self.k_i, self.k_v))
         c = {name[len("tail_p"):]: self.constants[name] for name in TAIL_CONSTANTS}
         return tuple(tuple(c[f"{min(i, j)}{max(i, j)}"] for j in (1, 2, 3)) for i in (1, 2, 3))

@@ -344,3 +344,13 @@ def test_a_search_short_of_time_gives_the_verifier_fewer_parts_and_it_only_refus
     short = verify_sup_flow(cert, max_parts=2)
     assert not short.proved and any("within the 2 parts of one verification" in c.instance for c in short.failures)
     assert verify_sup_flow(cert, max_parts=10**9).proved  # above the limit: the limit
+
+
+def test_k_i_zero_without_a_tail_p_is_refused_not_a_traceback():
+    """The paper's P divides by k_i: a file with k_i = 0 and no tail P must be refused naming k_i > 0."""
+    data = _data()
+    data["parameters"]["k_i"] = "0"
+    for name in [n for n in data["constants"] if n.startswith("tail_p")]:
+        del data["constants"][name]
+    report = _verify(data)
+    assert not report.proved and "k_i > 0" in [c.name for c in report.failures]
