@@ -51,6 +51,7 @@ KINDS: dict[tuple[str, str], str] = {
                                         "--k-d-bar", "--f-c-bar", "--alpha-v")},
     # verify
     ("verify", "files"): "in-file", ("verify", "--json"): "flag", ("verify", "--junit-xml"): "out-file",
+    ("verify", "--independent-only"): "flag",
     # simulate
     ("simulate", "scene"): "in-file", ("simulate", "--out"): "out-dir", ("simulate", "--format"): "choice",
     ("simulate", "--png"): "flag", ("simulate", "--list"): "flag", ("simulate", "--json"): "flag",

@@ -34,6 +34,7 @@ import argparse
 import json
 from collections.abc import Callable
 from typing import Any
+from ._independent import independent_section
 from ._self_check import self_check_section
 from ._sections import (
     Section,
@@ -403,7 +404,7 @@ def crosscheck_section(args: argparse.Namespace) -> Section:
 
 
 SECTIONS: list[Callable[[argparse.Namespace], Section]] = [obligations_section, certificates_section, crosscheck_section,
-                                                          self_check_section]
+                                                          self_check_section, independent_section]
 """The parts of ``check``, in order; append to extend the command."""
 
 

@@ -31,6 +31,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="print one JSON object (every file, its gains, verdict and inequalities) instead of text")
     parser.add_argument("--junit-xml", metavar="FILE", default=None,
                         help="also write a JUnit XML report, one test case per certificate")
+    parser.add_argument("--independent-only", action="store_true",
+                        help="run only the small independent checker (symbolic_friction/independent/), for a reviewer")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -46,6 +48,8 @@ def run(args: argparse.Namespace) -> int:
         from .._infra.junit import check_writable
 
         check_writable(args.junit_xml)
+    if args.independent_only:
+        return _independent_only(args)
     failed = False
     malformed: list[Exception] = []
     bad_names: list[str] = []
@@ -69,6 +73,8 @@ def run(args: argparse.Namespace) -> int:
                 emit(f"MALFORMED {exc}", level=0)
             continue
         cert = report.certificate
+        second = _second_opinion(name, report.proved, args)  # both verifiers, every time
+        failed = failed or not second
         from .._certify.box import BoxReport
 
         if isinstance(report, BoxReport):
@@ -172,3 +178,49 @@ def _box_result(report, name, args, cases: list, payload: list) -> None:
         emit(f"{report.summary()} [{gains}]", level=0)
         for check in report.checks:
             emit(f"  {check}  [{check.obligation}]", level=2)
+
+
+def _independent_verdict(name: object) -> tuple[bool, str]:
+    """The independent checker's verdict on one file: ``(proved, why not)``."""
+    from ..independent import Malformed, check_file
+
+    try:
+        verdict = check_file(str(name))
+    except Malformed as exc:
+        return False, f"not readable by the independent checker: {exc}"
+    except Exception as exc:  # noqa: BLE001 - a crash of the second checker proves nothing, and says why
+        return False, f"the independent checker failed: {type(exc).__name__}: {exc}"
+    return verdict.proved, "" if verdict.proved else "; ".join(verdict.failing[:6])
+
+
+def _second_opinion(name: object, main_proved: bool, args: argparse.Namespace) -> bool:
+    """Run the independent checker beside the main verifier; a file is proved only if both prove it.
+
+    Where they disagree, print both verdicts and the premises the independent checker names.
+    """
+    from .._infra.output import emit
+
+    proved, why = _independent_verdict(name)
+    if proved != main_proved and not args.json:
+        main_text = "proves it" if main_proved else "refuses it"
+        other = "proves it" if proved else f"refuses it ({why})"
+        emit(f"DISAGREE {name}: the main verifier {main_text}; the independent checker {other}", level=0)
+    return proved
+
+
+def _independent_only(args: argparse.Namespace) -> int:
+    """``verify --independent-only``: the small checker alone, one line per file."""
+    import json
+
+    from .._infra.output import emit
+
+    rows, failed = [], False
+    for name in args.files:
+        proved, why = _independent_verdict(name)
+        failed = failed or not proved
+        rows.append({"file": str(name), "status": "proved" if proved else "not proved", "failing": why})
+        if not args.json:
+            emit(f"{'PROVED' if proved else 'NOT PROVED'} {name} (independent checker){'' if proved else ': ' + why}", level=0)
+    if args.json:
+        emit(json.dumps({"files": rows, "passed": not failed, "checker": "independent"}, indent=2, ensure_ascii=False), level=0)
+    return 1 if failed else 0

@@ -58,8 +58,11 @@ def test_every_obligation_holds(full_run):
 
 def test_json_schema(full_run):
     _, payload, _, _ = full_run
-    assert set(payload) == {"obligations", "errata", "certificates", "crosscheck_self_test", "self_check", "passed",
-                            "counts", "configuration"}
+    assert set(payload) == {"obligations", "errata", "certificates", "crosscheck_self_test", "self_check", "independent",
+                            "passed", "counts", "configuration"}
+    # the independent checker: every configured certificate proved, every shipped false one refused
+    assert all(f["proved"] == f["must_prove"] for f in payload["independent"])
+    assert payload["counts"]["independent_ok"] == payload["counts"]["independent_files"] == 16 + 138
     assert payload["configuration"]["source"].endswith("pyproject.toml") and payload["configuration"]["report"] is True
     assert len(payload["configuration"]["certificates"]) == 16 and payload["configuration"]["only"] is None
     assert payload["passed"] is True
