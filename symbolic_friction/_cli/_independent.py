@@ -26,7 +26,7 @@ def independent_section(args: argparse.Namespace) -> Section:
     files: list[tuple[str, object, bool]] = []  # (path, shown as, must be proved)
     if not getattr(args, "no_certificates", False):
         where = resolve_target(args)
-        files += [(str(where.proofs / name), name, True) for name in (where.certificates or ())]
+        files += [(str(where.proofs / name), str(where.proofs / name), True) for name in (where.certificates or ())]
     manifest = json.loads((DIRECTORY / "manifest.json").read_text(encoding="utf-8"))["false_certificates"]
     files += [(str(DIRECTORY / entry["file"]), entry["file"], entry["premise"] is None) for entry in manifest]
     results = []

@@ -14,8 +14,8 @@ from itertools import combinations
 
 MAX_BYTES = 10_000_000
 """Largest file read (the main reader's limit)."""
-MAX_DIGITS = 2000
-"""Most characters of one number (a longer one is refused, so no Fraction grows without bound)."""
+MAX_DIGITS = 20_000
+"""Most characters of one number, and the largest decimal exponent (beyond, refused: no Fraction grows without bound)."""
 
 
 class Malformed(Exception):
@@ -77,10 +77,16 @@ def q(value: object) -> Fraction:
         raise Malformed(f"not an exact number: {value[:40]!r}")
     if isinstance(value, str) and ("e" in value.lower()) and abs(int(_exponent(value))) > MAX_DIGITS:
         raise Malformed(f"an exponent beyond ±{MAX_DIGITS}: {value[:40]!r}")  # "1e10000000" would take seconds
+    import sys
+
+    limit = sys.get_int_max_str_digits()
+    sys.set_int_max_str_digits(0)  # a number within MAX_DIGITS may be past Python's 4300-digit default
     try:
         return Fraction(value)
     except (ValueError, ZeroDivisionError):
-        raise Malformed(f"not an exact number: {value!r}") from None
+        raise Malformed(f"not an exact number: {str(value)[:40]!r}") from None
+    finally:
+        sys.set_int_max_str_digits(limit)
 
 
 def _exponent(text: str) -> int:

@@ -262,8 +262,9 @@ def test_check_fails_when_the_verifier_accepts_one_false_file(monkeypatch, tmp_p
         p for p in real(cert) if not (cert.k1 < 0 and not verify_module.decide(p).holds)])
     result = refuse_false_certificates()
     assert _failed(result) == ["stability_k1_positive.json"]
-    assert main(["verify", str(DIRECTORY / "stability_k1_positive.json")]) == 0  # accepted, as the mutant should
-    capsys.readouterr()
+    # the broken main verifier proves it; the independent checker does not, so `verify` refuses and says so
+    assert main(["verify", str(DIRECTORY / "stability_k1_positive.json")]) == 1
+    assert "the main verifier proves it; the independent checker refuses it" in capsys.readouterr().out
     out = _run_check(monkeypatch, tmp_path, capsys)
     assert "FAILED self-check stability_k1_positive.json: breaks k1 > 0; expected k1 > 0, k1·k4 > k3², c1_hat ≤ k1/2, got proved" in out
     assert out.strip().splitlines()[-1].startswith("check: FAILED")
