@@ -201,6 +201,19 @@ def _finite(a, b, c):
 
 
 @kernel
+def _slip_numbers(K, q, mode, sigma, base, offset, v):
+    """The numbers (:func:`slip_q`) of the slip the loop's state starts in mode ``mode``; ``q`` in a stick.
+
+    For the last sample at a stop: after an event that starts a slip (a stick's end, a reversal,
+    a grazing contact) ``q`` is still the previous slip's; the offset is the slip branch's own.
+    """
+    if mode == 0:
+        return q
+    p0 = offset if base == mode else (base - mode) * K[I_FC] + offset
+    return slip_q(K, sigma, p0, v)
+
+
+@kernel
 def _save(state, turn, i, n_ev, t, sigma, v, base, offset, mode, n_resets, t_reset, q):
     """Write the event loop's state into ``state`` (the layout ``S_*`` of :mod:`._kernel_layout`)."""
     state[S_SAVED] = 1.0
@@ -416,14 +429,17 @@ def trajectory(K, W, N, z0, x0, t_end, max_events, ts, out_x, out_z, out_mode, e
                     n_ev += 1
                     mode = new_mode
                 if t >= t_end:
+                    q = _slip_numbers(K, q, mode, sigma, base, offset, v)
                     i = _emit(K, q, t, t_end, True, mode, sigma, base, offset, ts, i, out_x, out_z, out_mode, state)
                     t = t_end
                     break
             if n_ev >= max_events:
+                q = _slip_numbers(K, q, mode, sigma, base, offset, v)
                 i = _emit(K, q, t, t, True, mode, sigma, base, offset, ts, i, out_x, out_z, out_mode, state)
                 status = MAX_EVENTS
                 break
         else:
+            q = _slip_numbers(K, q, mode, sigma, base, offset, v)
             i = _emit(K, q, t, t, True, mode, sigma, base, offset, ts, i, out_x, out_z, out_mode, state)
             status = MAX_EVENTS
     if status == T_END or status == EQUILIBRIUM:

@@ -77,7 +77,8 @@ T_END, MAX_EVENTS, EQUILIBRIUM, NONFINITE, BUFFER_FULL, NO_DECISION = 0, 1, 2, 3
 # for bit, and nothing is computed twice (event.run).  S_SAVED is 0 for a fresh start; integers are
 # stored as floats (exact below 2⁵³).
 S_SAVED, S_TURN, S_I, S_N_EV, S_T, S_SIGMA, S_V, S_BASE, S_OFFSET, S_MODE, S_RESETS, S_T_RESET = range(12)
-S_Q = 12  # the nine numbers of the last slip (slip_q), which the dense output after the loop may use
+S_Q = 12  # the nine numbers of the last slip (slip_q), carried with the rest (a stop's last sample in a slip
+# mode computes the numbers of the slip it is in from the state, _kernel._slip_numbers: q may be an earlier slip's)
 # The dense output's propagator e^{AΔ} (nine entries, row-major) for the spacing Δ at S_SPACING (0: none yet),
 # kept from one slip to the next: the samples of a uniform grid have one Δ, to the last bit, in every slip.
 S_SPACING, S_E = 21, 22

@@ -70,8 +70,9 @@ def test_a_full_buffer_goes_on_where_it_stopped_bit_for_bit(name, variant, monke
 def test_a_resumed_trajectory_stopped_by_the_event_budget_ends_as_before(variant, monkeypatch):
     """Stopped after each of its first events: the samples up to the stop (the grid ends at it) are unchanged.
 
-    The last sample sits at the stop time, where the dense output after the loop uses the state the loop
-    carried (the last slip's numbers among it), so this also checks that all of it went on.
+    The last sample sits at the stop time, where the dense output uses the state the loop carried (and, in a
+    slip mode, the numbers of the slip that starts there, computed from it), so this also checks that all of it
+    went on.
     """
     monkeypatch.setenv(_jit.ENV, "1" if variant == "numba" else "0")
     for name in ("a", "a_reset"):
