@@ -41,7 +41,8 @@ KINDS: dict[tuple[str, str], str] = {
     # check
     ("check", "--json"): "flag", ("check", "--write"): "flag", ("check", "--no-certificates"): "flag",
     ("check", "--proofs"): "in-dir", ("check", "--config"): "in-file", ("check", "--only"): "names",
-    ("check", "--junit-xml"): "out-file", ("check", "--strict"): "flag",
+    ("check", "--junit-xml"): "out-file", ("check", "--strict"): "flag", ("check", "--smt"): "flag",
+    ("check", "--smt-solver"): "choice", ("check", "--smt-timeout"): "real", ("check", "--smt-budget"): "real",
     # certify
     ("certify", "--mode"): "choice", ("certify", "--margin"): "fraction", ("certify", "--out"): "out-dir",
     ("certify", "--name"): "stem", ("certify", "--label"): "text", ("certify", "--json"): "flag",

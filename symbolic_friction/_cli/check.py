@@ -36,6 +36,7 @@ from collections.abc import Callable
 from typing import Any
 from ._independent import independent_section
 from ._self_check import self_check_section
+from ._smt import add_smt_arguments, smt_section, validate_smt, wants_smt
 from ._sections import (
     Section,
     _crashed,
@@ -53,13 +54,10 @@ HELP = "re-derive the paper's proof obligations for symbolic gains; exit 0 only 
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    """``--json``, ``--write``, ``--proofs DIR``, ``--config FILE`` and ``--no-certificates``."""
+    """``--json``, ``--write``, ``--proofs DIR``, ``--config FILE``, ``--no-certificates`` and the ``--smt`` options."""
     parser.add_argument("--json", action="store_true", help='print {"obligations": [...], "errata": [...]} as JSON instead of a table')
-    parser.add_argument(
-        "--write",
-        action="store_true",
-        help="regenerate the configured certificates (and obligations.md where kept) atomically instead of checking them",
-    )
+    parser.add_argument("--write", action="store_true", help="regenerate the configured certificates (and obligations.md "
+                        "where kept, and proofs/smt/*.smt2) atomically instead of checking them")
     parser.add_argument(
         "--proofs",
         metavar="DIR",
@@ -81,11 +79,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "(a newer solver or package rounded differently); by default drift is reported, not failed "
         "(`strict = true` in the configuration does the same)",
     )
-    parser.add_argument(
-        "--no-certificates",
-        action="store_true",
-        help="check only the derivations (and obligations.md); without it, check fails when no certificate was verified",
-    )
+    parser.add_argument("--no-certificates", action="store_true", help="check only the derivations (and obligations.md); "
+                        "without it, check fails when no certificate was verified")
     parser.add_argument(
         "--only",
         metavar="PART",
@@ -96,6 +91,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
     parser.add_argument("--junit-xml", metavar="FILE", default=None,
                         help="also write a JUnit XML report: one test case per obligation, certificate and self-test row")
+    add_smt_arguments(parser)
 
 
 def obligations_section(args: argparse.Namespace) -> Section:
@@ -437,6 +433,7 @@ def run(args: argparse.Namespace) -> int:
     if only:
         _validate_only(only)
     _validate(args)
+    validate_smt(args)
     where = resolve_target(args)
     as_json = getattr(args, "json", False)
     if where.origin == "none":
@@ -444,7 +441,7 @@ def run(args: argparse.Namespace) -> int:
     elif where.origin not in ("--proofs",):
         emit(f"configuration: {where.origin} (proofs: {where.proofs})", err=as_json, level=2)
     sections = []
-    makers = [obligations_section] if only else SECTIONS
+    makers = ([obligations_section] if only else SECTIONS) + ([smt_section] if wants_smt(args) else [])
     from ._parallel import run_sections
 
     ahead = _decide_offloaded() if not only else {}
