@@ -184,11 +184,10 @@ class TemplateChoice:
         """``"κ ≤ 1.0212·κ_lin (κ_lin ≥ 1.4141960)"``, rounded so that the claim stays true, or empty."""
         if self.kappa_lin_lower is None:
             return ""
-        from .rounding import round_significant
+        from .._infra.bounds import bound_text
 
-        ratio = round_significant(self.ratio, 5, direction="up")
-        lower = round_significant(self.kappa_lin_lower, 8, direction="down")
-        return f"κ ≤ {float(ratio):.5g}·κ_lin (κ_lin ≥ {float(lower):.8g}, proven)"
+        ratio, lower = bound_text(self.ratio, 5, direction="up"), bound_text(self.kappa_lin_lower, 8, direction="down")
+        return f"κ ≤ {ratio}·κ_lin (κ_lin ≥ {lower}, proven)"
 
 
 SEARCHES: dict[str, tuple[str, ...]] = {

@@ -40,6 +40,7 @@ from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
+from .._infra.bounds import bound_text
 from .._infra.errors import CertificateFormatError, InputFileError, SymbolicFrictionError
 from .._model.parameters import Parameters
 from ._template import Template, register
@@ -180,7 +181,8 @@ class HuntingReport:
             stab = {True: "stable", False: "unstable", None: "stability undecided"}[self.proof.stable]
             return (
                 f"PROVED {self.source}: a symmetric hunting cycle exists for {p} through σ* ∈ "
-                f"[{float(lo):.12g}, {float(hi):.12g}] (unique there); multiplier ∈ [{m_lo:.6g}, {m_hi:.6g}], {stab}"
+                f"[{bound_text(lo, 12, direction='down')}, {bound_text(hi, 12, direction='up')}] (unique there); multiplier ∈ "
+                f"[{bound_text(Fraction(m_lo), 6, direction='down')}, {bound_text(Fraction(m_hi), 6, direction='up')}], {stab}"
             )
         failing = [c.name for c in self.checks if not c.holds]
         if not failing:

@@ -48,6 +48,7 @@ from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
+from .._infra.bounds import bound_text
 from .._infra.errors import CertificateError, CertificateFormatError, ParameterError
 from .._infra.rational import format_rational as _f
 from .._model.parameters import Parameters
@@ -67,6 +68,16 @@ _PROVENANCE = ("package", "search", "label")
 MAX_CYCLES = 10_000
 """``settling.cycles`` a file may hold (the verifier raises ``rho`` to it exactly)."""
 SEARCH = "float first zero of E31, outward rounding, arb verification"
+
+
+def _up(q: Fraction) -> str:
+    """An upper bound (ρ, a time by which something holds) printed rounded up: never a stronger claim."""
+    return bound_text(q, 6, direction="up")
+
+
+def _down(q: Fraction) -> str:
+    """A hypothesis' limit (the radius, the longest dwell) printed rounded down: never a weaker hypothesis."""
+    return bound_text(q, 6, direction="down")
 
 
 def _exact(value: Any, what: str) -> Fraction:
@@ -155,7 +166,7 @@ class ContractionCertificate(Gains):
     @property
     def claim_column(self) -> str:
         """What ``check``'s short column shows: ``ρ`` rounded up."""
-        return f"ρ≤{float(self.rho):.6g}" if self.rho > 0 else f"ρ={_f(self.rho)}"
+        return f"ρ≤{_up(self.rho)}" if self.rho > 0 else f"ρ={_f(self.rho)}"
 
     def to_dict(self) -> dict[str, Any]:
         return {
@@ -222,9 +233,9 @@ class ContractionReport(VerificationReport):
         c = self.certificate
         kind = "overshoot: a reset ends each stick" if c.overshoot else "no overshoot"
         return (f"PROVED {self.source}: all {len(self.checks)} premises of the reset-contraction template hold; "
-                f"reset PID from a stick exit with |σ| ≤ {float(c.radius):.6g} ({kind}): |σ_k| ≤ {float(c.rho):.6g}^k·|σ_0|, "
-                f"exits ≤ {float(c.cycle_time):.6g} apart, |σ| ≤ {_f(c.tol)}·|σ_0| for t ≥ {float(c.settling_time):.6g}"
-                f" (every dwell ≤ {float(max(c.dwell, c.tau_lo)):.6g})")
+                f"reset PID from a stick exit with |σ| ≤ {_down(c.radius)} ({kind}): |σ_k| ≤ {_up(c.rho)}^k·|σ_0|, "
+                f"exits ≤ {_up(c.cycle_time)} apart, |σ| ≤ {_f(c.tol)}·|σ_0| for t ≥ {_up(c.settling_time)}"
+                f" (every dwell ≤ {_down(max(c.dwell, c.tau_lo))})")
 
 
 def verify_contraction(certificate: ContractionCertificate, *, source: str = "<certificate>") -> ContractionReport:
@@ -457,8 +468,8 @@ RESET_CONTRACTION = register(Template(
     stale=canonical_staleness(dumps_contraction),
     drift=_drift,
     regenerate=regenerate_contraction,
-    claim=lambda c: (f"reset PID: ρ ≤ {float(c.rho):.6g}, |σ| ≤ {_f(c.tol)}·|σ_0| by t = {float(c.settling_time):.6g} "
-                     f"from |σ_0| ≤ {float(c.radius):.6g}"),
+    claim=lambda c: (f"reset PID: ρ ≤ {_up(c.rho)}, |σ| ≤ {_f(c.tol)}·|σ_0| by t = {_up(c.settling_time)} "
+                     f"from |σ_0| ≤ {_down(c.radius)}"),
     default=True,
 ))
 """The reset-contraction template (beyond the paper): reset PID's stick exits contract by ``ρ`` per cycle."""

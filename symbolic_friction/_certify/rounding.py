@@ -48,6 +48,7 @@ import math
 from fractions import Fraction
 from typing import Callable
 
+from .._infra.bounds import decimal_exponent, round_significant
 from .._infra.errors import CertificateError
 from .._model.parameters import Parameters
 from .certificate import OBLIGATIONS, Certificate, Provenance
@@ -75,48 +76,8 @@ SNAP_TOLERANCE = 1e-9
 _MAX_REPAIRS = 200
 
 
-def _decimal_exponent(q: Fraction) -> int:
-    """The integer ``e`` with ``10**e ≤ q < 10**(e+1)``, for ``q > 0``, exactly."""
-    e = len(str(q.numerator)) - len(str(q.denominator))
-    while Fraction(10) ** e > q:
-        e -= 1
-    while Fraction(10) ** (e + 1) <= q:
-        e += 1
-    return e
-
-
-def round_significant(q: Fraction | float, digits: int, *, direction: str) -> Fraction:
-    """Round ``q > 0`` to ``digits`` significant decimal digits, exactly.
-
-    Parameters
-    ----------
-    q : Fraction or float
-        A float is taken through its exact binary value.
-    digits : int
-    direction : {"down", "up", "nearest"}, keyword-only
-
-    Examples
-    --------
-    >>> round_significant(Fraction(2, 3), 3, direction="down")
-    Fraction(333, 500)
-    >>> round_significant(Fraction(2, 3), 3, direction="up")
-    Fraction(667, 1000)
-    """
-    q = Fraction(q)
-    if not q > 0:
-        raise ValueError(f"round_significant needs q > 0; got {q}")
-    shift = digits - 1 - _decimal_exponent(q)
-    scale = Fraction(10) ** shift
-    x = q * scale
-    if direction == "down":
-        n = math.floor(x)
-    elif direction == "up":
-        n = math.ceil(x)
-    elif direction == "nearest":
-        n = math.floor(x + Fraction(1, 2))
-    else:
-        raise ValueError(f"direction must be 'down', 'up' or 'nearest'; got {direction!r}")
-    return n / scale
+# One exact rounding for the whole package: the printed bounds use it too (:mod:`.._infra.bounds`).
+_decimal_exponent = decimal_exponent
 
 
 def _ulp(q: Fraction, digits: int) -> Fraction:

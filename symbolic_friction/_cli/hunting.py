@@ -94,16 +94,17 @@ def run(args: argparse.Namespace) -> int:
     ratios = parse_sweep(args.sweep) if args.sweep is not None else None
 
     from .._certify.hunting import write_hunting
+    from .._infra.bounds import bound_text
     from .._hunting._map import find_cycles, real_root_escape
 
     emit(f"{params}: ρ = (f_s - f_c)/f_c = {params.rho}")
     escape = real_root_escape(params)
     if escape is not None:
         lo, hi = escape.root_bracket
-        root = f"λ₁ = {lo}" if lo == hi else f"λ₁ ∈ [{float(lo):.15g}, {float(hi):.15g}]"
+        root = f"λ₁ = {lo}" if lo == hi else f"λ₁ ∈ [{bound_text(lo, 15, direction='down')}, {bound_text(hi, 15, direction='up')}]"
         emit(
             f"three distinct real roots (discriminant > 0, exact), slowest {root}: a slip from a stick exit with "
-            f"|σ| ≥ |λ₁|(f_s - f_c) = {float(escape.bound):.10g} never ends (proof: RealRootEscape), so only solutions "
+            f"|σ| ≥ |λ₁|(f_s - f_c) = {bound_text(escape.bound, 10, direction='up')} never ends (proof: RealRootEscape), so only solutions "
             "whose stick exits stay below that bound can hunt; above it the mass slips into 𝒜"
         )
     cycles = find_cycles(params, general=False)  # only symmetric cycles are certified
@@ -124,7 +125,7 @@ def run(args: argparse.Namespace) -> int:
         stab = "stable (attracts nearby stick exits)" if cycle.stable else "unstable"
         emit(f"  multiplier d(-P)/dσ = {cycle.multiplier:.10g} (P∘P: {cycle.multiplier ** 2:.10g}): {stab}")
         if escape is not None:
-            emit(f"  σ* = {cycle.sigma:.6g} < {float(escape.bound):.6g}: below the escape bound")
+            emit(f"  σ* = {cycle.sigma:.6g} < {bound_text(escape.bound, 6, direction='up')}: below the escape bound")
         study = study_cycle(params, cycle, simulate=not args.no_simulation, iss=not args.no_iss)
         proof = study.proof
         for check in proof.checks:
