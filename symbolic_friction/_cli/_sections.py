@@ -192,6 +192,11 @@ _FAILURE_MARK = re.compile(r"\b(FAILED|FAILS|NOT PROVED|NOT CAUGHT|STALE|MALFORM
 """Words that mark a failing line; a section that prints one cannot pass, whatever its ``ok`` says."""
 
 
+def _selected(obligation_id: str, only: list[str] | None) -> bool:
+    """Whether ``--only`` selects this obligation (its id, or a dotted prefix of it)."""
+    return only is None or any(obligation_id == p or obligation_id.startswith(p + ".") for p in only)
+
+
 def gate(section: Section) -> Section:
     """The one gate between a section's lines and ``check``'s exit code.
 

@@ -76,8 +76,7 @@ def smt_section(args: argparse.Namespace) -> Section:
     from .._infra.junit import Case
     from .._obligations import all_obligations
     from .._obligations._smt import export_smt, run_smt, smt_summary, solver_version, stale_smt, write_smt
-    from ._sections import resolve_target
-    from .check import _selected
+    from ._sections import _selected, resolve_target
 
     only = getattr(args, "only", None)
     where = resolve_target(args)

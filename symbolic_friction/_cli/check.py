@@ -43,6 +43,7 @@ from ._sections import (
     _format_table,
     _is_verdict,
     _ObligationLayout,
+    _selected,
     _wrap,
     closing_line,
     gate,
@@ -247,11 +248,6 @@ def _decide_offloaded() -> dict[str, Callable[[], Any]]:
     from .._obligations import all_obligations, run_checked
 
     return {ob.id: (lambda ob=ob: run_checked([ob])[0]) for ob in all_obligations() if ob.id in OFFLOADED}
-
-
-def _selected(obligation_id: str, only: list[str] | None) -> bool:
-    """Whether ``--only`` selects this obligation (its id, or a dotted prefix of it)."""
-    return only is None or any(obligation_id == p or obligation_id.startswith(p + ".") for p in only)
 
 
 def certificates_section(args: argparse.Namespace) -> Section:

@@ -59,7 +59,9 @@ def test_every_obligation_holds(full_run):
 def test_json_schema(full_run):
     _, payload, _, _ = full_run
     assert set(payload) == {"obligations", "errata", "certificates", "crosscheck_self_test", "self_check", "independent",
-                            "passed", "counts", "configuration"}
+                            "smt", "passed", "counts", "configuration"}
+    # --write exports the SMT-LIB files too (the solver runs only under --smt)
+    assert payload["smt"]["exported"] == payload["counts"]["smt_exported"] == 45
     # the independent checker: every configured certificate proved, every shipped false one refused
     assert all(f["proved"] == f["must_prove"] for f in payload["independent"])
     assert payload["counts"]["independent_ok"] == payload["counts"]["independent_files"] == 16 + 138
@@ -277,7 +279,7 @@ def test_sections_can_be_appended(fake, tmp_path, capsys, monkeypatch):
     assert main(["check", "--json", "--write", "--proofs", str(tmp_path)]) == 1
     captured = capsys.readouterr()
     payload = json.loads(captured.out)
-    assert set(payload) == {"obligations", "errata", "certificates", "passed", "counts", "configuration"}
+    assert set(payload) == {"obligations", "errata", "certificates", "smt", "passed", "counts", "configuration"}
     assert payload["passed"] is False
     assert captured.err.strip().splitlines()[-1].startswith("check: FAILED — Certificates; 1 of 1 obligations hold")
 
