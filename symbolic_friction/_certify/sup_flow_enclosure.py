@@ -83,11 +83,30 @@ def _flow(cert: Any, a: Fraction, b: Fraction) -> Any:
     import flint
 
     a_matrix = _system_of(cert)
-    start = (a_matrix * _arb(a)).exp()
+    key = (cert.k_p, cert.k_i, cert.k_v, flint.ctx.prec)
+    # A bisection's parts share their left ends with their parents and their widths with their cousins, so
+    # both factors repeat; each is the same ball every time it is built, so keeping it changes no decision.
+    start = _cached((key, "start", a), lambda: (a_matrix * _arb(a)).exp())
     if a == b:
         return start
-    half = _arb((b - a) / 2)
-    return start * (a_matrix * flint.arb(half, half)).exp()
+
+    def spread() -> Any:
+        half = _arb((b - a) / 2)
+        return (a_matrix * flint.arb(half, half)).exp()
+
+    return start * _cached((key, "width", b - a), spread)
+
+
+_FLOWS: dict[tuple[Any, ...], Any] = {}
+
+
+def _cached(key: tuple[Any, ...], build: Any) -> Any:
+    """``build()`` kept under ``key`` (at most 4096 entries: the cache is cleared, never grows without bound)."""
+    if key not in _FLOWS:
+        if len(_FLOWS) >= 4096:
+            _FLOWS.clear()
+        _FLOWS[key] = build()
+    return _FLOWS[key]
 
 
 _SYSTEMS: dict[tuple[Fraction, Fraction, Fraction, int], Any] = {}
