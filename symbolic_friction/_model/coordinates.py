@@ -21,11 +21,12 @@ obligations) and floats (the simulators).
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .parameters import Parameters
+if TYPE_CHECKING:  # annotations only: _model/python_control.py, which Parameters calls, reads A from here
+    from .parameters import Parameters
 
 __all__ = [
     "coc_entries",
@@ -99,7 +100,7 @@ def z_to_x(params: Parameters, z: Any) -> np.ndarray:
 
     Examples
     --------
-    >>> from fractions import Fraction
+    >>> from symbolic_friction import Parameters
     >>> p = Parameters(k_p=3, k_i=4, k_v="6.4")
     >>> z_to_x(p, [1.0, 2.0, 3.0])
     array([ -8., -10.,   3.])

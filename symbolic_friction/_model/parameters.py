@@ -380,6 +380,61 @@ class Parameters:
         inner = ", ".join(f"{k}={_fmt(getattr(self, k))}" for k in names)
         return f"Parameters({inner})"
 
+    @classmethod
+    def from_control(cls, plant: object, controller: object, *, f_c_bar: object, f_s_bar: object = None,
+                     binary: bool = False, filter_tolerance: object = Fraction(1, 100)) -> "Parameters":
+        """Gains from python-control's plant ``1/(m s² + α_v s)`` and PID ``k̄_p + k̄_i/s + k̄_d s`` (§II-A, eq. uPID).
+
+        ``plant`` and ``controller`` are SISO continuous-time ``TransferFunction`` or
+        ``StateSpace``; the controller may filter its derivative, ``k̄_d s/(τ s + 1)``, if
+        ``τ·max|λ(A)| ≤ filter_tolerance`` (the filter is then dropped).  Coefficients are
+        read exactly (floats by their shortest decimal, or their binary value if ``binary``),
+        normalised exactly, and passed to :meth:`from_physical` with the physical Coulomb
+        force ``f_c_bar`` (and static force ``f_s_bar``).  Needs ``symbolic-friction[control]``;
+        details: :func:`symbolic_friction._model.python_control.from_control`.
+
+        Raises
+        ------
+        ParameterError
+            Naming what does not fit (type, MIMO, discrete time, order, zero, spring, mass, filter).
+
+        Examples
+        --------
+        >>> import control
+        >>> s = control.tf("s")
+        >>> p = Parameters.from_control(1 / (2 * s**2 + 0.5 * s), 6 + 8 / s + 12.3 * s, f_c_bar=2)
+        >>> p == Parameters.table_i("a"), p.physical.k_d_bar
+        (True, Fraction(123, 10))
+        """
+        from .python_control import from_control
+
+        return from_control(cls, plant, controller, f_c_bar=f_c_bar, f_s_bar=f_s_bar, binary=binary,
+                            filter_tolerance=filter_tolerance)
+
+    def to_control(self, *, kind: str = "closed_loop", input: str = "reference") -> object:
+        """The friction-free closed loop of eq. (xDot) as a ``control.StateSpace``, or ``(plant, controller)``.
+
+        ``kind="closed_loop"``: ``ẋ = A x + B w``, ``y = -σ/k_i`` (the position), the paper's
+        ``A`` and ``x = (σ, φ, v)`` (eq. CoC); ``input`` ``"reference"`` (a position setpoint,
+        ``B = (0, k_i, k_p)``) or ``"disturbance"`` (a force over ``m``, ``B = (0, 0, 1)``).
+        ``kind="plant_controller"``: two ``TransferFunction``, ``1/(m s² + α_v s)`` and
+        ``(k̄_d s² + k̄_p s + k̄_i)/s`` (physical values if known, else ``m = 1``).  Needs
+        ``symbolic-friction[control]``; details: :func:`symbolic_friction._model.python_control.to_control`.
+
+        Examples
+        --------
+        >>> loop = Parameters.table_i("a").to_control()
+        >>> loop.A
+        array([[ 0. ,  0. , -4. ],
+               [ 1. ,  0. , -3. ],
+               [ 0. ,  1. , -6.4]])
+        >>> plant, pid = Parameters.table_i("b").to_control(kind="plant_controller")
+        >>> Parameters.from_control(plant, pid, f_c_bar=1) == Parameters.table_i("b")
+        True
+        """
+        from .python_control import to_control
+
+        return to_control(self, kind=kind, input=input)
 
 TABLE_I: dict[str, Parameters] = {
     "a": Parameters(k_v="6.4", k_p=3, k_i=4, f_c=1),
