@@ -68,10 +68,8 @@ def exit_forms(k: Matrix, gram: Matrix, s: Any) -> tuple[Matrix, Matrix]:
     for plane in EXIT_PLANES:
         d = exit_map(plane, s)
         kb = _block(k, plane)
-        # D has one nonzero entry per row at most; its zero entries add exact zeros, so they are skipped
         dgd = tuple(
-            tuple(sum((d[m][a] * gram[m][n] * d[n][b] for m in range(3) if d[m][a] != 0 for n in range(3) if d[n][b] != 0),
-                      s - s) for b in range(2))
+            tuple(sum((d[m][a] * gram[m][n] * d[n][b] for m in range(3) for n in range(3)), s - s) for b in range(2))
             for a in range(2)
         )
         out.append(tuple(tuple(kb[a][b] - dgd[a][b] for b in range(2)) for a in range(2)))
