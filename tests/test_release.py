@@ -22,6 +22,10 @@ _REF = re.compile(r"(?:\brev:\s*|@)(v\d+\.\d+\.\d+\S*?)(?=[\s\"'`]|$)", re.MULTI
 
 def _documents() -> dict[str, str]:
     texts = {"README.md": (ROOT / "README.md").read_text(encoding="utf-8")}
+    # the documentation site's pages (the CI snippets that pin a release moved there from the README)
+    for path in sorted((ROOT / "docs").rglob("*.md")):
+        if "_build" not in path.parts and "_generated" not in path.parts:
+            texts[path.relative_to(ROOT).as_posix()] = path.read_text(encoding="utf-8")
     for path in sorted((ROOT / "notebooks").glob("*.ipynb")):
         cells = json.loads(path.read_text(encoding="utf-8"))["cells"]
         texts[path.name] = "\n".join("".join(cell["source"]) for cell in cells)

@@ -266,15 +266,16 @@ def test_a_scene_may_give_a_static_level_above_coulomb():
 
 
 def test_readme_documents_the_scene_format_of_the_module_docstring():
-    """The scene file format is published in the README, word for word as in the module docstring."""
+    """The scene file format is published in the user guide (docs/guide/simulation.md, formerly the README), word for
+    word as in the module docstring."""
     from pathlib import Path
 
     import symbolic_friction._studies.scenes as scenes
 
     block = scenes.__doc__.split("unknown keys are errors)::\n\n", 1)[1].split("\nBuilt-in scenes", 1)[0]
     expected = "\n".join(line[4:] if line.startswith("    ") else line for line in block.rstrip("\n").splitlines())
-    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
-    assert "### Scene files" in readme and expected in readme
+    guide = (Path(__file__).resolve().parents[1] / "docs" / "guide" / "simulation.md").read_text(encoding="utf-8")
+    assert "### Scene files" in guide and expected in guide
 
 
 def test_a_scene_can_ask_for_reset_pid_and_only_the_event_method_takes_it():

@@ -7,7 +7,7 @@ regenerates them) and runs the solver on each.  It fails on a counterexample
 (the solver's model of a claim's negation, which the row prints) and on a stale
 file; a claim the solver does not decide in its time is reported (``timeout``,
 ``unknown``), never counted as confirmed.  Without ``--smt`` the section runs only
-under ``--write`` (to write the files; no solver is needed for that).
+under ``--write`` where ``<proofs>/smt/`` exists (to write the files; no solver is needed for that).
 
 Only the standard library is imported at module level (fast ``--help``).
 """
@@ -49,8 +49,18 @@ def _seconds(text: str, option: str) -> float:
 
 
 def wants_smt(args: argparse.Namespace) -> bool:
-    """The section runs under ``--smt``, and under ``--write`` (to write the files) unless ``--only`` is given."""
-    return bool(getattr(args, "smt", False)) or (bool(getattr(args, "write", False)) and not getattr(args, "only", None))
+    """The section runs under ``--smt``, and under ``--write`` where ``<proofs>/smt/`` exists (not with ``--only``).
+
+    A project opts in to the committed queries by creating the directory (``check --write --smt`` does), so
+    ``check --write`` in a user's repository writes no 3 MB of SMT-LIB it did not ask for.
+    """
+    if getattr(args, "smt", False):
+        return True
+    if not getattr(args, "write", False) or getattr(args, "only", None):
+        return False
+    from ._sections import resolve_target
+
+    return (resolve_target(args).proofs / "smt").is_dir()
 
 
 def validate_smt(args: argparse.Namespace) -> None:

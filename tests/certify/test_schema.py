@@ -99,7 +99,8 @@ def test_physical_parameters_round_trip(tmp_path):
 
 
 def test_readme_publishes_the_shipped_schema():
-    readme = (REPO / "README.md").read_text(encoding="utf-8")
+    # the specification page of the file formats (docs/guide/formats.md, formerly the README)
+    readme = (REPO / "docs" / "guide" / "formats.md").read_text(encoding="utf-8")
     block = readme.split("<!-- certificate schema -->", 2)[1]
     text = block.split("```json", 1)[1].split("```", 1)[0]
     assert json.loads(text) == json_schema()

@@ -40,6 +40,8 @@ def only(monkeypatch):
 def test_true_obligations_are_confirmed_and_their_files_written_then_compared(only, tmp_path, capsys):
     only(_obligation("lemma2.P"), _obligation("assumption1.encoding"))
     assert main(["check", "--write", "--proofs", str(tmp_path)]) == 0
+    assert not (tmp_path / "smt").exists()  # a project opts in: plain --write exports nothing ...
+    assert main(["check", "--write", "--smt", "--proofs", str(tmp_path)]) == 0  # ... --write --smt creates it
     assert sorted(p.name for p in (tmp_path / "smt").iterdir()) == ["assumption1.encoding.smt2", "lemma2.P.smt2"]
     for name in ("assumption1.encoding.smt2", "lemma2.P.smt2"):  # the same bytes as the committed files
         assert (tmp_path / "smt" / name).read_bytes() == (REPO / "proofs" / "smt" / name).read_bytes()
@@ -52,6 +54,7 @@ def test_true_obligations_are_confirmed_and_their_files_written_then_compared(on
 
 def test_a_planted_false_obligation_fails_check_smt_with_its_model(only, tmp_path, capsys):
     only(_obligation("lemma2.P"), PlantedFalse())
+    (tmp_path / "smt").mkdir()
     assert main(["check", "--write", "--proofs", str(tmp_path)]) == 0  # the package's own check is fooled
     capsys.readouterr()
     assert main(["check", "--smt", "--json", "--proofs", str(tmp_path)]) == 1
@@ -68,6 +71,7 @@ def test_a_planted_false_obligation_fails_check_smt_with_its_model(only, tmp_pat
 @pytest.mark.parametrize("edit", ["missing", "edited", "extra"])
 def test_a_missing_edited_or_extra_file_is_stale(only, tmp_path, capsys, edit):
     only(_obligation("lemma2.P"))
+    (tmp_path / "smt").mkdir()
     assert main(["check", "--write", "--proofs", str(tmp_path)]) == 0
     target = tmp_path / "smt" / "lemma2.P.smt2"
     if edit == "missing":
@@ -86,7 +90,9 @@ def test_a_missing_edited_or_extra_file_is_stale(only, tmp_path, capsys, edit):
 
 def test_without_smt_the_solver_is_not_run_and_only_write_exports(only, tmp_path, capsys, monkeypatch):
     only(_obligation("lemma2.P"))
+    (tmp_path / "smt").mkdir()
     assert main(["check", "--write", "--proofs", str(tmp_path)]) == 0
+    assert (tmp_path / "smt" / "lemma2.P.smt2").is_file()
     monkeypatch.setattr(_smt, "run_smt", lambda *a, **k: pytest.fail("the solver ran without --smt"))
     monkeypatch.setattr(_smt, "export_smt", lambda *a, **k: pytest.fail("exported without --smt or --write"))
     capsys.readouterr()
@@ -107,7 +113,7 @@ def test_no_empty_smt_directory_is_made(only, tmp_path):
             return Outcome(subject == 1)
 
     only(Numeric())
-    assert main(["check", "--write", "--proofs", str(tmp_path)]) == 0
+    assert main(["check", "--write", "--smt", "--proofs", str(tmp_path)]) == 0
     assert not (tmp_path / "smt").exists()
 
 
@@ -136,7 +142,7 @@ def test_a_bad_time_limit_is_a_usage_error(tmp_path, capsys, option, value):
 def test_cvc5_decides_the_same_obligation(only, tmp_path, capsys):
     pytest.importorskip("cvc5")
     only(_obligation("lemma2.P"))
-    assert main(["check", "--write", "--proofs", str(tmp_path)]) == 0
+    assert main(["check", "--write", "--smt", "--proofs", str(tmp_path)]) == 0
     capsys.readouterr()
     assert main(["check", "--smt", "--smt-solver", "cvc5", "--proofs", str(tmp_path)]) == 0
     assert "cvc5" in capsys.readouterr().out
