@@ -52,10 +52,6 @@ _copy_notebooks()
 
 import symbolic_friction  # after sys.path: the checkout's package
 
-# ``symbolic_friction.symbolic`` is a public name (``__all__``) resolved by the package's ``__getattr__`` to
-# ``symbolic_friction._model.symbolic``; there is no importable module of that name, which autodoc needs to
-# document its members.  Register the alias for this build only.
-sys.modules.setdefault("symbolic_friction.symbolic", symbolic_friction.symbolic)
 
 # numpydoc reads each class docstring a second time for its signature, and warns there about the base classes'
 # "Contract for implementers" section, which _headings_to_rubrics below shows as a rubric

@@ -99,7 +99,7 @@ _LAZY: dict[str, str] = {
 
 # public submodules (imported lazily)
 _MODULES = ("model", "symbolic", "errors", "obligations", "certificates", "simulation", "studies")
-_MODULE_PATHS = {"symbolic": "._model.symbolic"}
+_MODULE_PATHS: dict[str, str] = {}  # every public submodule is a module of its own name
 
 # Names that left the top level: still importable here for one release, with a warning naming their home.
 _MOVED: dict[str, str] = {

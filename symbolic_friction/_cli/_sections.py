@@ -50,7 +50,7 @@ class Target:
 _NO_CONFIG = (
     "no configuration found: no symbolic-friction.toml, and no pyproject.toml with [tool.symbolic-friction], "
     "in {cwd} or above (up to the git root); add one naming your proofs directory and certificates "
-    "(see the README), pass --proofs DIR, or --no-certificates to check only the derivations"
+    "(see docs/guide/ci.md), pass --proofs DIR, or --no-certificates to check only the derivations"
 )
 
 
