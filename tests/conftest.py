@@ -17,6 +17,14 @@ import os
 
 import pytest
 
+# One OpenBLAS thread per process (numpy/scipy read this when first imported; this file is imported before any test
+# module, and the commands the tests start inherit it).  scipy.linalg's expm and solve hand even a 3×3 matrix to
+# OpenBLAS's thread pool, whose threads spin waiting for each other: with every core already busy (two workers, and
+# `check` forking a second process) each call then waits for a time slice, about 60× slower (measured: 2.9 ms instead
+# of 50 µs per 3×3 expm beside two busy processes), which made tests of a second alone take minutes in the suite.
+# The results do not depend on it (3×3 products are never split between threads); a value set by the caller is kept.
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
 
 def pytest_configure(config) -> None:
     """Run every worker with the environment of a plain ``pytest`` run.

@@ -43,7 +43,7 @@ from typing import Any
 from .._infra.errors import CertificateError, CertificateFormatError
 from .._infra.io import atomic_write_text
 from .._infra.rational import format_rational, parse_integer
-from ._json import MAX_FILE_BYTES, parse_json, read_json
+from ._json import MAX_FILE_BYTES, decimal_value, parse_json, read_json
 from ._schema import json_schema, validate_schema
 
 __all__ = [
@@ -341,7 +341,7 @@ class Certificate:
 
         ``float(cert.kappa)`` for plots; ``cert.kappa ** 2 >= cert.kappa_squared`` is the claim, exactly.
         """
-        return Fraction(self.overshoot_bound)
+        return decimal_value(self.overshoot_bound)
 
     # -- (de)serialisation --------------------------------------------------
     def to_dict(self) -> dict[str, Any]:

@@ -41,6 +41,7 @@ import math
 from dataclasses import dataclass
 from fractions import Fraction
 
+from .._infra.rational import short_rational
 from .._model.parameters import Parameters
 
 __all__ = ["Box", "Check", "CycleProof", "prove_cycle", "box_around", "PRECISION"]
@@ -190,11 +191,14 @@ def _prove(params: Parameters, box: Box) -> CycleProof:
     checks: list[Check] = []
     (s_lo, s_hi), (t_lo, t_hi), t_a = box.sigma, box.tau, box.monotone_from
     shape = _shape_ok(params, box)
+    # short_rational, not str(): a gain of 4400 digits (which the file format allows) made str() raise a ValueError
+    # past Python's 4300-digit limit, a traceback instead of a verdict (found by the tampered corpora)
+    f_s, f_c = short_rational(params.f_s), short_rational(params.f_c)
     checks.append(
         Check(
             "box",
             shape,
-            f"f_s = {params.f_s} > f_c = {params.f_c}; 0 < σ_lo < σ_hi; 0 < τ_a < τ_lo < τ_hi "
+            f"f_s = {f_s} > f_c = {f_c}; 0 < σ_lo < σ_hi; 0 < τ_a < τ_lo < τ_hi "
             f"(σ ∈ [{float(s_lo):.17g}, {float(s_hi):.17g}], τ ∈ [{float(t_lo):.17g}, {float(t_hi):.17g}], τ_a = {float(t_a):.17g})",
         )
     )

@@ -17,6 +17,7 @@ from pathlib import Path
 from typing import Iterable
 
 from .._infra.errors import CertificateError, CertificateFormatError, InputFileError, ParameterError, SymbolicFrictionError
+from .._infra.rational import short_rational
 from .._model.parameters import Parameters
 from ._template import Template, register
 from .certificate import MAX_FILE_BYTES, OBLIGATIONS, SCHEMA, TEMPLATE_ID, Certificate, atomic_write_text, dumps, from_data, load
@@ -47,6 +48,17 @@ BEYOND_TABLE_I_FILES: tuple[str, ...] = ("case_a.json", "case_b.json")
 """Table I's certificates in the templates beyond the paper, under ``proofs/quadratic/`` and ``proofs/sup_flow/``."""
 RESET_TABLE_I_FILES: tuple[str, ...] = ("case_a_contraction.json",)
 """Table I's reset-contraction certificates, under ``proofs/reset/`` (case (b) has none: its slip from a stick never ends)."""
+
+
+MAX_GAIN_DIGITS = 500
+"""The longest numerator or denominator of a gain :func:`certify` takes: the closed form's formulas multiply up to
+eight of them, and Python prints no integer beyond 4300 digits (a 600-digit gain set could fail there); ``f_c`` only
+scales the certificate and may be longer."""
+
+
+def _digits(n: int) -> int:
+    """Decimal digits of ``|n|`` (a number of bits beyond Python's 4300-digit ``str`` limit: more than enough)."""
+    return len(str(abs(n))) if n.bit_length() < 14_000 else n.bit_length()
 
 
 SEARCHES: tuple[str, ...] = ("closed-form", "sdp")
@@ -112,6 +124,15 @@ def certify(
     >>> cert.k1, cert.k2, cert.overshoot_bound
     (Fraction(2, 1), Fraction(2, 1), '3.46703')
     """
+    if not isinstance(params, Parameters):
+        raise ParameterError(f"params must be a Parameters instance (e.g. Parameters.table_i('a')); got {type(params).__name__}")
+    if not isinstance(label, str):
+        raise ParameterError(f"label must be a string; got {type(label).__name__}")
+    for name in ("k_p", "k_i", "k_v"):  # the closed form multiplies them (f_c only scales: 10**999 is fine)
+        q = getattr(params, name)
+        if max(_digits(q.numerator), _digits(q.denominator)) > MAX_GAIN_DIGITS:
+            raise ParameterError(f"certify takes gains k_p, k_i, k_v of at most {MAX_GAIN_DIGITS} digits in numerator "
+                                 f"and denominator; got {name} = {short_rational(q)}")
     params.check_paper_model()
     search = check_search(search)
     if search == "closed-form":
@@ -163,7 +184,11 @@ def write_certificate(certificate: Certificate, path: str | os.PathLike[str]) ->
     CertificateError
         If the certificate does not verify; nothing is written then.
     """
-    path = Path(path)
+    from .._infra.guards import check_path
+
+    if not isinstance(certificate, Certificate):
+        raise ParameterError(f"certificate must be a Certificate (from certify or load_certificate); got {type(certificate).__name__}")
+    path = Path(check_path(path, name="path", what="the certificate's JSON file"))
     if path.suffix != ".json":
         raise ParameterError(f"a certificate file name must end in '.json'; got {str(path)!r}")
     json_text, md_text, _ = render_files(certificate, name=path.name)
@@ -258,7 +283,7 @@ def stability_drift(certificate: Certificate, path: Path) -> str:
     if read_limited(path, limit=MAX_FILE_BYTES, what="certificate") != json_text.encode("utf-8"):
         changed = [f"{n} {fmt(getattr(certificate, n))} → {fmt(getattr(fresh, n))}"
                    for n in CONSTANT_NAMES if getattr(certificate, n) != getattr(fresh, n)]
-        old, new = Fraction(certificate.overshoot_bound), Fraction(fresh.overshoot_bound)
+        old, new = certificate.kappa, fresh.kappa  # exact at any length
         if old != new:
             changed.append(f"κ {certificate.overshoot_bound} → {fresh.overshoot_bound} ({'better' if new < old else 'worse'})")
         was, now = (certificate.provenance.package_version if certificate.provenance else ""), (

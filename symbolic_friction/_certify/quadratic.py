@@ -114,7 +114,9 @@ class GainsAndBound(Gains):
     @property
     def kappa(self) -> Fraction:
         """The overshoot bound as an exact number."""
-        return Fraction(self.overshoot_bound)  # type: ignore[attr-defined]
+        from ._json import decimal_value
+
+        return decimal_value(self.overshoot_bound)  # type: ignore[attr-defined]  # any length (not Fraction(text))
 
     def common_dict(self, schema: str, template_id: str, constants: tuple[str, ...]) -> dict[str, Any]:
         """The members :func:`read_common` reads, as the file writes them (``constants``: those the certificate has)."""

@@ -293,13 +293,27 @@ def _first_zero(M: Any, E: Any, lo: Fraction, ta: Fraction) -> Check:
 
 
 def _settling(cert: Any) -> list[Check]:
-    """``rho^cycles ≤ tol`` and ``settling_time ≥ cycles·cycle_time``, exactly."""
+    """``rho^cycles ≤ tol`` (exactly while the power is short, else in arb balls) and ``settling_time ≥ cycles·cycle_time``.
+
+    The independent checker's rule, whose verdicts these are: it used to be exact for a ``rho`` of up to 60 digits and
+    "not evaluated" past them, so a true file (``rho = 458633/1000000`` raised by ``10^-70``) was refused here and
+    proved by the independent checker, and a 60-digit ``rho`` with a ``tol`` within ``2^-128`` of ``rho^cycles`` was
+    proved here and undecided there (found by the tampered corpora, tests/independent/tampered.py).
+    """
     k = cert.cycles
-    if not 0 <= k <= _MAX_CYCLES or abs(cert.rho.numerator) > 10**60 or cert.rho.denominator > 10**60:
-        power = Check(OBLIGATION, "rho^cycles ≤ tol", f"not evaluated (cycles = {k} or rho too long to raise)", False,
-                      evaluated=False)
-    else:
+    if not 0 <= k <= _MAX_CYCLES:
+        power = Check(OBLIGATION, "rho^cycles ≤ tol", f"not evaluated (cycles = {k})", False, evaluated=False)
+    elif (cert.rho.numerator.bit_length() + cert.rho.denominator.bit_length()) * k <= 650_000:
         value = cert.rho ** k
         power = Check(OBLIGATION, "rho^cycles ≤ tol", f"({_f(cert.rho)})^{k} ≈ {float(value):.6g} ≤ {_f(cert.tol)}",
                       value <= cert.tol)
+    else:  # the exact power would be megabytes: arb balls rounded outward, undecided is not proved
+        from flint import arb, fmpq
+
+        ball = arb(fmpq(cert.rho.numerator, cert.rho.denominator)) ** k
+        bound = arb(fmpq(cert.tol.numerator, cert.tol.denominator))
+        holds = True if ball <= bound else False if ball > bound else None
+        verdict = {True: "≤", False: "not ≤", None: "undecided against"}[holds]
+        power = Check(OBLIGATION, "rho^cycles ≤ tol", f"({_f(cert.rho)})^{k} ∈ {_ball(ball)} {verdict} {_f(cert.tol)}",
+                      holds is True, evaluated=holds is not None)
     return [power, _exact("settling_time ≥ cycles·cycle_time", cert.settling_time, ">=", k * cert.cycle_time)]

@@ -453,6 +453,26 @@ def provenance_checks(certificate: Certificate, proved: Sequence[Check]) -> tupl
     return tuple(out)
 
 
+FORMAT_RULES: tuple[str, ...] = ("c = 2(k_v·k_p − k_i)", "provenance.obligations ⊆ obligations instantiated", "label ")
+"""Checks that are rules of the file format, not premises of the proof (names, or a prefix ending in a space).
+
+``c`` is *defined* as ``2(k_v k_p − k_i)`` (Lemma 2 needs only ``0 < c ≤`` it), a Table I label must carry Table I's
+gains, and ``provenance.obligations`` must name what the premises instantiate: a file that breaks only these may
+be mathematically sound, so the independent checker, which does not read them, may prove it (``verify`` says so).
+"""
+
+
+def is_format_rule(name: str) -> bool:
+    """Whether a check of this name is a format rule (:data:`FORMAT_RULES`), not a premise."""
+    return any(name == rule or (rule.endswith(" ") and name.startswith(rule)) for rule in FORMAT_RULES)
+
+
+def format_rules(report: Any) -> list[str]:
+    """The failing checks of a refused report when every one is a format rule (else ``[]``: a premise fails)."""
+    failing = [c.name for c in report.checks if not c.holds]
+    return failing if failing and all(is_format_rule(n) for n in failing) else []
+
+
 class _Exact:
     """A certificate's numbers as the premises read them: ``fmpq`` (``kappa`` exact from its decimal string)."""
 
@@ -461,7 +481,7 @@ class _Exact:
         for name in (*PARAMETER_NAMES, *CONSTANT_NAMES):
             q = getattr(cert, name)
             setattr(self, name, fmpq(q.numerator, q.denominator))
-        kappa = Fraction(cert.overshoot_bound)
+        kappa = cert.kappa  # exact at any length (a plain Fraction(text) stops at 4300 digits)
         self.kappa = fmpq(kappa.numerator, kappa.denominator)
 
 

@@ -71,9 +71,13 @@ def run(args: argparse.Namespace) -> int:
             if not args.json and len(args.files) > 1:
                 # one line per file in the listing; the closing error then names the files, not the reasons again
                 emit(f"MALFORMED {exc}", level=0)
+            if isinstance(exc, CertificateFormatError):
+                # the independent checker does not apply the main reader's format rules (key sets, exact rational
+                # strings, a decimal κ, schema ids): where it proves the file, say that a format rule refuses it
+                _format_disagreement(name, exc, args, payload[-1])
             continue
         cert = report.certificate
-        second = _second_opinion(name, report.proved, args)  # both verifiers, every time
+        second = _second_opinion(name, report, args)  # both verifiers, every time
         failed = failed or not second
         from .._certify.box import BoxReport
 
@@ -193,19 +197,44 @@ def _independent_verdict(name: object) -> tuple[bool, str]:
     return verdict.proved, "" if verdict.proved else "; ".join(verdict.failing[:6])
 
 
-def _second_opinion(name: object, main_proved: bool, args: argparse.Namespace) -> bool:
+def _second_opinion(name: object, report: object, args: argparse.Namespace) -> bool:
     """Run the independent checker beside the main verifier; a file is proved only if both prove it.
 
-    Where they disagree, print both verdicts and the premises the independent checker names.
+    Where they disagree, print both verdicts: the premises the independent checker names, or, where only the
+    main verifier refuses, whether a format rule of its own refuses it (:func:`.._certify.verify.format_rules`:
+    ``c``'s defining equation, a Table I label, the provenance's obligations), which the independent checker
+    does not apply, or a premise, which it should have refused too.
     """
+    from .._certify.verify import format_rules
     from .._infra.output import emit
 
+    main_proved = bool(report.proved)  # type: ignore[attr-defined]
     proved, why = _independent_verdict(name)
     if proved != main_proved and not args.json:
-        main_text = "proves it" if main_proved else "refuses it"
-        other = "proves it" if proved else f"refuses it ({why})"
-        emit(f"DISAGREE {name}: the main verifier {main_text}; the independent checker {other}", level=0)
+        if main_proved:
+            emit(f"DISAGREE {name}: the main verifier proves it; the independent checker refuses it ({why})", level=0)
+        else:
+            rules = format_rules(report)
+            main_text = (f"only by its format rule{'s' * (len(rules) > 1)} {'; '.join(rules)} (which the independent "
+                         "checker does not apply)" if rules else "by a premise, not a format rule: "
+                         + "; ".join(c.name for c in report.checks if not c.holds)[:400])  # type: ignore[attr-defined]
+            emit(f"DISAGREE {name}: the independent checker proves it; the main verifier refuses it {main_text}", level=0)
     return proved
+
+
+def _format_disagreement(name: object, exc: Exception, args: argparse.Namespace, record: dict) -> None:
+    """A file the main reader refuses as malformed: if the independent checker proves it, say which format rule refused it."""
+    from .._infra.output import emit
+
+    proved, _ = _independent_verdict(name)
+    if not proved:
+        return
+    rule = str(exc).removeprefix(f"{name}: ")
+    record["independent"] = "proved"
+    record["disagreement"] = f"format rule: {rule}"
+    if not args.json:
+        emit(f"DISAGREE {name}: the independent checker proves it; the main verifier refuses it only by a format rule "
+             f"of its reader (which the independent checker does not apply): {rule}", level=0)
 
 
 def _independent_only(args: argparse.Namespace) -> int:

@@ -25,7 +25,26 @@ reference (:mod:`symbolic_friction._reference`, sharing no code with the
 kernel) computed for the same scenario.  The reference's numbers are shipped
 (``kernel_reference.json``, written by :func:`reference_data`; a test re-derives
 them), so ``check`` pays only for the kernel: a patched or broken install whose
-kernel drifts fails ``check``.
+kernel drifts fails ``check``.  On the uniform grids the cross-check's closed-form
+flow of each slip interval of the chain (:func:`.lemma3.slip_points`, which gives
+the interior points of eq. hatVdot's ``R̂`` intervals) must also land on the
+kernel's next point: an ``x*_k`` without ``f_c`` there is invisible at ``f_c = 1``.
+
+Two more rows hold the kernel to exact facts rather than to shipped numbers:
+
+* **a graze inside one scan cell** (:func:`graze_row`).  On lightly damped gains
+  (``k_v ≪ √k_p/8``) ``v`` along a slip is a fast oscillation on a slow offset,
+  and ``|v''|`` peaks between two points of the scan's grid: a slip built so that
+  ``v`` dips to ``−δ f_c`` (``δ = 10⁻¹¹``) in the middle of a cell, which a
+  bound on ``|v''|`` without its fourth-order term clears (it misses every dip
+  below ``10⁻⁹ f_c``), must end before that point;
+* **at rest just beyond ``f_c``** (:func:`rest_rounding_row`).  ``φ = −k_i e_i − k_p s``
+  is rounded, and the kernel puts a ``φ`` within its rounding of ``±f_c`` on the
+  boundary; a state whose exact ``φ`` is ``f_c(1 + 40ε)``, more than that
+  rounding but less than the rounding with ``k_i`` and ``k_p`` swapped (here
+  ``k_p/k_i > 11`` and ``k_i|e_i| ≫ k_p|s|``), must start in the mode the
+  appendix's table gives it in exact arithmetic: a slip (row (ii)), not the
+  stick that ``σ < 0`` decides on the boundary.
 """
 
 from __future__ import annotations
@@ -39,7 +58,7 @@ from typing import Any
 import numpy as np
 
 __all__ = ["SCENARIOS", "STATE_TOL", "TIME_TOL", "INTEGRAL_TOL", "Scenario", "KernelRow", "kernel_rows", "reference_data",
-           "DATA_FILE"]
+           "DATA_FILE", "graze_row", "rest_rounding_row", "GRAZE", "REST"]
 
 STATE_TOL = 1e-12
 """A sample's or an event's state may differ from the reference's by this much times the trajectory's scale."""
@@ -170,8 +189,94 @@ def kernel_rows(data: dict[str, Any] | None = None) -> tuple[KernelRow, ...]:
             want = float(ref["integral_v2"])
             if not abs(got - want) <= INTEGRAL_TOL * ref["scale"] ** 2 * t_end:
                 detail = f"the cross-check's ∫v² = {got!r}, the reference's {want!r}"
+            if not detail:  # on the uniform grids, whose chain is built for ∫v² already
+                detail = _slip_points_detail(batch, float(ref["scale"]))
         rows.append(KernelRow(sc.name, not detail, detail))
-    return tuple(rows)
+    return (*rows, graze_row(), rest_rounding_row())
+
+
+def _slip_points_detail(batch: Any, scale: float) -> str:
+    """``""`` if the cross-check's closed-form flow of every slip interval ends on the kernel's next point."""
+    from ._along import along
+    from .lemma3 import slip_points
+
+    a = along(batch)
+    rows, cols = np.nonzero(a.dt_pos & (a.k_int != 0))
+    if rows.size == 0:
+        return ""
+    ends = slip_points(a, rows, cols, (1.0,))[:, 0]
+    err = np.abs(ends - a.xs[rows, cols + 1]).max(axis=1)
+    bad = np.flatnonzero(~(err <= STATE_TOL * scale))
+    if not bad.size:
+        return ""
+    j = int(bad[0])
+    start, got, want = float(a.ch.t[rows[j], cols[j]]), ends[j].tolist(), a.xs[rows[j], cols[j] + 1].tolist()
+    return f"the cross-check's closed-form slip from t = {start!r} ends at {got}, the kernel's next point is {want}"
+
+
+GRAZE = {"k_p": Fraction(900), "k_i": Fraction(80), "k_v": Fraction(1, 8), "f_c": Fraction(2)}
+"""Lightly damped gains of the two exact rows (``k_v = 1/8 ≪ √k_p/8 = 3.75``; Assumption 1: ``k_v k_p = 112.5 > k_i``)."""
+
+REST = (40, 1e-9)
+"""The row at rest: ``φ = f_c(1 + 40ε)`` exactly, with ``s = 10⁻⁹ f_c`` (so ``σ = −k_i s < 0``)."""
+
+
+def graze_row(*, cell: int = 10, depth: float = 1e-11) -> KernelRow:
+    """A slip whose ``v`` dips to ``−depth·f_c`` in the middle of scan cell ``cell`` must end before it (module docstring).
+
+    The state at ``τ_m = (cell + ½)Δ`` (``Δ`` the scan table's cell) is
+    ``y = f_c (1, −k_v δ, −δ)`` about the slip's equilibrium ``(0, f_c, 0)``:
+    ``v = −δ f_c``, ``v' = y₂ − k_v y₃ = 0``, ``v'' ≈ f_c`` (eq. subcasesAffine:f1);
+    the slip starts at ``e^{−Aτ_m} y``, where ``v > 0``.  So ``v`` has a zero
+    in ``(0, τ_m)``, and the kernel's first event must be there.
+    """
+    from .._model.coordinates import x_to_z
+    from .._model.parameters import Parameters
+    from .._simulation.batch import simulate_batch
+    from .._simulation.slip import slip_model
+
+    name = f"graze {depth:g}·f_c deep inside scan cell {cell} (k_v ≪ √k_p)"
+    params = Parameters(**GRAZE)
+    model = slip_model(params)
+    f_c = float(params.f_c)
+    tau_m = (cell + 0.5) * model.table.dt
+    y = f_c * np.array([1.0, -float(params.k_v) * depth, -depth])
+    y0 = model.expm.apply(np.array([-tau_m]), y)[0]
+    # the construction itself: v > 0 at the start, v < 0 at τ_m (the closed form, independent of the scan)
+    v_end = float(model.expm.apply(np.array([tau_m]), y0)[0, 2])
+    if not (y0[2] > 0 and v_end < 0):
+        return KernelRow(name, False, f"the built slip has v(0) = {y0[2]!r}, v(τ_m) = {v_end!r}: not a dip below 0")
+    x0 = y0 + np.array([0.0, f_c, 0.0])
+    batch = simulate_batch(params, x_to_z(params, x0[None, :]), 2 * tau_m, t_eval=np.array([0.0, 2 * tau_m]))
+    n = int(batch.n_events[0])
+    first = (float(batch.event_t[0, 0]), int(batch.event_before[0, 0])) if n else None
+    if first is None or first[1] != 1 or not 0.0 < first[0] < tau_m:
+        return KernelRow(name, False, f"the kernel's first event (t, mode before) is {first}; "
+                                      f"v = {v_end!r} < 0 at τ_m = {tau_m!r}, so the slip ends before τ_m")
+    return KernelRow(name, True, "")
+
+
+def rest_rounding_row() -> KernelRow:
+    """A state at rest with exact ``φ = f_c(1 + 40ε)``, ``σ < 0`` starts in the table's mode, a slip (module docstring)."""
+    from .._model.parameters import Parameters
+    from .._simulation.batch import simulate_batch
+    from .._simulation.modes import select_mode
+
+    ulps, s_rel = REST
+    name = f"at rest {ulps} ulps beyond f_c (k_p/k_i > 11)"
+    params = Parameters(**GRAZE)
+    k_p, k_i, f_c = params.k_p, params.k_i, params.f_c
+    s = s_rel * float(f_c)
+    e_i = -(float(f_c) * (1 + ulps * 2.0**-52) + float(k_p) * s) / float(k_i)
+    # the table in exact arithmetic at the float state given (x = T z, eq. CoC)
+    sigma, phi = -k_i * Fraction(s), -k_i * Fraction(e_i) - k_p * Fraction(s)
+    want = select_mode(sigma, phi, 0, f_c)
+    batch = simulate_batch(params, np.array([[e_i, s, 0.0]]), 1e-3, t_eval=np.array([0.0, 1e-3]))
+    got = int(batch.mode[0, 0])
+    if got != want:
+        return KernelRow(name, False, f"the kernel starts in mode {got}; the table gives φ − f_c = "
+                                      f"{float(phi - f_c)!r} > 0 exactly, row (ii), mode {want}")
+    return KernelRow(name, True, "")
 
 
 def _compare(batch: Any, ref: dict[str, Any], t_end: float) -> str:

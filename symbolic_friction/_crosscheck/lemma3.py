@@ -23,7 +23,7 @@ import numpy as np
 from ._along import along, exact_state
 from ._property import Evaluation, Property
 
-__all__ = ["VUpper", "HatVLower", "HatVUpper", "HatVNonincreasing", "run_slack"]
+__all__ = ["VUpper", "HatVLower", "HatVUpper", "HatVNonincreasing", "run_slack", "rhat_intervals", "slip_points"]
 
 
 def _k_exact(certificate: Any) -> tuple[Fraction, ...]:
@@ -141,10 +141,37 @@ def run_slack(F: np.ndarray, run: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return slack, first
 
 
-def rhat_intervals(a: Any) -> np.ndarray:
-    """Consecutive points whose open interval lies in ``R̂`` (so ``V̂`` must not increase there)."""
-    from .._model.lyapunov import in_R
+def slip_points(a: Any, rows: np.ndarray, cols: np.ndarray, fractions: Any) -> np.ndarray:
+    """States inside the slip intervals ``(rows, cols) → (rows, cols + 1)`` of the chain, at ``fractions`` of their length.
+
+    On a slip ``k = ±1`` the offset ``y = x − x*_k``, ``x*_k = (0, k f_c, 0)``
+    (eq. subcasesAffine), solves ``y' = Ay``, so the state at ``t_p + τ`` is
+    ``x*_k + e^{Aτ}(x_p − x*_k)``: the exact closed-form flow, shape
+    ``(rows.size, len(fractions), 3)``.  At fraction 1 it is the chain's next
+    point; ``check``'s kernel rows hold it to the kernel's there at
+    ``f_c ≠ 1`` (:mod:`._kernel_check`), where an ``x*_k`` without ``f_c`` shows.
+    """
     from .._simulation.affine import MatrixExponential
+
+    ch = a.ch
+    k = a.k_int[rows, cols].astype(float)
+    star = np.zeros((rows.size, 3))
+    star[:, 1] = k * a.f_c
+    h = ch.t[rows, cols + 1] - ch.t[rows, cols]
+    taus = h[:, None] * np.asarray(fractions, dtype=float)[None, :]
+    y = np.broadcast_to((ch.x[rows, cols] - star)[:, None, :], taus.shape + (3,))
+    return MatrixExponential.from_params(a.params).apply(taus, y) + star[:, None, :]
+
+
+def rhat_intervals(a: Any) -> np.ndarray:
+    """Consecutive points whose open interval lies in ``R̂`` (so ``V̂`` must not increase there).
+
+    An end is a sample in ``R̂`` or an event (``V̂`` is continuous, so an
+    interval that ends at a slip's end is held to ``V̂`` there too; ``check``'s
+    self-test samples a growth run at its start and horizon only, so that every
+    interval in ``R̂`` ends at an event).
+    """
+    from .._model.lyapunov import in_R
 
     ch = a.ch
     end_ok = a.in_Rhat | (ch.valid & (ch.kind < 3))  # events bound R̂ intervals (V̂ is continuous)
@@ -154,12 +181,7 @@ def rhat_intervals(a: Any) -> np.ndarray:
     if np.any(run):
         rows, cols = np.nonzero(run)
         k = a.k_int[rows, cols].astype(float)
-        star = np.zeros((rows.size, 3))
-        star[:, 1] = k * a.f_c
-        h = ch.t[rows, cols + 1] - ch.t[rows, cols]
-        taus = h[:, None] * np.array([0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875])[None, :]
-        y = np.broadcast_to((ch.x[rows, cols] - star)[:, None, :], taus.shape + (3,))
-        mids = MatrixExponential.from_params(a.params).apply(taus, y) + star[:, None, :]
+        mids = slip_points(a, rows, cols, (0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875))
         # still in the same slip (k v > 0) and in the package's R̂
         inside = ((k[:, None] * mids[..., 2]) > 0) & ~in_R(a.params, mids)
         run[rows, cols] = inside.all(axis=1)

@@ -96,6 +96,8 @@ class HuntingMap:
     """
 
     def __init__(self, params: Parameters) -> None:
+        if not isinstance(params, Parameters):
+            raise ParameterError(f"params must be a Parameters instance with f_s > f_c; got {type(params).__name__}")
         if not params.stiction:
             raise ParameterError(
                 f"the hunting map needs static friction above Coulomb; got f_s = f_c = {params.f_c} "
@@ -104,7 +106,10 @@ class HuntingMap:
         from .._simulation.slip import slip_model
 
         self.params = params
-        self.model = slip_model(params)
+        try:
+            self.model = slip_model(params)
+        except (OverflowError, ZeroDivisionError) as exc:  # gains beyond float64's range
+            raise ParameterError(f"params: the hunting map of {params} leaves the range of float64 ({exc})") from None
         self.f_c = float(params.f_c)
         self.f_s = float(params.f_s)
         self.excess = float(params.f_s - params.f_c)
@@ -224,6 +229,10 @@ class HuntingCycle:
         return (float(z[0]), float(z[1]), float(z[2]))
 
 
+MAX_POINTS = 100_000
+"""The most grid points :func:`find_cycles` scans (each costs a step of the map, a few milliseconds)."""
+
+
 def find_cycles(params: Parameters, *, points: int = 240, span: float = 1e4, general: bool = True) -> list[HuntingCycle]:
     """Hunting cycles of ``params`` (``f_s > f_c``): fixed points of ``σ ↦ -P(σ)`` (and of ``P∘P``).
 
@@ -247,7 +256,13 @@ def find_cycles(params: Parameters, *, points: int = 240, span: float = 1e4, gen
     """
     from scipy.optimize import brentq
 
+    from .._infra.guards import check_count, check_real
+
     P = HuntingMap(params)
+    points = check_count(points, name="points", low=2, high=MAX_POINTS, why="each point is a step of the map, ms each")
+    span = check_real(span, name="span", low=1, high=1e300, why="the grid spans [excess/span, excess·span]")
+    if not isinstance(general, (bool, np.bool_)):
+        raise ParameterError(f"general must be True or False; got {type(general).__name__}")
     grid = P.excess * np.geomspace(1.0 / span, span, points)
     vals = np.array([P(s) for s in grid])
     roots: list[tuple[float, bool]] = []

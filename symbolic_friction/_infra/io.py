@@ -21,6 +21,7 @@ from pathlib import Path
 from typing import IO
 
 from .errors import InputFileError, OutputPathError
+from .guards import check_path
 
 __all__ = [
     "atomic_write", "atomic_write_text", "read_limited", "ensure_directory", "check_output_directory", "check_output_file",
@@ -62,6 +63,7 @@ def read_limited(path: str | os.PathLike[str], *, limit: int, what: str = "file"
     so does a path written with a trailing slash (a directory's spelling,
     which :class:`~pathlib.Path` would drop).
     """
+    check_path(path, name="path", what=what)  # another type (3, None, b"x") or a NUL byte: refused by name
     if isinstance(path, str) and path.endswith(("/", os.sep)):
         raise InputFileError(f"cannot read {what} {path}: a trailing / names a directory, not a file")
     path = Path(path)

@@ -16,7 +16,10 @@ from fractions import Fraction
 
 from .errors import InvalidNumberError, NonFiniteError
 
-__all__ = ["to_rational", "format_rational", "short_rational", "parse_integer", "format_integer", "MAX_INPUT_DIGITS", "MAX_EXPONENT"]
+__all__ = [
+    "to_rational", "format_rational", "short_rational", "shown", "parse_integer", "format_integer", "MAX_INPUT_DIGITS",
+    "MAX_EXPONENT",
+]
 
 # ASCII digits only (re.ASCII): "٣" or "３" are refused, never read as 3.
 _NUMBER_RE = re.compile(
@@ -64,6 +67,30 @@ def format_integer(n: int) -> str:
     k = max(1, int(n.bit_length() * 0.30103) // 2)
     hi, lo = divmod(n, 10**k)
     return format_integer(hi) + format_integer(lo).rjust(k, "0")
+
+
+def shown(value: object, limit: int = 40) -> str:
+    """``repr(value)`` for a message, at most ``limit`` characters (a 10⁵-digit integer is described, not printed).
+
+    >>> shown(10**400)
+    'an integer of 401 digits'
+    >>> shown("x" * 100)
+    "'xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx…"
+    """
+    if isinstance(value, int) and not isinstance(value, bool) and value.bit_length() > 4 * limit:
+        return f"an integer of {len(format_integer(abs(value)))} digits" if value.bit_length() < 40_000 else (
+            f"an integer of about {int(value.bit_length() * 0.30103) + 1} digits")
+    if isinstance(value, Fraction) and max(value.numerator.bit_length(), value.denominator.bit_length()) > 4 * limit:
+        return f"Fraction {short_rational(value)}"
+    if isinstance(value, (list, tuple, dict, set)) and len(value) > limit:
+        return f"a {type(value).__name__} of {len(value)} items"
+    try:
+        text = repr(value)
+    except Exception:  # noqa: BLE001 - a repr that fails (Python's 4300-digit limit) must not hide the error
+        text = f"<{type(value).__name__}>"
+    return text if len(text) <= limit else text[: limit - 1] + "…"
+
+
 _NONFINITE_WORDS = {"nan", "+nan", "-nan", "inf", "+inf", "-inf", "infinity", "+infinity", "-infinity"}
 
 
@@ -118,6 +145,16 @@ def to_rational(value: object, *, name: str = "value", binary: bool = False) -> 
     if isinstance(value, Decimal):
         if not value.is_finite():
             raise NonFiniteError(f"{name} must be finite; got {value!r}")
+        if not value:
+            return Fraction(0)  # Decimal("0E+999999999") too
+        # bounded as a string is, before the conversion expands 10**exponent: Decimal("1e999999999") would hang
+        digits = len(value.as_tuple().digits)
+        if digits > MAX_INPUT_DIGITS:
+            raise InvalidNumberError(f"{name} has {digits} digits; at most {MAX_INPUT_DIGITS} are accepted")
+        if abs(value.adjusted()) > MAX_EXPONENT:
+            raise InvalidNumberError(
+                f"{name} has the exponent {value.adjusted()}; exponents beyond ±{MAX_EXPONENT} are refused"
+            )
         return Fraction(value)
     if isinstance(value, str):
         text = value.strip()
@@ -128,10 +165,10 @@ def to_rational(value: object, *, name: str = "value", binary: bool = False) -> 
                 f"{name} has {len(text)} characters; at most {MAX_INPUT_DIGITS} are accepted"
             )
         if not _NUMBER_RE.match(text):
-            shown = value if len(value) <= 40 else value[:40] + "…"
+            abbreviated = value if len(value) <= 40 else value[:40] + "…"
             hint = " (ASCII digits only)" if any(ch.isdigit() and not ch.isascii() for ch in text) else ""
             raise InvalidNumberError(
-                f"{name} must be a decimal such as '6.4' or a fraction such as '32/5'{hint}; got {shown!r}"
+                f"{name} must be a decimal such as '6.4' or a fraction such as '32/5'{hint}; got {abbreviated!r}"
             )
         exponent = _EXPONENT_RE.search(text)
         if exponent is not None and abs(int(exponent.group(1))) > MAX_EXPONENT:
@@ -150,12 +187,12 @@ def to_rational(value: object, *, name: str = "value", binary: bool = False) -> 
             raise NonFiniteError(f"{name} must be finite; got {value!r}")
         if getattr(value, "is_Float", False):
             return to_rational(float(value), name=name, binary=binary)
-        raise InvalidNumberError(f"{name} must be a rational number; got the sympy expression {value!r}")
+        raise InvalidNumberError(f"{name} must be a rational number; got the sympy expression {shown(value)}")
     if isinstance(value, numbers.Rational):
         return Fraction(value.numerator, value.denominator)
     if isinstance(value, numbers.Real):  # numpy floating scalars and the like
         return to_rational(float(value), name=name, binary=binary)
-    raise InvalidNumberError(f"{name} must be a number; got {type(value).__name__} {value!r}")
+    raise InvalidNumberError(f"{name} must be a number; got {type(value).__name__} {shown(value)}")
 
 
 def format_rational(q: Fraction) -> str:
@@ -166,7 +203,8 @@ def format_rational(q: Fraction) -> str:
     >>> format_rational(Fraction(32, 5)), format_rational(Fraction(4))
     ('32/5', '4')
     """
-    q = Fraction(q)
+    if not isinstance(q, Fraction):  # an int, a float (its exact binary value), "32/5", a Decimal: read with the bounds
+        q = to_rational(q, name="q", binary=True)
     num = format_integer(q.numerator)
     return num if q.denominator == 1 else f"{num}/{format_integer(q.denominator)}"
 

@@ -16,12 +16,12 @@ only at the numerical boundary (:meth:`Parameters.as_floats`).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from fractions import Fraction
 from typing import ClassVar
 
 from .._infra.errors import AssumptionError
-from .._infra.rational import format_rational, short_rational, to_rational
+from .._infra.rational import format_integer, format_rational, short_rational, to_rational
 
 __all__ = ["Parameters", "PhysicalParameters", "TABLE_I"]
 
@@ -39,6 +39,18 @@ def _float(q: Fraction, name: str) -> float:
             "(about 1e-308 to 1e308) that the numerical search and the simulators use"
         )
     return value
+
+
+def _repr(self) -> str:
+    """The dataclass repr, with an integer beyond Python's 4300-digit ``str`` limit written out all the same."""
+    def value(v: object) -> str:
+        try:
+            return repr(v)
+        except ValueError:  # Fraction(10**5000): repr() refuses, the exact digits are still there
+            return f"Fraction({format_integer(v.numerator)}, {format_integer(v.denominator)})"  # type: ignore[attr-defined]
+
+    inner = ", ".join(f"{f.name}={value(getattr(self, f.name))}" for f in fields(self) if f.repr)
+    return f"{type(self).__name__}({inner})"
 
 
 def _fmt(q: Fraction) -> str:
@@ -76,6 +88,7 @@ class PhysicalParameters:
     f_s_bar: Fraction | None = field(default=None)
 
     NAMES: ClassVar[tuple[str, ...]] = ("m", "k_p_bar", "k_i_bar", "k_d_bar", "alpha_v", "f_c_bar")
+    __repr__ = _repr
 
     def __post_init__(self) -> None:
         for name in self.NAMES:
@@ -164,6 +177,7 @@ class Parameters:
     physical: "PhysicalParameters | None" = field(default=None, compare=False, repr=False)
 
     _names: ClassVar[tuple[str, ...]] = ("k_p", "k_i", "k_v", "f_c")
+    __repr__ = _repr
 
     def __post_init__(self) -> None:
         for name in self._names:
@@ -290,7 +304,7 @@ class Parameters:
         """
         try:
             return TABLE_I[case]
-        except KeyError:
+        except (KeyError, TypeError):  # TypeError: an unhashable case such as a list
             raise AssumptionError(f"Table I has cases 'a' and 'b'; got {case!r}") from None
 
     @property

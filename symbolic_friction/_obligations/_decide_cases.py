@@ -7,9 +7,11 @@ whose Gram matrix has all leading principal minors 0 but the minor ``{1, 3}``
 negative; an ``And`` with an undecided conjunct; a case split that must keep
 its boundary points; a piece of ``R`` whose membership is undecided; a 3×3
 matrix whose 2×2 faces are all copositive but which is not, by Hadeler's
-inequality at −0.35, for the quadratic template's copositivity decision), with a
-few true statements as controls, so a broken or patched sympy that makes a
-procedure say yes too often, or no always, fails ``check``.
+inequality at −0.35, for the quadratic template's copositivity decision; a stick
+duration ``a − b`` whose sign is undecided, or ``0``, which ``claim1.cases`` must
+refuse as the length of ``[0, T]``), with a few true statements as controls, so
+a broken or patched sympy that makes a procedure say yes too often, or no
+always, fails ``check``.
 """
 
 from __future__ import annotations
@@ -77,5 +79,15 @@ def decision_cases() -> tuple:
         ("copositive: not semidefinite, Hadeler's inequality holds", "True", copositive([[1, 1, -1], [1, 1, 1], [-1, 1, 1]])),
         ("copositive: a zero diagonal entry with a negative row", "False", copositive([[0, -1], [-1, 5]])),
         ("copositive: a diagonal entry < 0", "False", copositive([[-1, 2], [2, 1]])),
+    ]
+    from .claim1 import stick_duration_error
+
+    def duration(T) -> str:
+        return "refused" if stick_duration_error(T) else "accepted"
+
+    out += [
+        ("claim1 stick duration a − b: sign undecided", "refused", duration(a - b)),
+        ("claim1 stick duration 0", "refused", duration(sp.Integer(0))),
+        ("claim1 stick duration 2a/b", "accepted", duration(2 * a / b)),
     ]
     return tuple(RigourCase(name, expected, got) for name, expected, got in out)

@@ -35,7 +35,7 @@ from ._decide import G, Undecided, decide, is_zero, latex, phi_classes, pos, sig
 from .lemma2 import affine_fields, decrease_rate, friction_form, friction_minimum, lyapunov_pieces, under_assumption1
 from ._shared import sgn_sets
 
-__all__ = ["Row", "StickBranch", "Claim1Cases", "OBLIGATIONS", "ROWS"]
+__all__ = ["Row", "StickBranch", "Claim1Cases", "OBLIGATIONS", "ROWS", "stick_duration_error"]
 
 V_CLASSES = ("> 0", "= 0", "< 0")
 PHI_CLASSES = ("φ > f_c", "φ = f_c", "|φ| < f_c", "φ = -f_c", "φ < -f_c")
@@ -123,6 +123,23 @@ def table_rows(f_c: sp.Expr) -> tuple[Row, ...]:
 
 
 ROWS = ("i", "ii", "iii", "iv", "v", "vi", "vii", "viii", "ix", "x", "xi")
+
+
+def stick_duration_error(T: sp.Expr) -> str | None:
+    """Why a stick branch's duration ``T`` does not give an interval ``[0, T]``, ``T > 0`` (``None``: it does).
+
+    Claim 1 needs a solution on some ``[0, T]`` with ``T > 0``: ``T = ∞`` (an
+    equilibrium, rows (iv), (viii)) does, and a finite ``T`` (e.g. ``T = -2f_c/σ̄``
+    in row (v)) must be *shown* positive by :func:`~._decide.sign_of` on the
+    row's region.  A sign that is zero, negative or undecided refuses it: an
+    undecided ``T`` may be ``≤ 0`` for some initial condition of the row, and
+    undecided never means proved.  ``check`` decides this on built inputs
+    (:func:`~._decide_cases.decision_cases`).
+    """
+    finite = T != sp.oo
+    if finite and sign_of(T) != 1:
+        return f"the duration T = {T} is not shown positive"
+    return None
 
 
 def _matches(row_value: str | None, value: str) -> bool:
@@ -308,8 +325,9 @@ class Claim1Cases(Obligation):
         if not is_zero(xi[2]):
             return f"ξ_v(t) = {xi[2]} is not identically 0 on the stick"
         finite = T != sp.oo
-        if finite and sign_of(T) != 1:
-            return f"the duration T = {T} is not shown positive"
+        refused = stick_duration_error(T)
+        if refused:
+            return refused
         # Friction selection: ξ' - A ξ = -b w(t) with w(t) ∈ SGN(0) = [-1, 1] for t ∈ [0, T].
         r = dxi - S.A * xi
         w = sp.factor(-r[2] / S.b[2])

@@ -38,7 +38,7 @@ import math
 from fractions import Fraction
 from typing import Sequence
 
-from .._infra.errors import SimulationError
+from .._infra.errors import SimulationError, SymbolicFrictionError
 from .._model.parameters import Parameters
 from .slip import SlipMethods, _Piece, _factor
 
@@ -65,6 +65,52 @@ def reference_table_mode(sigma, phi, v, f_c, f_s=None) -> int:
     if phi == -f_c:  # (vii) σ > 0 → 0; (viii) σ = 0 → 0; (ix) σ < 0 → -1
         return -1 if sigma < 0 else 0
     return 0  # (vi) |φ| < f_c
+
+
+MAX_DPS = 1000
+"""The most digits a reference may be asked for (its cost grows faster than the square of ``dps``)."""
+MAX_T_END = Fraction(10**12)
+"""The longest horizon: the guard digits grow with ``log10(t_end)`` (``t_end = 1e200`` took half a minute)."""
+MAX_EVENTS = 100_000
+"""The largest ``max_events``."""
+MAX_WORK = Fraction(10**20)
+"""The largest ``‖A‖∞·max(t_end, 1)``, the stiffness over the horizon."""
+MAX_STATE = Fraction(10**300)
+"""The largest ``|z0|`` component."""
+
+
+def _checked(params, z0, t_end, dps, max_events) -> tuple[list[Fraction], Fraction]:
+    """The arguments of :class:`Reference`, checked before any work: ``z0`` and ``t_end`` exactly (floats binary)."""
+    from .._infra.guards import check_count, check_real
+    from .._infra.rational import shown, to_rational
+
+    if not isinstance(params, Parameters):
+        raise SimulationError(f"params must be a Parameters instance; got {type(params).__name__}")
+    if isinstance(dps, int) and not isinstance(dps, bool) and dps < 40:
+        raise SimulationError(f"the reference needs at least 40 digits; got dps = {dps}")
+    check_count(dps, name="dps", low=40, high=MAX_DPS, error=SimulationError)
+    check_count(max_events, name="max_events", high=MAX_EVENTS, error=SimulationError)
+    if isinstance(z0, (str, bytes, dict, set)) or not hasattr(z0, "__len__") or len(z0) != 3:
+        raise SimulationError(f"the initial state z0 must be three numbers (e_i, s, v); got {shown(z0)}")
+    zq = []
+    for i, c in enumerate(z0):
+        try:
+            q = to_rational(c, name=f"z0[{i}]", binary=True)
+        except SymbolicFrictionError as exc:
+            raise SimulationError(str(exc)) from None
+        if abs(q) > MAX_STATE:
+            raise SimulationError(f"z0[{i}] must lie in [-1e300, 1e300]; got {shown(c)}")
+        zq.append(q)
+    check_real(t_end, name="t_end", low=0, high=MAX_T_END, error=SimulationError,
+               why="the reference's guard digits grow with log10(t_end)")
+    t_end_q = to_rational(t_end, name="t_end", binary=True)
+    norm = max(params.k_i, 1 + params.k_p, 1 + params.k_v)  # ‖A‖∞
+    if norm * max(t_end_q, 1) > MAX_WORK:
+        raise SimulationError(
+            f"t_end·‖A‖∞ must be at most 1e20 for the reference (its guard digits and steps grow with it); got "
+            f"t_end = {shown(t_end)} with ‖A‖∞ = {shown(float(norm)) if norm < 10**300 else 'beyond 1e300'}"
+        )
+    return zq, t_end_q
 
 
 class Reference(SlipMethods):
@@ -113,8 +159,7 @@ class Reference(SlipMethods):
         _method: str = "adaptive",
         _max_step=None,
     ):
-        if dps < 40:
-            raise SimulationError(f"the reference needs at least 40 digits; got dps = {dps}")
+        zq, t_end_q = _checked(params, z0, t_end, dps, max_events)
         if _method not in ("adaptive", "grid"):
             raise SimulationError(f"unknown reference method {_method!r}")
         from mpmath.ctx_mp import MPContext  # imported lazily
@@ -123,7 +168,6 @@ class Reference(SlipMethods):
         self.method = _method
         fr = {name: Fraction(getattr(params, name)) for name in ("k_p", "k_i", "k_v", "f_c", "f_s")}
         norm_q = max(fr["k_i"], 1 + fr["k_p"], 1 + fr["k_v"])  # ‖A‖∞, exactly
-        t_end_q = Fraction(t_end)
 
         # The step of the adaptive method and the guard digits follow from the
         # eigen-structure, found at a precision well above any working one.
@@ -179,7 +223,6 @@ class Reference(SlipMethods):
         self.step = ctx.mpf(step_f)
         self.E_step = self._expm_ring(self.step) if _method == "adaptive" else None
 
-        zq = [Fraction(c) for c in z0]
         e_i, s, v = (q(c) for c in zq)
         self.z0 = (e_i, s, v)
         # x0 exactly: σ = -k_i s, φ = -k_i e_i - k_p s (eq. CoC)

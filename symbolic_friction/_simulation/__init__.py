@@ -13,7 +13,9 @@ from typing import Any
 
 from .._infra.errors import SimulationError
 from .._model.parameters import Parameters
-from ._base import SimulationMethod, Solution, _check_float_model, _check_horizon, _check_state, _check_t_eval
+from ._base import (
+    SimulationMethod, Solution, _check_float_model, _check_horizon, _check_samples, _check_state, _check_t_eval,
+)
 from ._trajectories import Status, Trajectories
 
 __all__ = [
@@ -151,10 +153,12 @@ def simulate(
             f"method {solver.name!r} models the paper's PID only; got reset PID (reset_dwell = {params.reset_dwell}): "
             "use the event-driven method, whose resets are events"
         )
-    _check_float_model(params)
+    longest = _check_float_model(params)
     z = _check_state(z0)
-    t = _check_horizon(t_end)
+    t = _check_horizon(t_end, longest)
     te = _check_t_eval(t_eval, t)
+    if te is not None and te.size > 100_000:  # the samples the result holds, before they are allocated
+        _check_samples("t_eval's size", te.size, 1, te.size)
     return solver._solve(params, z, t, te, solver.options)
 
 

@@ -18,10 +18,12 @@ from typing import Any, ClassVar
 import numpy as np
 
 from .._infra.errors import SimulationError
+from .._infra.guards import check_memory, check_real
+from .._infra.rational import shown
 from .._model.parameters import Parameters
 from ._trajectories import Solution, Status
 
-__all__ = ["Solution", "SimulationMethod", "Status", "RTOL_FLOOR", "check_rtol", "finite_or_raise"]
+__all__ = ["Solution", "SimulationMethod", "Status", "RTOL_FLOOR", "check_rtol", "finite_or_raise", "as_float"]
 
 EPS = 2.220446049250313e-16
 # scipy's solve_ivp silently raises a smaller rtol to this; the package refuses instead
@@ -37,6 +39,14 @@ def check_rtol(rtol: Any) -> None:
         )
 
 
+def as_float(value: Any) -> float:
+    """``float(value)``, with an integer beyond float64 (``10**400``) read as ±inf rather than raising OverflowError."""
+    try:
+        return float(value)
+    except OverflowError:
+        return math.inf if value > 0 else -math.inf
+
+
 def finite_or_raise(method: str, t: np.ndarray, z: np.ndarray) -> None:
     """Refuse samples that left the range of float64 (inf or NaN), naming where."""
     bad = ~np.isfinite(z).all(axis=-1)
@@ -49,12 +59,22 @@ def finite_or_raise(method: str, t: np.ndarray, z: np.ndarray) -> None:
 
 
 # -- the arguments of simulate and simulate_batch, checked once for every method --
+MAX_TIME_CONSTANTS = 1e300
+"""``t_end·‖A‖∞`` is at most this: a longer horizon (``t_end = 1e308``) leaves the range of float64 in the
+time arithmetic of every method (a count of steps or scan cells overflows), so it is refused up front."""
+
+
 @functools.lru_cache(maxsize=256)  # once per gain set: simulate() is called per trajectory
-def _check_float_model(params: Parameters) -> None:
+def _check_float_model(params: Parameters) -> float:
     """Refuse gains whose float64 model does not exist: the coordinate change ``z = T⁻¹ x`` (eq. CoC) and ``A``
     need ``k_i²``, ``k_p/k_i²``, ``k_v`` and ``f_c`` representable, neither zero nor infinite.
 
     Exact work (``certify``, the obligations) takes any positive rational; a simulation computes in float64.
+
+    Returns
+    -------
+    float
+        The longest horizon a simulation of these gains may ask for, ``MAX_TIME_CONSTANTS/‖A‖∞``.
     """
     from .._model.coordinates import coc_inverse_entries
 
@@ -70,13 +90,18 @@ def _check_float_model(params: Parameters) -> None:
             f"k_v = {k_v:g}, f_c = {f_c:g}: k_i², k_p/k_i² and the gains must be finite and nonzero in float64); "
             "rescale time or the state (the exact commands, certify and check, take them as they are)"
         )
+    return MAX_TIME_CONSTANTS / max(k_i, 1.0 + k_p, 1.0 + k_v)
 
 
 def _check_state(z0: Any) -> np.ndarray:
     try:
         arr = np.asarray(z0, dtype=float)
+    except OverflowError:  # an integer or Fraction beyond float64 (10**400)
+        raise SimulationError(
+            f"the initial state z0 must be within the range of float64 (about ±1.8e308); got {shown(z0)}"
+        ) from None
     except (TypeError, ValueError):
-        raise SimulationError(f"the initial state z0 must be three numbers (e_i, s, v); got {z0!r}") from None
+        raise SimulationError(f"the initial state z0 must be three numbers (e_i, s, v); got {shown(z0)}") from None
     if arr.shape != (3,):
         raise SimulationError(f"the initial state z0 must have shape (3,) as (e_i, s, v); got shape {arr.shape}")
     if not all(map(math.isfinite, arr.tolist())):
@@ -84,20 +109,24 @@ def _check_state(z0: Any) -> np.ndarray:
     return arr
 
 
-def _check_horizon(t_end: Any) -> float:
-    try:
-        t = float(t_end)
-    except (TypeError, ValueError):
-        raise SimulationError(f"t_end must be a number; got {t_end!r}") from None
-    if not math.isfinite(t) or t <= 0:
-        raise SimulationError(f"t_end must be finite and > 0; got {t_end!r}")
-    return t
+def _check_horizon(t_end: Any, longest: float = math.inf) -> float:
+    if type(t_end) is float and 0.0 < t_end <= longest:  # the fast path of every call
+        return t_end
+    if type(t_end) is int and 0 < t_end <= longest:
+        return float(t_end)
+    return check_real(t_end, name="t_end", low=0, high=None if math.isinf(longest) else longest, error=SimulationError,
+                      why=f"for these gains, t_end·‖A‖∞ ≤ {MAX_TIME_CONSTANTS:g}: beyond it time leaves float64's range")
 
 
 def _check_t_eval(t_eval: Any, t_end: float) -> np.ndarray | None:
     if t_eval is None:
         return None
-    arr = np.asarray(t_eval, dtype=float)
+    if isinstance(t_eval, (str, bytes, dict, set)):
+        raise SimulationError(f"t_eval must be a non-empty 1-D sequence of times; got {shown(t_eval)}")
+    try:
+        arr = np.asarray(t_eval, dtype=float)
+    except (TypeError, ValueError, OverflowError):
+        raise SimulationError(f"t_eval must be a non-empty 1-D sequence of finite times; got {shown(t_eval)}") from None
     if arr.ndim != 1 or arr.size == 0:
         raise SimulationError(f"t_eval must be a non-empty 1-D sequence of times; got shape {arr.shape}")
     # Written so that NaN fails every comparison: nondecreasing within [0, t_end] implies finite.
@@ -108,6 +137,24 @@ def _check_t_eval(t_eval: Any, t_end: float) -> np.ndarray | None:
             f"t_eval must be nondecreasing within [0, t_end] = [0, {t_end:g}]; got range [{arr.min():g}, {arr.max():g}]"
         )
     return arr
+
+
+def _check_samples(name: str, value: Any, trajectories: int, samples: int) -> None:
+    """Refuse, before numpy allocates them, result arrays beyond the memory cap (:data:`.._infra.guards.MAX_BYTES`)."""
+    check_memory(name=name, value=value, count=trajectories, item_bytes=SAMPLE_BYTES * samples + TRAJECTORY_BYTES,
+                 what=f"{trajectories} trajectories × {samples} samples", error=SimulationError,
+                 hint="fewer samples, or fewer trajectories at a time (iter_batches streams them in chunks)")
+
+
+MAX_EVENTS = 1_000_000
+"""The most events ``max_events`` may allow one trajectory (a hunting trajectory takes about 3 s per 10⁶ events, and
+each event is a sample too: 42 + 49 B)."""
+MAX_GRID_POINTS = 10_000_000
+"""The most sample times ``grid_points`` may ask for (49 B per sample of a trajectory)."""
+SAMPLE_BYTES = 2 * 3 * 8 + 1
+"""Bytes of one sample of one trajectory in a result: ``z`` and ``x`` (3 float64 each) and the mode (int8)."""
+TRAJECTORY_BYTES = 2 * 32 * 42 + 512
+"""Bytes of one trajectory besides its samples: its first event buffers, its state, status and stop time."""
 
 
 @dataclass(frozen=True, kw_only=True)

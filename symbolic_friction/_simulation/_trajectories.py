@@ -10,13 +10,14 @@ side are kept: the one-sided limits of ``V`` are read off them.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from functools import cached_property
 from typing import Any
 
 import numpy as np
 
 from .._infra.errors import SimulationError
+from .._infra.rational import shown
 from .._model.parameters import Parameters
 from ._frames import SolutionFrames, TrajectoriesFrames
 
@@ -158,6 +159,14 @@ class Trajectories(AlongStates, TrajectoriesFrames):
     options: dict[str, Any] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
+        if not isinstance(self.params, Parameters):
+            raise SimulationError(f"params must be a Parameters instance; got {type(self.params).__name__}")
+        arrays = [f.name for f in fields(self) if f.type == "np.ndarray" and f.name != "source"]
+        wrong = [name for name in arrays if not isinstance(getattr(self, name), np.ndarray)]
+        if wrong or self.mode.ndim != 2:
+            raise SimulationError(f"malformed trajectories: {', '.join(wrong) or 'mode'} must be numpy arrays "
+                                  "(mode of shape (N, m)); got " + (type(getattr(self, wrong[0])).__name__ if wrong
+                                                                  else f"shape {self.mode.shape}"))
         N, m = self.mode.shape
         E = self.event_t.shape[1] if self.event_t.ndim == 2 else -1
         problems = []
@@ -335,6 +344,10 @@ class Solution(AlongStates, SolutionFrames):
     """
 
     def __init__(self, trajectories: "Trajectories", index: int) -> None:
+        if not isinstance(trajectories, Trajectories):
+            raise SimulationError(f"trajectories must be a Trajectories; got {type(trajectories).__name__}")
+        if isinstance(index, bool) or not isinstance(index, (int, np.integer)) or not 0 <= index < trajectories.size:
+            raise SimulationError(f"index must be an integer in [0, {trajectories.size}); got {shown(index)}")
         self.trajectories = trajectories
         self.index = index
         complete = trajectories.status[index] in Status.COMPLETE

@@ -58,8 +58,9 @@ import numpy as np
 
 from .._model.coordinates import x_to_z
 from .._infra.errors import SimulationError
+from .._infra.guards import check_count, check_memory
 from .._model.parameters import Parameters
-from ._base import SimulationMethod, Solution
+from ._base import MAX_EVENTS, MAX_GRID_POINTS, SimulationMethod, Solution
 from ._jit import kernel, plain, spent_in_plain
 from ._kernel_layout import BUFFER_FULL, I_DWELL, I_STICK_SLIP_H, I_STICK_SLIP_T, S_SIZE
 from ._trajectories import Status, Trajectories
@@ -83,9 +84,8 @@ _STATUS_NAMES = np.array(
 )
 
 
-def _check_positive_int(name: str, value: Any, minimum: int) -> None:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < minimum:
-        raise SimulationError(f"{name} must be an integer ≥ {minimum}; got {value!r}")
+def _check_positive_int(name: str, value: Any, minimum: int, maximum: int = 10**12) -> None:
+    check_count(value, name=name, low=minimum, high=maximum, error=SimulationError)
 
 
 def _first_room(K, t_end: float, max_events: int) -> int:
@@ -116,6 +116,20 @@ def _next_room(room: int, n_ev: np.ndarray, t_stop: np.ndarray, t_end: float, ma
         rate = np.max(n_ev / t_stop)
     want = 1.25 * rate * t_end if np.isfinite(rate) else math.inf
     return int(min(max_events, _MAX_GROWTH * room, max(_GROWTH * room, want)))
+
+
+_EVENT_BYTES = 8 + 3 * 8 + 2 + 8  # ev_t, ev_x, ev_m, ev_res of one event
+
+
+def _slip_model(params: Parameters):
+    """:func:`.search.slip_model`, with gains whose closed form leaves float64 refused by name."""
+    try:
+        return slip_model(params)
+    except (OverflowError, ZeroDivisionError) as exc:
+        raise SimulationError(
+            f"the event method's closed form of these gains leaves the range of float64 ({exc}): k_p = "
+            f"{float(params.k_p):g}, k_i = {float(params.k_i):g}, k_v = {float(params.k_v):g}; rescale time"
+        ) from None
 
 
 def _event_buffers(n: int, room: int) -> list[np.ndarray]:
@@ -162,7 +176,7 @@ def run(
     options: dict[str, Any] | None = None,
 ) -> Trajectories:
     """The kernel from every row of ``Z0`` (validated, finite, shape (N, 3)), sampled at sorted ``ts``."""
-    model = slip_model(params)
+    model = _slip_model(params)
     Z0 = np.ascontiguousarray(Z0, dtype=float)
     X0 = np.empty_like(Z0)  # filled by the kernel: T z0
     ts = np.ascontiguousarray(ts, dtype=float)
@@ -183,8 +197,10 @@ def run(
     full = out[3] == BUFFER_FULL  # more events than the buffer had room for
     while full.any() and room < max_events:  # (a buffer of max_events slots is never full)
         # the full rows go on where they stopped, their events so far copied into larger buffers
-        rows, events = rows[full], [a[full] for a in events]
+        rows, events, filled = rows[full], [a[full] for a in events], room
         room = _next_room(room, out[4][rows], out[5][rows], t_end, max_events)
+        check_memory(name="max_events", value=max_events, count=float(rows.size) * room, item_bytes=_EVENT_BYTES,
+                     what=f"{rows.size} trajectories with more than {filled} events each", error=SimulationError)
         larger = _event_buffers(rows.size, room)
         for new, old in zip(larger, events):
             new[:, : old.shape[1]] = old
@@ -228,7 +244,7 @@ def run(
 
 def run_one(params: Parameters, z0: np.ndarray, t_end: float, ts: np.ndarray, *, max_events: int, options: dict) -> Trajectories:
     """:func:`run` for one initial state, with less Python around the same kernel call."""
-    model = slip_model(params)
+    model = _slip_model(params)
     m = ts.size
     k = kernel(work=m + 2 * _FIRST_ROOM)
     is_plain = k is plain()
@@ -304,8 +320,8 @@ class EventDriven(SimulationMethod):
     knob: ClassVar[str | None] = None
 
     def _validate(self, options: dict[str, Any]) -> None:
-        _check_positive_int("max_events", options["max_events"], 1)
-        _check_positive_int("grid_points", options["grid_points"], 2)
+        _check_positive_int("max_events", options["max_events"], 1, MAX_EVENTS)
+        _check_positive_int("grid_points", options["grid_points"], 2, MAX_GRID_POINTS)
 
     def _solve(
         self, params: Parameters, z0: np.ndarray, t_end: float, t_eval: np.ndarray | None, options: dict[str, Any]

@@ -53,9 +53,11 @@ from typing import Any, ClassVar
 import numpy as np
 
 from .._infra.errors import SimulationError
+from .._infra.guards import check_count
+from .._infra.rational import shown
 from .._model.parameters import Parameters
 from .._model.coordinates import coc_entries, input_vector_entries, z_system_matrix_entries
-from ._base import SimulationMethod, Solution, Status, check_rtol, finite_or_raise
+from ._base import MAX_EVENTS, SimulationMethod, as_float, Solution, Status, check_rtol, finite_or_raise
 from .modes import select_mode
 
 __all__ = ["IvpEvents", "INTEGRATORS"]
@@ -70,8 +72,9 @@ def _check_positive(options: dict[str, Any], name: str) -> None:
     value = options[name]
     if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
         raise SimulationError(f"option {name} must be a number > 0; got {value!r}")
-    if not (math.isfinite(float(value)) and float(value) > 0):
-        raise SimulationError(f"option {name} must be finite and > 0; got {name} = {value!r}")
+    if not (math.isfinite(as_float(value)) and float(value) > 0):
+        raise SimulationError(f"option {name} must be finite and > 0; got {name} = {shown(value)}")
+
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -105,9 +108,7 @@ class IvpEvents(SimulationMethod):
             raise SimulationError(
                 f"option integrator must be one of {', '.join(map(repr, INTEGRATORS))}; got {options['integrator']!r}"
             )
-        m = options["max_events"]
-        if isinstance(m, bool) or not isinstance(m, (int, np.integer)) or m < 1:
-            raise SimulationError(f"option max_events must be an integer ≥ 1; got {m!r}")
+        check_count(options["max_events"], name="option max_events", high=MAX_EVENTS, error=SimulationError)
 
     def _solve(
         self, params: Parameters, z0: np.ndarray, t_end: float, t_eval: np.ndarray | None, options: dict[str, Any]

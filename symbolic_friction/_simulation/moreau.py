@@ -84,8 +84,10 @@ from typing import Any, ClassVar
 import numpy as np
 
 from .._infra.errors import SimulationError
+from .._infra.guards import check_count, check_memory
+from .._infra.rational import shown
 from .._model.parameters import Parameters
-from ._base import SimulationMethod, Solution, Status, finite_or_raise
+from ._base import SimulationMethod, Solution, Status, as_float, finite_or_raise
 from .friction import FrictionLaw
 
 __all__ = ["Moreau", "step_grid"]
@@ -108,6 +110,11 @@ def _weights(theta: float, h: float) -> tuple[float, float]:
     """``(θ h, (1-θ) h)``: how much of a step of size ``h`` the smooth part is taken at its end and at its start."""
     g = theta * h
     return g, h - g
+
+
+MAX_STEPS = 1_000_000_000
+"""The largest ``max_steps`` accepted (the default is 10⁷, about 40 s of steps)."""
+_STEP_BYTES = 90  # a recorded step (t, e_i, s, v, mode) and then its rows of the result's z, x, t and mode
 
 
 class _Recorder:
@@ -204,15 +211,15 @@ class Moreau(SimulationMethod):
         h = options["h"]
         if isinstance(h, bool) or not isinstance(h, (int, float, np.integer, np.floating)):
             raise SimulationError(f"option h must be a number > 0; got {h!r}")
-        if not (math.isfinite(float(h)) and float(h) > 0):
-            raise SimulationError(f"option h (the step size) must be finite and > 0; got h = {h!r}")
+        if not (math.isfinite(as_float(h)) and float(h) > 0):
+            raise SimulationError(f"option h (the step size) must be finite and > 0; got h = {shown(h)}")
         theta = options["theta"]
         if isinstance(theta, bool) or not isinstance(theta, (int, float, np.integer, np.floating)):
             raise SimulationError(f"option theta must be a number in [1/2, 1]; got {theta!r}")
         # written so that NaN fails: below 1/2 the θ-scheme amplifies the oscillating modes, above 1 it is not one
-        if not 0.5 <= float(theta) <= 1.0:
+        if not 0.5 <= as_float(theta) <= 1.0:
             raise SimulationError(
-                f"option theta (the weight of the step's end) must be in [1/2, 1]; got theta = {theta!r}"
+                f"option theta (the weight of the step's end) must be in [1/2, 1]; got theta = {shown(theta)}"
             )
         friction = options["friction"]
         if friction is not None and not isinstance(friction, FrictionLaw):
@@ -224,9 +231,7 @@ class Moreau(SimulationMethod):
                 f"option theta = {theta!r} takes Coulomb friction only (friction=None): the friction law "
                 f"{friction.name!r} solves the implicit Euler step, theta = 1"
             )
-        m = options["max_steps"]
-        if isinstance(m, bool) or not isinstance(m, (int, np.integer)) or m < 1:
-            raise SimulationError(f"option max_steps must be an integer ≥ 1; got {m!r}")
+        check_count(options["max_steps"], name="option max_steps", high=MAX_STEPS, error=SimulationError)
 
     def _solve(
         self, params: Parameters, z0: np.ndarray, t_end: float, t_eval: np.ndarray | None, options: dict[str, Any]
@@ -243,6 +248,10 @@ class Moreau(SimulationMethod):
                 f"h = {h:g} needs {count} steps to reach t_end = {t_end:g}, more than max_steps = {options['max_steps']}"
             )
         n_steps = step_grid(t_end, h)
+        if t_eval is None:  # every step is a sample: refused before the loop if they exceed the memory cap
+            check_memory(name="h", value=h, count=n_steps + 1, item_bytes=_STEP_BYTES,
+                         what=f"{n_steps} steps to t_end = {t_end:g}, each a sample", error=SimulationError,
+                         hint="pass t_eval (only those times are kept), or a larger h")
         k_p, k_i, k_v, f_c = params.as_floats()
         law: FrictionLaw | None = options["friction"]
         if law is not None:

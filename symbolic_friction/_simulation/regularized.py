@@ -55,9 +55,10 @@ from typing import Any, ClassVar
 import numpy as np
 
 from .._infra.errors import SimulationError
+from .._infra.rational import shown
 from .._model.coordinates import input_vector_entries, z_system_matrix_entries
 from .._model.parameters import Parameters
-from ._base import SimulationMethod, Solution, Status, check_rtol, finite_or_raise
+from ._base import SimulationMethod, Solution, Status, as_float, check_rtol, finite_or_raise
 
 __all__ = ["Regularized", "LAWS", "INTEGRATORS", "vector_field", "creep_time", "drift_estimate"]
 
@@ -78,8 +79,8 @@ def _positive_number(options: dict[str, Any], name: str, meaning: str) -> None:
     value = options[name]
     if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
         raise SimulationError(f"option {name} ({meaning}) must be a number > 0; got {value!r}")
-    if not (math.isfinite(float(value)) and float(value) > 0):
-        raise SimulationError(f"option {name} ({meaning}) must be finite and > 0; got {name} = {value!r}")
+    if not (math.isfinite(as_float(value)) and float(value) > 0):
+        raise SimulationError(f"option {name} ({meaning}) must be finite and > 0; got {name} = {shown(value)}")
 
 
 def creep_time(params: Parameters, epsilon: float) -> float:

@@ -33,8 +33,10 @@ from typing import Any, Iterator
 import numpy as np
 
 from .._infra.errors import SimulationError
-from .._infra.rational import format_rational, to_rational
+from .._infra.guards import check_real
+from .._infra.rational import format_rational, shown, to_rational
 from .._model.parameters import Parameters
+from ._base import MAX_TIME_CONSTANTS, _check_float_model
 from ._frames import STATE_NAMES, dataset_on_time, frame_on_time
 
 __all__ = ["Response", "step_response", "initial_response", "default_time"]
@@ -90,6 +92,27 @@ class Response:
     amplitude: Fraction
     params: Parameters
     solution: Any
+
+    def __post_init__(self) -> None:
+        from ._trajectories import Solution
+
+        if not isinstance(self.params, Parameters):
+            raise SimulationError(f"params must be a Parameters instance; got {type(self.params).__name__}")
+        if self.input is not None and self.input not in INPUTS:
+            raise SimulationError(f"input must be one of {', '.join(INPUTS)} or None; got {shown(self.input)}")
+        object.__setattr__(self, "amplitude", to_rational(self.amplitude, name="amplitude"))
+        if not isinstance(self.solution, Solution):
+            raise SimulationError(f"solution must be a Solution (from simulate); got {type(self.solution).__name__}")
+        arrays = {name: getattr(self, name) for name in ("time", "outputs", "inputs", "states")}
+        wrong = [name for name, a in arrays.items() if not isinstance(a, np.ndarray)]
+        if wrong:
+            raise SimulationError(f"{wrong[0]} must be a numpy array; got {type(arrays[wrong[0]]).__name__}")
+        n = self.time.shape
+        if len(n) != 1 or self.outputs.shape != n or self.inputs.shape != n or self.states.shape != (3, *n):
+            raise SimulationError(
+                f"time, outputs and inputs must have one shape (n,) and states (3, n); got {self.time.shape}, "
+                f"{self.outputs.shape}, {self.inputs.shape} and {self.states.shape}"
+            )
 
     def __iter__(self) -> Iterator[np.ndarray]:
         # `t, y = step_response(...)`, as python-control allows
@@ -165,13 +188,21 @@ def _times(params: Parameters, T: Any) -> np.ndarray:
     """``T`` as python-control reads it: None (a default horizon), a final time, or the sample times."""
     if T is None:
         T = default_time(params)
+    if isinstance(T, (str, bytes, dict, set)):
+        raise SimulationError(f"T must be a final time or an array of sample times; got {shown(T)}")
     if np.ndim(T) == 0:
         try:
             t_end = float(T)
+        except OverflowError:  # 10**400
+            t_end = math.inf
         except (TypeError, ValueError):
-            raise SimulationError(f"T must be a final time or an array of sample times; got {T!r}") from None
+            raise SimulationError(f"T must be a final time or an array of sample times; got {shown(T)}") from None
         if not (math.isfinite(t_end) and t_end > 0):
-            raise SimulationError(f"the final time T must be finite and > 0; got {T!r}")
+            raise SimulationError(f"the final time T must be finite and > 0; got {shown(T)}")
+        longest = _check_float_model(params)
+        if t_end > longest:
+            raise SimulationError(f"the final time T must be at most {longest:.3g} for these gains (t_end·‖A‖∞ ≤ "
+                                  f"{MAX_TIME_CONSTANTS:g}, within float64's range); got {shown(T)}")
         return np.linspace(0.0, t_end, DEFAULT_SAMPLES)
     if np.size(T) > MAX_SAMPLES:
         raise SimulationError(f"at most {MAX_SAMPLES} sample times are supported (a bound on memory); got {np.size(T)}")
@@ -179,7 +210,7 @@ def _times(params: Parameters, T: Any) -> np.ndarray:
         raise SimulationError("T must hold at least one sample time; got an empty array")
     try:
         t = np.asarray(T, dtype=float).reshape(-1)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         raise SimulationError(f"T must be a final time or an array of sample times; got {T!r}"[:300]) from None
     if not (np.all(np.isfinite(t)) and t[0] >= 0 and t[-1] > 0 and np.all(np.diff(t) >= 0)):
         raise SimulationError(
@@ -215,6 +246,8 @@ def initial_response(params: Parameters, T: Any = None, z0: Any = (0, 1, 0)) -> 
     """
     from . import simulate
 
+    if not isinstance(params, Parameters):
+        raise SimulationError(f"params must be a Parameters instance; got {type(params).__name__}")
     t = _times(params, T)
     sol = simulate(params, z0, float(t[-1]), t_eval=t)
     return _response(params, sol, input=None, amplitude=Fraction(0), shift=0.0, offset=0.0)
@@ -259,6 +292,8 @@ def step_response(params: Parameters, T: Any = None, *, input: str = "reference"
     if not isinstance(params, Parameters):
         raise SimulationError(f"params must be a Parameters instance; got {type(params).__name__}")
     a = to_rational(amplitude, name="amplitude")
+    check_real(a if input == "reference" else a / params.k_i, name="amplitude" if input == "reference" else "amplitude/k_i",
+               low=None, error=SimulationError)  # within float64, which the simulation computes in
     from . import simulate
 
     t = _times(params, T)

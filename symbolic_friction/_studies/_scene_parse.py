@@ -8,7 +8,7 @@ from typing import Any
 
 from .._infra.errors import SceneError, SymbolicFrictionError
 from .._model.parameters import Parameters
-from .._infra.rational import format_rational, to_rational
+from .._infra.rational import format_rational, short_rational, shown, to_rational
 
 FRICTION_LAWS = ("coulomb", "stribeck", "inflated")
 
@@ -19,6 +19,10 @@ MAX_STATES = 100_000
 
 MAX_INTEGER_KNOB = 10_000_000
 """Largest integer method knob (``grid_points``, ``max_events`` …) a scene may set."""
+MAX_SAMPLES = 1_000_000
+"""Most sample times a scene may ask for per trajectory (a bound on memory, said in the error)."""
+MAX_TOTAL_SAMPLES = 20_000_000
+"""Most sample times over all trajectories of a scene (states × samples), a bound on memory."""
 
 
 # ---------------------------------------------------------------- parsing helpers
@@ -28,11 +32,32 @@ def _type_name(value: Any) -> str:
 
 def _number(value: Any, path: str) -> Fraction:
     if isinstance(value, bool) or not isinstance(value, (int, float, str, Fraction)):
-        raise SceneError(f"{path}: expected a number (or a decimal string such as \"6.4\"); got {_type_name(value)} {value!r}")
+        raise SceneError(f"{path}: expected a number (or a decimal string such as \"6.4\"); got {_type_name(value)} {shown(value)}")
     try:
         return to_rational(value, name=path)
     except SymbolicFrictionError as exc:
         raise SceneError(str(exc)) from None
+
+
+def _check_samples(samples: Any, states: int, given: str) -> None:
+    """``samples`` (None, or an integer ≥ 2) within :data:`MAX_SAMPLES` and, over ``states``, :data:`MAX_TOTAL_SAMPLES`."""
+    if samples is not None and (isinstance(samples, bool) or not isinstance(samples, int) or samples < 2):
+        raise SceneError(f"samples: expected an integer ≥ 2; got {given}")
+    if samples is not None and samples > MAX_SAMPLES:
+        raise SceneError(f"samples: at most {MAX_SAMPLES} sample times per trajectory are supported; got {shown(samples)}")
+    if samples is not None and states * samples > MAX_TOTAL_SAMPLES:
+        raise SceneError(f"samples: {states} initial states × {samples} samples = {states * samples} sample times; "
+                         f"at most {MAX_TOTAL_SAMPLES} per scene are supported (a bound on memory)")
+
+
+_FLOAT_MAX = Fraction(1.7976931348623157e308)
+
+
+def _float_range(q: Fraction, path: str) -> Fraction:
+    """``q`` if a simulation can use it: within the range of float64 (the state and the horizon; not the gains)."""
+    if abs(q) > _FLOAT_MAX:
+        raise SceneError(f"{path}: expected a number within the range of float64 (about ±1.8e308); got {short_rational(q)}")
+    return q
 
 
 def _positive(value: Any, path: str) -> Fraction:

@@ -57,12 +57,17 @@ from typing import Any
 from .._infra.errors import SceneError, SymbolicFrictionError
 from .._infra.io import atomic_write, atomic_write_text
 from .._model.parameters import Parameters
-from .._infra.rational import format_rational
+from .._infra.guards import check_path
+from .._infra.rational import format_rational, shown
 from ._scene_parse import (
     FRICTION_LAWS,
     MAX_INTEGER_KNOB,
+    MAX_SAMPLES,
     MAX_STATES,
+    MAX_TOTAL_SAMPLES,
     _check_keys,
+    _check_samples,
+    _float_range,
     _number,
     _parse_friction,
     _parse_method,
@@ -93,10 +98,6 @@ _TOP_KEYS = (
     "v_hat",
 )
 _NAME_RE = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]*$")
-MAX_SAMPLES = 1_000_000
-"""Most sample times a scene may ask for per trajectory (a bound on memory, said in the error)."""
-MAX_TOTAL_SAMPLES = 20_000_000
-"""Most sample times over all trajectories of a scene (states × samples), a bound on memory."""
 MAX_SCENE_BYTES = 10_000_000
 """Largest scene file read."""
 
@@ -160,18 +161,18 @@ class Scene:
         if not isinstance(self.params, Parameters):
             raise SceneError(f"params: expected a Parameters instance; got {_type_name(self.params)}")
         states = self.initial_states
-        if not isinstance(states, (tuple, list)) or not states:
-            raise SceneError(f"initial_states: expected a non-empty sequence of (e_i, s, v); got {states!r}")
+        if not isinstance(states, (tuple, list)) or not states or len(states) > MAX_STATES:
+            raise SceneError(f"initial_states: expected a non-empty sequence of (e_i, s, v); got {shown(states)} "
+                             f"(at most {MAX_STATES} states)")
         exact = []
         for i, row in enumerate(states):
             if not isinstance(row, (tuple, list)) or len(row) != 3:
                 raise SceneError(f"initial_states[{i}]: expected (e_i, s, v) (3 numbers); got {row!r}")
-            exact.append(tuple(_number(c, f"initial_states[{i}][{j}]") for j, c in enumerate(row)))
+            exact.append(tuple(_float_range(_number(c, f"initial_states[{i}][{j}]"), f"initial_states[{i}][{j}]")
+                               for j, c in enumerate(row)))
         object.__setattr__(self, "initial_states", tuple(exact))
-        object.__setattr__(self, "t_end", _positive(self.t_end, "t_end"))
-        if self.samples is not None:
-            if isinstance(self.samples, bool) or not isinstance(self.samples, int) or self.samples < 2:
-                raise SceneError(f"samples: expected an integer ≥ 2; got {self.samples!r}")
+        object.__setattr__(self, "t_end", _float_range(_positive(self.t_end, "t_end"), "t_end"))
+        _check_samples(self.samples, len(exact), shown(self.samples))
         if self.method not in METHODS:
             raise SceneError(f"method.name: expected one of {', '.join(map(repr, METHODS))}; got {self.method!r}")
         if self.friction is not None:
@@ -232,15 +233,7 @@ class Scene:
         states = _parse_states(doc["initial_states"])
         t_end = _positive(doc["t_end"], "t_end")
         samples = doc.get("samples")
-        if samples is not None and (isinstance(samples, bool) or not isinstance(samples, int) or samples < 2):
-            raise SceneError(f"samples: expected an integer ≥ 2; got {_type_name(samples)} {str(samples)[:40]}")
-        if samples is not None and samples > MAX_SAMPLES:
-            raise SceneError(f"samples: at most {MAX_SAMPLES} sample times per trajectory are supported; got {str(samples)[:40]}")
-        if samples is not None and len(states) * samples > MAX_TOTAL_SAMPLES:
-            raise SceneError(
-                f"samples: {len(states)} initial states × {samples} samples = {len(states) * samples} sample times; "
-                f"at most {MAX_TOTAL_SAMPLES} per scene are supported (a bound on memory)"
-            )
+        _check_samples(samples, len(states), f"{_type_name(samples)} {str(samples)[:40]}")
         outputs = doc.get("outputs", ["trajectories", "events"])
         if not isinstance(outputs, list):
             raise SceneError(f"outputs: expected a list of strings; got {_type_name(outputs)} {outputs!r}")
@@ -483,7 +476,7 @@ def load_scene(scene: str | Path) -> Scene:
     >>> load_scene("paper-a").method
     'event'
     """
-    path = Path(scene)
+    path = Path(check_path(scene, name="scene", what="a scene file or a built-in scene's name"))
     if path.is_file():
         return Scene.from_file(path)
     name = str(scene)

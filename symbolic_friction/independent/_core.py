@@ -96,6 +96,12 @@ def _exponent(text: str) -> int:
         raise Malformed(f"not an exact number: {text[:40]!r}") from None
 
 
+def shown(x: Fraction) -> str:
+    """``x`` for a message: ``str(x)``, which raises past Python's 4300-digit limit, so a longer one by its size."""
+    bits = x.numerator.bit_length() + x.denominator.bit_length()
+    return str(x) if bits < 14_000 else f"(a rational of {bits} bits)"
+
+
 def det(m: list[list[Fraction]]) -> Fraction:
     """The determinant (Laplace expansion; the matrices here are at most 4×4)."""
     if len(m) == 1:

@@ -24,7 +24,7 @@ from __future__ import annotations
 
 from fractions import Fraction
 
-from ._core import Malformed, Verdict, q
+from ._core import Malformed, Verdict, q, shown
 from .paper import CONSTANTS, GAINS, PHYSICAL, numbers, premises
 
 AXES = ("k_p", "k_i", "k_v")
@@ -112,6 +112,7 @@ def check(data: dict) -> Verdict:
         failed = []
         for g in corners(part, box["f_c"][0]):
             c = 2 * (g["k_v"] * g["k_p"] - g["k_i"])  # Lemma 2's rate at this corner
-            failed += [f"({g['k_p']}, {g['k_i']}, {g['k_v']}): {name}" for name, holds in premises(g, k, c, kappa) if not holds]
+            failed += [f"({shown(g['k_p'])}, {shown(g['k_i'])}, {shown(g['k_v'])}): {name}"  # shown: any length
+                       for name, holds in premises(g, k, c, kappa) if not holds]
         verdict.add(f"piece {i + 1}: every premise at its 4 corners", not failed, "; ".join(failed[:5]))
     return verdict

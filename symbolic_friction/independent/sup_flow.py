@@ -20,7 +20,7 @@ from fractions import Fraction
 
 import flint
 
-from ._core import Malformed, Verdict, ball, copositive, psd, q
+from ._core import Malformed, Verdict, ball, copositive, psd, q, shown
 
 PRECISION = 128  # bits of the arb balls
 MAX_PARTS = 2048  # parts one flow premise may be cut into (the main verifier's limits, as the next)
@@ -188,7 +188,7 @@ class Flow:
             mid, undecided = (lo + hi) / 2, undecided + 1
             e = self.at(mid, lo)
             if undecided & (undecided - 1) == 0 and refute(e.transpose() * e):
-                return False, f"false at t = {mid}"
+                return False, f"false at t = {shown(mid)}"
             if done + len(stack) + 2 > MAX_PARTS or self.left < 2 or depth == MAX_DEPTH:
                 return None, f"not decided on [{ball(lo).str(6, radius=False)}, {ball(hi).str(6, radius=False)}]"
             stack += [(mid, hi, depth + 1), (lo, mid, depth + 1)]
@@ -279,7 +279,7 @@ def check(data: dict) -> Verdict:
         if flow is None:
             out.add(name, None, NOT_EVALUATED)
         elif not below(tail_gram):
-            out.add(name, False, f"the tail form at T = {horizon} is not below c2")
+            out.add(name, False, f"the tail form at T = {shown(horizon)} is not below c2")
         else:
             out.add(name, *flow.cover([(s, e) for s, e, _, _ in pieces[:-1]], below, lambda g: any(
                 (d.transpose() * g * d)[i, i] > mu for d in maps for i in range(3))))
@@ -289,13 +289,13 @@ def check(data: dict) -> Verdict:
             _piece_forms(out, f"piece {i + 1}", pieces[i], (kp, ki, kv), ell, v2)
             # sup_flow.exit, sup_flow_v2.exit: U^s ≥ |e^(At)w|² where a solution leaves, for every t of the piece
             name = (f"piece {i + 1}: U{'±' * v2} ≥ |e^(At)w|² on the exits of R̂{' and of f > ℓᵀy' * bool(drag)}"
-                    f" for t in [{start}, {'∞' if end is None else end})")
+                    f" for t in [{shown(start)}, {'∞' if end is None else shown(end)})")  # shown: str() raises past 4300 digits
             ex = [(_arb(ke), _arb(d), _arb(d).transpose()) for s, k in forms for ke, d in exit_forms(k, s, drag)]
             above = lambda g, ex=ex: all(copositive_lower(ke - dt * g * d) for ke, d, dt in ex)  # noqa: E731
             if flow is None:
                 out.add(name, None, NOT_EVALUATED)
             elif end is None:
-                out.add(name, above(tail_gram), f"past T = {horizon} by P")
+                out.add(name, above(tail_gram), f"past T = {shown(horizon)} by P")
             elif not start < end:
                 out.add(name, False, "empty piece")
             else:

@@ -56,7 +56,7 @@ def failing(rows) -> list:
 
 def test_every_scenario_matches_the_reference():
     rows = _kernel_check.kernel_rows()
-    assert len(rows) == 24 and not failing(rows), failing(rows)
+    assert len(rows) == 26 and not failing(rows), failing(rows)
     names = " ".join(r.scenario for r in rows)
     for part in ("f_c=1,", "f_c=2,", "f_c=1e-6,", "f_c=1e6,", "f_s=6/5 f_c", "uniform", "squared", "after event"):
         assert part in names

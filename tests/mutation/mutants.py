@@ -422,5 +422,42 @@ KERNEL_RESIDUAL = (
 )
 MUTANTS = MUTANTS + KERNEL_RESIDUAL
 
+_L3 = "symbolic_friction/_crosscheck/lemma3.py"
+_CL1 = "symbolic_friction/_obligations/claim1.py"
+# Issue 33, item 5: the trusted base's last gaps (each was a survivor of a hidden mutant set before its fix).
+TRUSTED_GAPS = (
+    Mutant("cx.c2_factor2", "cross-check", _L3, "rel = (c2 * a.d2 - a.V) / scale", "rel = (2 * c2 * a.d2 - a.V) / scale",
+           "Lemma 3's V ≤ c₂|x|²_𝒜 checked with 2c₂"),
+    Mutant("cx.V_half", "cross-check", _L3, "rel = (c2 * a.d2 - a.V) / scale", "rel = (c2 * a.d2 - a.V / 2) / scale",
+           "Lemma 3's V ≤ c₂|x|²_𝒜 checked with V/2"),
+    Mutant("cx.c2_exact_factor2", "cross-check", _L3, 'not (V(params, xq) <= Fraction(certificate.exact["c2"]) *',
+           'not (V(params, xq) <= 2 * Fraction(certificate.exact["c2"]) *',
+           "the exact re-decision of V ≤ c₂|x|²_𝒜 at a witness made with 2c₂"),
+    Mutant("cx.near_A_skip", "cross-check", _L3, "return Evaluation(rel, a.in_R & a.off_A, witness,",
+           "return Evaluation(rel, a.in_R & a.far, witness,", "V ≤ c₂|x|²_𝒜 skips the points with |x|²_𝒜 < 10⁻⁶L²"),
+    Mutant("cx.hatV_interval_ends", "cross-check", _L3, "run &= a.in_Rhat[:, :-1] | a.in_Rhat[:, 1:]",
+           "run &= a.in_Rhat[:, :-1] & a.in_Rhat[:, 1:]", "V̂ nonincreasing skips the R̂ intervals that end at an event"),
+    Mutant("cx.hatV_scale_fc", "cross-check", _L3, "star[:, 1] = k * a.f_c", "star[:, 1] = k",
+           "the interior points of an R̂ interval flowed about (0, k, 0) instead of (0, k f_c, 0)"),
+    Mutant("kernel.scan_fourth_order", "kernel", _KF, "slack = grow * (max(u2_prev, u2_next) + extra)",
+           "slack = grow * max(u2_prev, u2_next)", "the scan's bound on |u''| on a cell without its fourth-order term"),
+    Mutant("kernel.scan_fourth_order_fast", "kernel", _KF, "extra = grow * min(m4 * r_p,", "extra = 0.0 * min(m4 * r_p,",
+           "the fast table's fourth-order term zeroed"),
+    Mutant("kernel.rounding_swap_kp_ki", "kernel", _KER,
+           "K[I_GAIN_KI] * abs(float(z0[0])) + K[I_GAIN_KP] * abs(float(z0[1]))",
+           "K[I_GAIN_KP] * abs(float(z0[0])) + K[I_GAIN_KI] * abs(float(z0[1]))",
+           "the rounding tolerance of φ = −k_i e_i − k_p s at rest with k_i and k_p swapped"),
+    Mutant("ob.claim1_undecided_sign", "obligations", _CL1, "if finite and sign_of(T) != 1:",
+           "if finite and sign_of(T) == -1:", "claim1.cases accepts a stick duration of undecided sign (or 0)"),
+)
+_GAP_TESTS = {
+    "cross-check": ("tests/crosscheck/test_trusted_gaps.py",),
+    "kernel": ("tests/simulation/test_scan_graze.py", "tests/crosscheck/test_trusted_gaps.py"),
+    "obligations": ("tests/obligations/test_claim1_duration.py",),
+}
+# check catches each of them (its self-test, kernel rows or decision cases); the tests are the fallback
+TRUSTED_GAPS = tuple(replace(m, tests=_GAP_TESTS[m.target]) for m in TRUSTED_GAPS)
+MUTANTS = MUTANTS + TRUSTED_GAPS
+
 FAST: tuple[str, ...] = ("V.at_rest", "verify.drop_c2")
 """The subset the default test run executes (one model and one verifier mutant)."""

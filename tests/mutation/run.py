@@ -29,6 +29,15 @@ baseline is run the same way first and must pass both (otherwise every
 once is an error, never skipped.  The table is printed (and written
 atomically with ``--out``); the exit status is 0 only if every mutant is
 caught or listed as equivalent with its proof.
+
+The test suite's fast subset (``run_one(..., regenerate=False)``) first tries
+a cheaper route to the same verdict: one ``check --json --no-certificates`` on
+the mutated copy *as committed*, with only those of its failures counted that
+no file under ``proofs/`` can cause — an obligation that does not hold
+(derived from the code alone) or a self-check row that fails (the verifiers on
+the certificates shipped inside the package).  A stale or regenerated file can
+then never be what catches the mutant, which is what step 1 is there to
+ensure; a mutant not caught that way is decided by steps 1-3 as above.
 """
 
 from __future__ import annotations
@@ -71,6 +80,8 @@ class Outcome:
     seconds: float
     error: str = ""
     tests_rc: int | None = None
+    regenerated: bool = True
+    """False: decided by the one ``check --no-certificates`` on the copy as committed (:func:`_check_sources`)."""
 
     @property
     def caught(self) -> bool:
@@ -167,8 +178,70 @@ def _what_failed(check: subprocess.CompletedProcess, verify: subprocess.Complete
     return "; ".join(out) or "-"
 
 
-def run_one(mutant: Mutant | None, files: list[str], root: Path = ROOT) -> Outcome:
-    """Apply ``mutant`` (``None``: the baseline) to a fresh copy and run ``check --write``, ``check``, ``verify``."""
+SOURCES_ONLY = ["check", "--json", "--no-certificates"]
+"""The command of :func:`_check_sources` (the certificates section is left out: its verdict reads ``proofs/``)."""
+
+
+def _failures_without_proofs(payload: dict) -> list[str]:
+    """The failures of ``check --json`` that no file under ``proofs/`` can cause.
+
+    The obligations are derived from the code alone (none reads ``proofs/``) and the self-check runs the verifiers
+    on the certificates shipped inside the package; the other sections (certificates, the cross-check self-test,
+    the independent checker, ``obligations.md``) read ``proofs/`` and are not counted here.
+    """
+    failed = [o["id"] for o in payload.get("obligations", []) if o.get("status") != "holds"]
+    failed += [f"self-check {r.get('file') or r.get('case')}" for r in payload.get("self_check", []) if not r.get("ok")]
+    return failed
+
+
+def _check_sources(mutant: Mutant | None, files: list[str], root: Path) -> Outcome | None:
+    """One ``check --json --no-certificates`` on a mutated copy as committed; ``None`` when it does not decide.
+
+    The baseline (``mutant=None``) is returned as it ran (its ``check_rc`` must be 0: the very command each mutant
+    must fail passes on the unmutated copy, whole).  A mutant is returned as caught only if
+    :func:`_failures_without_proofs` names something, so a committed file going stale (or being regenerated) can
+    never be what catches it; otherwise (or if the output is not JSON, or on a timeout) ``None``: the caller runs
+    the full pipeline.  ``verify`` is not run (its verdict reads ``proofs/``).
+    """
+    start = time.perf_counter()
+    with tempfile.TemporaryDirectory(prefix="sf-mutant-") as tmp:
+        dest = Path(tmp)
+        _copy_tree(dest, files, root)
+        if mutant is not None:
+            path = dest / mutant.path
+            try:
+                path.write_text(apply(path.read_text(encoding="utf-8"), mutant), encoding="utf-8")
+            except DoesNotApply:
+                return Outcome(mutant, None, None, "-", time.perf_counter() - start, "does not apply", regenerated=False)
+        try:
+            check = _run(SOURCES_ONLY, dest)
+        except subprocess.TimeoutExpired:
+            return None
+    try:
+        payload = json.loads(check.stdout)
+    except json.JSONDecodeError:
+        return None
+    failed = _failures_without_proofs(payload)
+    seconds = time.perf_counter() - start
+    if mutant is None:
+        last = check.stderr.strip().splitlines()[-1:] or ["?"]
+        caught_by = "-" if not check.returncode else "check: " + ", ".join(failed or [last[0][:90]])
+        return Outcome(None, check.returncode, None, caught_by, seconds, regenerated=False)
+    if not failed or not check.returncode:
+        return None
+    return Outcome(mutant, check.returncode, None, "check: " + ", ".join(dict.fromkeys(failed)), seconds, regenerated=False)
+
+
+def run_one(mutant: Mutant | None, files: list[str], root: Path = ROOT, *, regenerate: bool = True) -> Outcome:
+    """Apply ``mutant`` (``None``: the baseline) to a fresh copy and run ``check --write``, ``check``, ``verify``.
+
+    ``regenerate=False`` tries :func:`_check_sources` first (one ``check``, no ``--write``) and runs the three steps
+    only when that does not decide; the outcome's ``regenerated`` says which decided.
+    """
+    if not regenerate:
+        quick = _check_sources(mutant, files, root)
+        if quick is not None:
+            return quick
     start = time.perf_counter()
     with tempfile.TemporaryDirectory(prefix="sf-mutant-") as tmp:
         dest = Path(tmp)
