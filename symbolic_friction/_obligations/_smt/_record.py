@@ -90,15 +90,10 @@ def declare_claim(expr: Any, kind: str, sign: int | None = None) -> None:
 
 
 def _is_rational_function(expr: Any) -> bool:
-    if not isinstance(expr, sp.Expr):
-        return False
-    for node in sp.preorder_traversal(expr):
-        if isinstance(node, (sp.Symbol, sp.Rational, sp.Add, sp.Mul)):
-            continue
-        if isinstance(node, sp.Pow) and node.exp.is_Integer:
-            continue
-        return False
-    return True
+    """The decision procedures' own test (:func:`.._decide._is_rational_function`), for sympy expressions only."""
+    from .._decide import _is_rational_function as rational
+
+    return isinstance(expr, sp.Expr) and rational(expr)
 
 
 def _entries(expr: Any) -> list[Any]:
