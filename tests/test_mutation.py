@@ -61,8 +61,8 @@ def test_fast_subset_is_caught_by_check_or_verify_alone():
     ``regenerate=False`` (run.py's :func:`_check_sources`): one ``check --json --no-certificates`` on each copy as
     committed, the baseline passing that very command whole; a mutant counts as caught there only through an
     obligation or a self-check row, which never read ``proofs/``, so a stale (or regenerated) file cannot be what
-    catches it — the guarantee ``check --write`` first gives the full script, at a third of its cost.  A mutant not
-    decided that way goes through the script's whole pipeline, after that pipeline's own baseline.
+    catches it — the guarantee ``check --write`` first gives the full script, at about a quarter of its cost.  A
+    mutant not decided that way goes through the script's whole pipeline, after that pipeline's own baseline.
     """
     files = source_files()
     base = run_one(None, files, regenerate=False)
@@ -78,10 +78,11 @@ def test_fast_subset_is_caught_by_check_or_verify_alone():
 
 
 def test_only_failures_no_proofs_file_can_cause_count_without_regenerating():
-    """What :func:`_check_sources` counts: failing obligations and self-check rows, never the sections reading proofs/."""
+    """What :func:`_check_sources` counts: failing obligations and self-check rows, never a section reading proofs/."""
     payload = {
         "obligations": [{"id": "model.V", "status": "holds"}, {"id": "lemma3.R", "status": "FAILS"}],
-        "self_check": [{"file": "a.json", "ok": True}, {"file": "b.json", "ok": False}, {"case": "rigour x", "ok": False}],
+        "self_check": [{"file": "a.json", "ok": True}, {"file": "b.json", "ok": False},
+                       {"case": "rigour x", "ok": False}],
         "certificates": [{"file": "proofs/c.json", "proved": False, "stale": True}],
         "crosscheck_self_test": [{"case": "a", "variant": "proved", "ok": False}],
         "independent": [{"proved": False, "must_prove": True}],
@@ -96,7 +97,8 @@ def test_what_failed_names_the_catches_of_the_full_pipeline():
 
     from tests.mutation.run import _what_failed
 
-    payload = {"obligations": [{"id": "lemma3.R", "status": "FAILS"}], "certificates": [{"file": "proofs/a.json", "proved": False}],
+    payload = {"obligations": [{"id": "lemma3.R", "status": "FAILS"}],
+               "certificates": [{"file": "proofs/a.json", "proved": False}],
                "crosscheck_self_test": [{"case": "a", "variant": "c1", "ok": False}]}
     check = CompletedProcess([], 1, json.dumps(payload), "")
     verify = CompletedProcess([], 1, "PROVED proofs/x.json: fine\nFAILED proofs/a.json: c2\n", "")

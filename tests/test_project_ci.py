@@ -3,13 +3,14 @@
 In a throw-away git repository a user certifies two gain sets of their own
 (one normalised, one given as physical parameters, with a label), names them
 in ``[tool.symbolic-friction]`` of their ``pyproject.toml``, and runs the
-pre-commit hook exactly as ``.pre-commit-hooks.yaml`` declares it, plus
-``check --junit-xml``: everything passes, the JUnit XML has one test case per
-obligation and certificate.  Editing one constant makes the hook and ``check``
-fail, naming the inequality.  (``pre-commit try-repo`` would build a fresh
-environment with cvxpy and numba from the network; the hook's entry command is
-run directly instead, in a subprocess with this checkout on ``PYTHONPATH``, and
-once more as the console script of a copy installed into a fresh virtual
+pre-commit hook as ``.pre-commit-hooks.yaml`` declares it, with ``--junit-xml``
+added as a project's ``args:`` would add it: everything passes, the JUnit XML
+has one test case per obligation and certificate.  Editing one constant makes
+the hook (``check``) fail, naming the inequality in its output and its JUnit
+XML.  (``pre-commit try-repo`` would build a fresh environment with cvxpy and
+numba from the network; the hook's entry command is run directly instead, in a
+subprocess with this checkout on ``PYTHONPATH``, and once more, exactly as
+declared, as the console script of a copy installed into a fresh virtual
 environment.)
 """
 
@@ -81,14 +82,13 @@ def test_certificates_keep_physical_gains_and_label(project):
 
 
 def test_hook_and_check_pass_then_fail_on_an_edited_constant(project, tmp_path):
-    hook = _run(_hook_entry("symbolic-friction-check"), project)
+    # One run serves as the hook and as `check --junit-xml`: the hook's entry with the arguments a project's
+    # `args: [--junit-xml, FILE]` appends (the hook's entry alone, as declared, runs in the fresh-environment test)
+    report = tmp_path / "check.xml"
+    hook = _run(_hook_entry("symbolic-friction-check") + ["--junit-xml", str(report)], project)
     assert hook.returncode == 0, hook.stdout + hook.stderr
     assert hook.stdout.strip().splitlines()[-1].startswith("check: PASSED")
     assert "2 of 2 certificates proved exactly, 2 of 2 up to date" in hook.stdout
-
-    report = tmp_path / "check.xml"
-    check = _run(_cli("check", "--junit-xml", str(report)), project)
-    assert check.returncode == 0, check.stdout + check.stderr
     root = ET.parse(report).getroot()
     assert root.tag == "testsuites" and root.get("failures") == "0" and root.get("errors") == "0"
     cases = root.findall("./testsuite/testcase")
@@ -110,12 +110,11 @@ def test_hook_and_check_pass_then_fail_on_an_edited_constant(project, tmp_path):
     data["constants"]["k3"] = data["constants"]["k2"]
     path.write_text(json.dumps(data, indent=2, sort_keys=True) + "\n", encoding="utf-8")
     try:
-        hook = _run(_hook_entry("symbolic-friction-check"), project)
+        report.unlink()  # the failing run must write its own
+        hook = _run(_hook_entry("symbolic-friction-check") + ["--junit-xml", str(report)], project)
         assert hook.returncode == 1
         assert "k3 > k2" in hook.stdout and "slow_axis.json" in hook.stdout
         assert hook.stdout.strip().splitlines()[-1].startswith("check: FAILED — 1 of 2 certificates proved exactly")
-        check = _run(_cli("check", "--junit-xml", str(report)), project)
-        assert check.returncode == 1 and "k3 > k2" in check.stdout
         failed = [c for c in ET.parse(report).getroot().iter("testcase") if c.find("failure") is not None]
         # both verifiers refuse the edited file: the main one in the certificates section, the independent one in its own
         assert [(c.get("classname"), c.get("name")) for c in failed] == [

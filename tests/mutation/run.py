@@ -212,7 +212,8 @@ def _check_sources(mutant: Mutant | None, files: list[str], root: Path) -> Outco
             try:
                 path.write_text(apply(path.read_text(encoding="utf-8"), mutant), encoding="utf-8")
             except DoesNotApply:
-                return Outcome(mutant, None, None, "-", time.perf_counter() - start, "does not apply", regenerated=False)
+                return Outcome(mutant, None, None, "-", time.perf_counter() - start, "does not apply",
+                               regenerated=False)
         try:
             check = _run(SOURCES_ONLY, dest)
         except subprocess.TimeoutExpired:
@@ -229,7 +230,8 @@ def _check_sources(mutant: Mutant | None, files: list[str], root: Path) -> Outco
         return Outcome(None, check.returncode, None, caught_by, seconds, regenerated=False)
     if not failed or not check.returncode:
         return None
-    return Outcome(mutant, check.returncode, None, "check: " + ", ".join(dict.fromkeys(failed)), seconds, regenerated=False)
+    caught_by = "check: " + ", ".join(dict.fromkeys(failed))
+    return Outcome(mutant, check.returncode, None, caught_by, seconds, regenerated=False)
 
 
 def run_one(mutant: Mutant | None, files: list[str], root: Path = ROOT, *, regenerate: bool = True) -> Outcome:
