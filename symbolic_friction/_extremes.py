@@ -44,6 +44,7 @@ from typing import Any, Sequence
 import numpy as np
 
 from ._infra.errors import SimulationError, SymbolicFrictionError
+from ._infra.guards import check_items, check_real
 from ._model.parameters import Parameters
 
 __all__ = [
@@ -54,6 +55,7 @@ __all__ = [
 OK, REFUSED, WRONG, PROVED, HUNG = "ok", "refused", "wrong", "proved", "no answer"
 # a run that has not returned after this many seconds is stopped and reported as giving no answer
 RUN_LIMIT = 15.0
+MAX_LIMIT, MAX_METHODS = 3600.0, 64  # the most a caller may ask for: each method runs on every cell, each run that long
 # the exact method's claim: it agrees with the reference to this relative error (rounding only)
 EVENT_CLAIM = 1e-9
 # a method's claim at knob q of declared order p is min(CAP, FACTOR q^p), relative to the solution's size
@@ -352,17 +354,20 @@ class Extremes:
         return "\n".join(lines) + "\n"
 
 
-def run_extremes(
-    methods: Sequence[Any] | None = None,
-    *,
-    only: Sequence[str] | None = None,
-    certify: bool = True,
-    limit: float = RUN_LIMIT,
-    theta: float = 1.0,
-) -> Extremes:
+def run_extremes(methods: Sequence[Any] | None = None, *, only: Sequence[str] | None = None, certify: bool = True,
+                 limit: float = RUN_LIMIT, theta: float = 1.0) -> Extremes:
     """Run the matrix (or the cells whose group or label is in ``only``), each run stopped after ``limit`` s.
 
-    ``theta`` is the weight of Moreau's θ-method among the default methods (ignored when ``methods`` is given).
+    ``methods`` is a list of methods, each configured (``Moreau(h=1e-3)``) or a name (``"event"``), or one of
+    them; ``theta`` is the weight of Moreau's θ-method among the default methods (ignored when ``methods`` is given).
+
+    Raises
+    ------
+    ParameterTypeError
+        If ``methods`` or ``only`` is not a list (``None``: the defaults, every cell), or a cell name not a ``str``.
+    SimulationError
+        Before any cell is run: a method that is neither a method nor a name, more than :data:`MAX_METHODS`, ``limit``
+        not in ``(0, MAX_LIMIT]`` seconds, ``theta`` outside ``[1/2, 1]``, or no cell matching ``only``.
 
     Examples
     --------
@@ -372,11 +377,19 @@ def run_extremes(
     []
     >>> print(result.report())  # doctest: +SKIP
     """
+    from ._simulation import SimulationMethod, configure
+
     t0 = time.perf_counter()
-    methods = list(default_methods(theta=theta) if methods is None else methods)
-    chosen = [c for c in cells() if only is None or c.group in only or c.label in only]
+    limit = check_real(limit, name="limit", high=MAX_LIMIT, error=SimulationError, why="seconds per run, a bound on time")
+    methods = default_methods(theta=theta) if methods is None else check_items(
+        methods, name="methods", what="a list of simulation methods (e.g. [EventDriven(), 'moreau'])", high=MAX_METHODS,
+        single=(str, SimulationMethod), each=lambda m: configure(m, {}), error=SimulationError)
+    matrix = cells()
+    only = None if only is None else check_items(only, name="only", what="a list of cell groups or labels", single=str,
+                                                 high=len(matrix) + 64, kind=str, error=SimulationError)
+    chosen = [c for c in matrix if only is None or c.group in only or c.label in only]
     if not chosen:
-        raise SimulationError(f"no extreme cell matches {list(only or [])}; groups: {sorted({c.group for c in cells()})}")
+        raise SimulationError(f"no extreme cell matches {list(only or [])}; groups: {sorted({c.group for c in matrix})}")
     outcomes = []
     refs = {}
     cache: dict = {}

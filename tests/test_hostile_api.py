@@ -18,8 +18,8 @@ must, within :data:`BOUND` seconds:
   (``kind="signature"``), the ``TypeError`` Python raises *at the call* (no frame of the package on
   the traceback), which names the keyword.
 
-A few calls go to modules this change could not edit; they are listed in :data:`KNOWN` with the reason
-and marked ``xfail(strict=True)``, so that fixing one turns its case into a failure until it leaves the list.
+A call that cannot be fixed at once is listed in :data:`KNOWN` with the reason and marked
+``xfail(strict=True)``, so that fixing it turns its case into a failure until it leaves the list (none is now).
 """
 
 from __future__ import annotations
@@ -153,6 +153,9 @@ for label, value in [("str", "'x'"), ("decimal-huge", "D('1e999999999')"), ("non
     case(f"Certificate-{label}", f"Certificate(*([{value}] * 13), overshoot_bound='1')", "k_p")
 
 case("VerificationReport-strings", "VerificationReport('x', 'y')", "certificate")
+case("VerificationReport-checks-str", "VerificationReport(C, 'y')", "checks")
+case("VerificationReport-checks-of-strings", "VerificationReport(C, ('y',))", "checks[0]")
+case("VerificationReport-source-int", "VerificationReport(C, (), 5)", "source")
 
 # ---- simulation ----------------------------------------------------------------------------------------
 for label, value in [("str", "'x'"), ("none", "None"), ("dict", "{'k_p': 3}")]:
@@ -284,6 +287,14 @@ for label, expr, word, *kind in [
     case(f"find_cycles-{label}", expr, word, *kind)
 for label, expr, word in [
     ("box-str", "prove_cycle(PS, 'x')", "box"), ("params-str", "prove_cycle('x', None)", "params"),
+    ("box-none", "prove_cycle(PS, None)", "box"),
+    ("box-float-corners", "prove_cycle(PS, BOX(sigma=(0.1, 0.2), tau=(F(2), F(3)), monotone_from=F(1)))", "box.sigma"),
+    ("box-str-corner", "prove_cycle(PS, BOX(sigma=(F(1, 8), F(3, 8)), tau=(F(2), F(3)), monotone_from='x'))", "monotone_from"),
+    ("box-one-corner", "prove_cycle(PS, BOX(sigma=(F(1, 8),), tau=(F(2), F(3)), monotone_from=F(1)))", "box.sigma"),
+    ("precision-huge", "prove_cycle(PS, BOX(sigma=(F(1, 8), F(3, 8)), tau=(F(2), F(3)), monotone_from=F(1)), precision=10**9)",
+     "precision"),
+    ("precision-str", "prove_cycle(PS, BOX(sigma=(F(1, 8), F(3, 8)), tau=(F(2), F(3)), monotone_from=F(1)), precision='x')",
+     "precision"),
 ]:
     case(f"prove_cycle-{label}", expr, word)
 for label, expr, word in [
@@ -293,19 +304,48 @@ for label, expr, word in [
     ("samples-huge", "crosscheck([C], samples=10**9)", "samples"),
     ("horizon-nan", "crosscheck([C], horizon=nan)", "horizon"),
     ("seed-str", "crosscheck([C], seed='x')", "seed"),
+    # chunk=0 was read as 1: 10⁵ trajectories simulated one at a time, a run that seemed to loop forever
+    ("chunk-zero", "crosscheck([C], chunk=0)", "chunk"), ("chunk-negative", "crosscheck([C], chunk=-5)", "chunk"),
+    ("chunk-huge", "crosscheck([C], chunk=10**12)", "chunk"), ("chunk-str", "crosscheck([C], chunk='x')", "chunk"),
+    ("chunk-float", "crosscheck([C], chunk=2.5)", "chunk"),
+    ("seed-negative", "crosscheck([C], seed=-1)", "seed"), ("seed-beyond-scipy", "crosscheck([C], seed=2**40)", "seed"),
+    ("horizon-int-400-digits", "crosscheck([C], horizon=10**400)", "horizon"),
+    ("trajectories-times-samples", "crosscheck([C], trajectories=10**6, samples=10**5)", "samples"),
+    ("max_events-huge", "crosscheck([C], max_events=10**12)", "max_events"),
+    ("iss_search-str", "crosscheck([C], iss=True, iss_search='x')", "iss_search"),
+    ("int", "crosscheck(3)", "certificates"), ("bytes", "crosscheck(b'x.json')", "certificates"),
+    ("dict", "crosscheck({'a': C})", "certificates"), ("endless-generator", "crosscheck(iter(lambda: C, None))", "certificates"),
+    ("directory", "crosscheck(TMP)", "directory"),
 ]:
     case(f"crosscheck-{label}", expr, word)
 case("CrosscheckReport-strings", "CrosscheckReport('x', 1, 1, 1, 1)", "checks")
+case("CrosscheckReport-checks-of-strings", "CrosscheckReport(['x'], 0.5, 0.5, 0, 1.0)", "checks[0]")
+case("CrosscheckReport-seed-negative", "CrosscheckReport((), 0.5, 0.5, -1, 1.0)", "seed")
+case("CrosscheckReport-rtol-str", "CrosscheckReport((), 'x', 0.5, 0, 1.0)", "rtol")
+case("CrosscheckReport-seconds-nan", "CrosscheckReport((), 0.5, 0.5, 0, nan)", "seconds")
 for label, expr, word in [
     ("params-str", "measure_tradeoff('x', [(0, 1, 0)], 10)", "params"),
     ("z0s-str", "measure_tradeoff(P, 'x', 10)", "z0s"),
     ("t_end-int-400-digits", "measure_tradeoff(P, [(0, 1, 0)], 10**400)", "t_end"),
     ("samples-huge", "measure_tradeoff(P, [(0, 1, 0)], 10, samples=10**12)", "samples"),
+    ("z0s-none", "measure_tradeoff(P, None, 10)", "z0s"), ("z0s-row-of-two", "measure_tradeoff(P, [(0, 1)], 10)", "z0s[0]"),
+    ("z0s-int-400-digits", "measure_tradeoff(P, [(10**400, 1, 0)], 10)", "z0s[0]"),
+    ("z0s-billion-rows", "measure_tradeoff(P, np.broadcast_to(np.zeros(3), (10**9, 3)), 10)", "z0s"),
+    ("t_end-nan", "measure_tradeoff(P, [(0, 1, 0)], nan)", "t_end"), ("t_end-str", "measure_tradeoff(P, [(0, 1, 0)], 'x')", "t_end"),
+    ("repeats-huge", "measure_tradeoff(P, [(0, 1, 0)], 10, repeats=10**12)", "repeats"),
+    ("budget-nan", "measure_tradeoff(P, [(0, 1, 0)], 10, budget=nan)", "budget"),
+    ("thetas-str", "measure_tradeoff(P, [(0, 1, 0)], 10, thetas='x')", "thetas"),
+    ("sweeps-str", "measure_tradeoff(P, [(0, 1, 0)], 10, sweeps='x')", "sweeps"),
+    ("label-int", "measure_tradeoff(P, [(0, 1, 0)], 10, label=5)", "label"),
 ]:
     case(f"measure_tradeoff-{label}", expr, word)
 for label, expr, word in [
     ("methods-str", "run_extremes(methods='x')", "methods"), ("only-unknown", "run_extremes(only=['nope'])", "nope"),
     ("limit-nan", "run_extremes(limit=nan)", "limit"), ("theta-large", "run_extremes(theta=5)", "theta"),
+    ("methods-int", "run_extremes(methods=5)", "methods"), ("methods-list-of-int", "run_extremes(methods=['event', 3])", "methods[1]"),
+    ("methods-too-many", "run_extremes(methods=['event'] * 1000)", "methods"), ("only-int", "run_extremes(only=5)", "only"),
+    ("only-list-of-int", "run_extremes(only=[1])", "only[0]"), ("limit-int-400-digits", "run_extremes(limit=10**400)", "limit"),
+    ("limit-zero", "run_extremes(limit=0)", "limit"),
 ]:
     case(f"run_extremes-{label}", expr, word)
 for label, expr, word in [
@@ -342,30 +382,8 @@ for label, expr, word in [
 ]:
     case(f"Scene-{label}", expr, word)
 
-# Not in the corpus, as it would spend BOUND seconds of every run: crosscheck([C], chunk=0) loops forever
-# (_crosscheck/_run.py, not this change's file).
-KNOWN: dict[str, str] = {
-    "verify_certificate-str": "_certify/verify.py raises a plain TypeError for a non-Certificate (not this change's file)",
-    "verify_certificate-none": "_certify/verify.py raises a plain TypeError for a non-Certificate (not this change's file)",
-    "verify_certificate-parameters": "_certify/verify.py raises a plain TypeError for a non-Certificate (not this change's file)",
-    "verify_file-int": "verify_file calls Path(path) before the bounded reader (_certify/verify.py, not this change's file)",
-    "verify_file-none": "verify_file calls Path(path) before the bounded reader (_certify/verify.py, not this change's file)",
-    "verify_file-bytes": "verify_file calls Path(path) before the bounded reader (_certify/verify.py, not this change's file)",
-    "VerificationReport-strings": "_certify/verify.py's dataclass takes any certificate and checks (not this change's file)",
-    "prove_cycle-box-str": "_certify/hunting_proof.py reads box.sigma unchecked (not this change's file)",
-    "prove_cycle-params-str": "_certify/hunting_proof.py reads box.sigma unchecked (not this change's file)",
-    "crosscheck-none": "_crosscheck/_run.py iterates certificates unchecked (not this change's file)",
-    "crosscheck-missing-file": "_crosscheck/_run.py iterates a str's characters as paths (not this change's file)",
-    "crosscheck-trajectories-huge": "_crosscheck/_run.py allocates before bounding trajectories (not this change's file)",
-    "crosscheck-samples-huge": "_crosscheck/_run.py allocates before bounding samples (not this change's file)",
-    "crosscheck-seed-str": "_crosscheck/_run.py adds the seed unchecked (not this change's file)",
-    "measure_tradeoff-t_end-int-400-digits": "_studies/tradeoff.py calls float(t_end) unchecked (not this change's file)",
-    "CrosscheckReport-strings": "_crosscheck/_outcome.py reads check.verdict unchecked (not this change's file)",
-    "measure_tradeoff-z0s-str": "_studies/tradeoff.py converts z0s with float() unchecked (not this change's file)",
-    "measure_tradeoff-samples-huge": "_studies/tradeoff.py allocates np.linspace(samples) unchecked (not this change's file)",
-    "run_extremes-methods-str": "_extremes.py reads type(method).knob unchecked (not this change's file)",
-    "run_extremes-limit-nan": "_extremes.py passes limit to select() unchecked (not this change's file)",
-}
+KNOWN: dict[str, str] = {}
+"""Calls that still fail their case, each with the reason (marked ``xfail(strict=True)``): none."""
 
 
 # ---- the server: one warm interpreter, a fork per call ------------------------------------------------------
@@ -387,6 +405,7 @@ def _namespace(tmp: str) -> dict:
     import symbolic_friction._extremes
     import symbolic_friction._simulation.ivp_events
     import symbolic_friction._simulation.regularized
+    from symbolic_friction._certify.hunting_proof import Box
     from symbolic_friction.simulation import Reference
     from symbolic_friction.studies import Scene, load_scene
 
@@ -396,7 +415,7 @@ def _namespace(tmp: str) -> dict:
     ns.update(
         sf=sf, np=np, sympy=sympy, D=Decimal, F=Fraction, nan=math.nan, inf=math.inf, TMP=tmp, P=P,
         PS=sf.Parameters(k_p=3, k_i=4, k_v="6.4", f_s="1.2"), PR=sf.Parameters(k_p=3, k_i=4, k_v="6.4", reset_dwell="0.01"),
-        C=sf.certify(P), Reference=Reference, Scene=Scene, load_scene=load_scene,
+        C=sf.certify(P), Reference=Reference, Scene=Scene, load_scene=load_scene, BOX=Box,
         BATCH=sf.simulate_batch(P, [[0, 1, 0]], 1.0, t_eval=[0.0, 1.0]),
     )
     files = {
@@ -545,3 +564,16 @@ def test_hostile_call_raises_the_packages_error_early(server, name, expr, word, 
         assert result["ours"], f"{expr}: {result['type']}: {message[:500]} at {result['frames']}"
         assert len(message) <= 600 and "\n" not in message, message[:2000]
     assert word.lower() in message.lower(), f"{expr}: the message does not name {word!r}: {message}"
+
+
+def test_numpy_integers_are_read_as_python_integers():
+    """``to_rational(np.int64(3))`` is a Fraction of Python ints: an ``np.int64`` numerator would wrap around in the
+    exact arithmetic that follows (``Fraction(np.int64(2**62)) * 4``)."""
+    import numpy as np
+
+    from symbolic_friction import to_rational
+
+    for value in (np.int64(3), np.uint8(200), np.int32(-7), np.int64(2**62)):
+        q = to_rational(value, name="gain")
+        assert q == int(value) and type(q.numerator) is int and type(q.denominator) is int, (value, q)
+    assert to_rational(np.int64(2**62), name="gain") * 4 == 2**64

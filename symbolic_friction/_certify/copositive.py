@@ -67,7 +67,7 @@ def decide_copositive(matrix: Sequence[Sequence[Fraction]]) -> CopositivityDecis
         for x in row:
             if isinstance(x, bool) or not isinstance(x, (int, Fraction)):
                 raise ValueError(f"copositivity is decided for exact rationals only; got {type(x).__name__} {x!r}")
-    m = [[Fraction(x) for x in row] for row in m]
+    m = [[x if type(x) is Fraction else Fraction(x) for x in row] for row in m]  # a Fraction is kept (immutable)
     if any(m[i][j] != m[j][i] for i in range(n) for j in range(n)):
         raise ValueError("copositivity is decided for symmetric matrices only")
     for i in range(n):

@@ -41,7 +41,8 @@ import math
 from dataclasses import dataclass
 from fractions import Fraction
 
-from .._infra.rational import short_rational
+from .._infra.guards import ParameterTypeError, check_count, check_instance
+from .._infra.rational import short_rational, shown
 from .._model.parameters import Parameters
 
 __all__ = ["Box", "Check", "CycleProof", "prove_cycle", "box_around", "PRECISION"]
@@ -168,6 +169,14 @@ def prove_cycle(params: Parameters, box: Box, *, precision: int = PRECISION) -> 
         ``proved`` only if every check holds; a failing check is named with
         the enclosures that decided it.
 
+    Raises
+    ------
+    ParameterTypeError
+        If ``params`` is not a :class:`Parameters`, ``box`` not a :class:`Box` or a corner of the box not an
+        exact rational (``int`` or ``Fraction``), before any ball is made.
+    ParameterError
+        If ``precision`` is not an integer from 53 to 4096 (the range of a hunting certificate's ``precision_bits``).
+
     Examples
     --------
     >>> from symbolic_friction import Parameters, find_cycles, prove_cycle
@@ -179,12 +188,26 @@ def prove_cycle(params: Parameters, box: Box, *, precision: int = PRECISION) -> 
     """
     from flint import ctx
 
+    check_instance(params, Parameters, name="params", what="a Parameters instance with f_s > f_c")
+    _check_box(box)
+    precision = check_count(precision, name="precision", low=53, high=4096, why="the bits a hunting certificate may ask for")
     saved = ctx.prec
-    ctx.prec = int(precision)
+    ctx.prec = precision
     try:
         return _prove(params, box)
     finally:
         ctx.prec = saved
+
+
+def _check_box(box: object) -> None:
+    """Refuse what is not a :class:`Box` of exact rational corners (``int`` or ``Fraction``), naming the field."""
+    check_instance(box, Box, name="box", what="a Box (e.g. box_around(cycle.sigma, cycle.slip_time))")
+    for name in ("sigma", "tau", "monotone_from"):
+        value, pair = getattr(box, name), name != "monotone_from"
+        corners = value if pair and isinstance(value, (tuple, list)) else (value,)
+        if len(corners) != 1 + pair or not all(isinstance(q, (int, Fraction)) and not isinstance(q, bool) for q in corners):
+            what = "a pair of exact rationals" if pair else "an exact rational"
+            raise ParameterTypeError(f"box.{name} must be {what} (int or Fraction); got {shown(value)}")
 
 
 def _prove(params: Parameters, box: Box) -> CycleProof:

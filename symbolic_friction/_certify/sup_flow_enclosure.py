@@ -30,6 +30,7 @@ from typing import Any
 
 from .._infra.rational import format_rational as _f
 from .._model import sup_flow as model
+from .sup_flow_forms import exit_forms
 from .verify import Check
 
 __all__ = ["MAX_PARTS", "MAX_TOTAL_PARTS", "PRECISION", "EXPONENT_LIMIT", "FlowNorm", "FlowExit", "Budget", "decide_flow"]
@@ -72,6 +73,16 @@ def _arb(q: Fraction) -> Any:
     return arb(Fraction(q))
 
 
+def _arb_of_float(x: float) -> Any:
+    """``_arb(Fraction(x))`` for a float: a double is an exact arb point, so without the Fraction (a NaN or an
+    infinity still goes through the Fraction, which refuses it)."""
+    import math
+
+    import flint
+
+    return flint.arb(x) if math.isfinite(x) else _arb(Fraction(x))
+
+
 def _flow(cert: Any, a: Fraction, b: Fraction) -> Any:
     """An arb enclosure of ``e^{At}`` for every ``t ∈ [a, b]``: ``e^{Aa}·e^{A[0, b − a]}``.
 
@@ -83,10 +94,11 @@ def _flow(cert: Any, a: Fraction, b: Fraction) -> Any:
     import flint
 
     a_matrix = _system_of(cert)
-    key = (cert.k_p, cert.k_i, cert.k_v, flint.ctx.prec)
+    key = _gains_key(cert)
     # A bisection's parts share their left ends with their parents and their widths with their cousins, so
     # both factors repeat; each is the same ball every time it is built, so keeping it changes no decision.
-    start = _cached((key, "start", a), lambda: (a_matrix * _arb(a)).exp())
+    # The keys are exact (numerators and denominators: hashing ints is cheap, hashing Fractions is not).
+    start = _cached((key, "start", a.numerator, a.denominator), lambda: (a_matrix * _arb(a)).exp())
     if a == b:
         return start
 
@@ -94,7 +106,17 @@ def _flow(cert: Any, a: Fraction, b: Fraction) -> Any:
         half = _arb((b - a) / 2)
         return (a_matrix * flint.arb(half, half)).exp()
 
-    return start * _cached((key, "width", b - a), spread)
+    width = b - a
+    return start * _cached((key, "width", width.numerator, width.denominator), spread)
+
+
+def _gains_key(cert: Any) -> tuple[int, ...]:
+    """The gains and the working precision as exact integers (numerator, denominator): the key of the kept balls."""
+    import flint
+
+    k_p, k_i, k_v = cert.k_p, cert.k_i, cert.k_v
+    return (k_p.numerator, k_p.denominator, k_i.numerator, k_i.denominator, k_v.numerator, k_v.denominator,
+            flint.ctx.prec)
 
 
 _FLOWS: dict[tuple[Any, ...], Any] = {}
@@ -102,24 +124,23 @@ _FLOWS: dict[tuple[Any, ...], Any] = {}
 
 def _cached(key: tuple[Any, ...], build: Any) -> Any:
     """``build()`` kept under ``key`` (at most 4096 entries: the cache is cleared, never grows without bound)."""
-    if key not in _FLOWS:
+    value = _FLOWS.get(key)
+    if value is None:
         if len(_FLOWS) >= 4096:
             _FLOWS.clear()
-        _FLOWS[key] = build()
-    return _FLOWS[key]
+        value = _FLOWS[key] = build()
+    return value
 
 
-_SYSTEMS: dict[tuple[Fraction, Fraction, Fraction, int], Any] = {}
+_SYSTEMS: dict[tuple[int, ...], Any] = {}
 
 
 def _system_of(cert: Any) -> Any:
     """``A`` of eq. (xDot) as an arb matrix for ``cert``'s gains at the working precision (built once per gains
     and precision: the same balls every time, and the bisection's many parts do not rebuild it)."""
-    import flint
-
     from .flow_bound import _system
 
-    key = (cert.k_p, cert.k_i, cert.k_v, flint.ctx.prec)
+    key = _gains_key(cert)
     if key not in _SYSTEMS:
         if len(_SYSTEMS) >= 64:
             _SYSTEMS.clear()
@@ -128,7 +149,8 @@ def _system_of(cert: Any) -> Any:
 
 
 def _rows(m: Any) -> tuple[tuple[Any, ...], ...]:
-    return tuple(tuple(m[i, j] for j in range(3)) for i in range(3))
+    e = m.entries()  # row-major, the same balls as m[i, j], in one call
+    return tuple(e[0:3]), tuple(e[3:6]), tuple(e[6:9])
 
 
 def _gram(e: Any) -> tuple[tuple[Any, ...], ...]:
@@ -193,12 +215,14 @@ def _exit_holds(forms: Any, gram: Any, *, end: Any = _lower) -> tuple[bool, str]
     from .copositive import decide_copositive
 
     for s, k, d in forms:
-        named = list(zip(model.EXIT_PLANES, model.exit_forms(k, gram, _arb(Fraction(s)))))
+        named = list(zip(model.EXIT_PLANES, exit_forms(k, gram, s)))
         if d is not None:
             named.append(("f = ℓᵀy", model.pullback_gap(k, gram, d)))
         for plane, form in named:
             if end is _lower and _lower_ends_clearly_copositive(form):
                 continue  # proved without building Fractions (the common case); anything else is decided exactly
+            if end is _upper and _upper_ends_clearly_copositive(form):
+                continue  # not refuted, as the exact decision would say (the common case at a point of a true premise)
             pick = min if end is _lower else max
             n = len(form)
             try:
@@ -246,6 +270,43 @@ def _lower_ends_clearly_copositive(form: Any) -> bool:
     if not (a.is_finite() and b.is_finite() and c.is_finite()):
         return False
     return bool(a >= 0 and c >= 0 and (b >= 0 or b * b <= a * c))
+
+
+def _upper_ends_clearly_copositive(form: Any) -> bool:
+    """A sufficient test, in arb, that the matrix of the upper ends of a 2×2 ``form``'s balls is copositive.
+
+    The refutation at a point (``end=_upper``) looks for a form whose upper ends are *not* copositive; at a
+    point of a premise that holds, every form passes, and this spares building its Fractions.  It asks, as
+    :func:`_lower_ends_clearly_copositive` does on the lower ends, Hadeler's 2×2 criterion for certain on the
+    exact points ``a``, ``c`` (diagonal) and ``b`` (the larger off-diagonal upper end, as the exact path
+    takes).  True only where :func:`.copositive.decide_copositive` says True on what :func:`_upper` makes of
+    the same ends: every end is below ``2^EXPONENT_LIMIT`` in magnitude (beyond it the exact path raises
+    :class:`_TooWide` and stops, which this must not skip), and the tiny ends :func:`_end` moves move up,
+    which keeps a copositive matrix copositive.  A 3×3 form (the drag exit) is left to the exact decision.
+    """
+    if len(form) != 2:
+        return False
+    a, c = form[0][0].upper(), form[1][1].upper()
+    b01, b10 = form[0][1].upper(), form[1][0].upper()
+    if not (a.is_finite() and c.is_finite() and b01.is_finite() and b10.is_finite()):
+        return False
+    big = _two_to_limit()
+    if not (a < big and c < big and -big < b01 < big and -big < b10 < big):
+        return False
+    b = max(b01, b10)
+    return bool(a >= 0 and c >= 0 and (b >= 0 or b * b <= a * c))
+
+
+_LIMITS: list[Any] = []
+
+
+def _two_to_limit() -> Any:
+    """``2^EXPONENT_LIMIT`` as an exact arb point (a power of two is exact at every precision)."""
+    import flint
+
+    if not _LIMITS:
+        _LIMITS.append(flint.arb(2) ** EXPONENT_LIMIT)
+    return _LIMITS[0]
 
 
 def _not(verdict: tuple[bool, str]) -> tuple[bool, str]:
@@ -305,9 +366,10 @@ def _norm_refuted(cert: Any, mu: Any, t: Fraction, maps: Any = ()) -> tuple[bool
 
     e = _flow(cert, t, t)
     for i, g in enumerate(_pullbacks(e.transpose() * e, maps)):
-        guess = np.linalg.eigh(np.array([[float(g[i, j].mid()) for j in range(3)] for i in range(3)]))[1][:, -1]
-        v = [_arb(Fraction(float(x))) for x in guess]
-        q = sum(v[i] * g[i, j] * v[j] for i in range(3) for j in range(3)) / sum(x * x for x in v)
+        g = _rows(g)
+        guess = np.linalg.eigh(np.array([[float(g[i][j].mid()) for j in range(3)] for i in range(3)]))[1][:, -1]
+        v = [_arb_of_float(float(x)) for x in guess]
+        q = sum(v[i] * g[i][j] * v[j] for i in range(3) for j in range(3)) / sum(x * x for x in v)
         if q > mu:
             return True, "‖e^(At)‖² > c2 there" if i == 0 else "‖e^(At)·D_ℓ‖² > c2 there"
     return False, "‖e^(At)‖² > c2 there"

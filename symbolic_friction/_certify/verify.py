@@ -1,48 +1,35 @@
-"""Exact verification of a certificate: Lemma 2, Lemma 3 and Proposition 1
-instantiated with the certificate's numbers, decided in rational arithmetic.
+"""Exact verification of a certificate: Lemma 2, Lemma 3 and Proposition 1 instantiated with the certificate's numbers,
+decided in rational arithmetic.
 
-This is the only place where a certificate is called *proved*.  It uses
-exact rational arithmetic only (no floats, no solver): the certificate's
-:class:`fractions.Fraction` numbers are decided as python-flint ``fmpq``
-rationals, the same values in FLINT's arithmetic, several times faster than
-``Fraction``'s (a gain map verifies a certificate per point), and it
-shares no code with the search (:mod:`._certify.search`,
-:mod:`._certify.rounding`): the matrices come from the model's own entry
-functions (:func:`~symbolic_friction._model.lyapunov.lyapunov_matrix_entries`,
-:func:`~symbolic_friction._model.lyapunov.vhat_matrix_entries`), the k-conditions
-from :mod:`symbolic_friction._model.kconditions`, and positive semidefiniteness is
-decided by *all* principal minors (a symmetric matrix is PSD iff every
-principal minor is ``≥ 0``).
+This is the only place where a certificate is called *proved*.  It uses exact rational arithmetic only (no floats, no
+solver): the certificate's :class:`fractions.Fraction` numbers are decided as python-flint ``fmpq`` rationals, the
+same values in FLINT's arithmetic, several times faster than ``Fraction``'s (a gain map verifies a certificate per
+point), and it shares no code with the search (:mod:`._certify.search`, :mod:`._certify.rounding`): the matrices
+come from the model's own entry functions (:func:`~symbolic_friction._model.lyapunov.lyapunov_matrix_entries`,
+:func:`~symbolic_friction._model.lyapunov.vhat_matrix_entries`), the k-conditions from
+:mod:`symbolic_friction._model.kconditions`, and positive semidefiniteness is decided by *all* principal minors (a
+symmetric matrix is PSD iff every principal minor is ``≥ 0``).
 
 The inequalities checked (each one a :class:`Check` in the report):
 
-* Assumption 1 (which makes ``P ≻ 0``, obligation ``lemma2.P``):
-  ``k_i > 0``, ``k_p > 0``, ``k_v k_p > k_i``; and ``f_c > 0``.
-* Lemma 2: ``c = 2(k_v k_p - k_i)`` exactly and ``c > 0`` (item 2,
-  ``lemma2.dVdt``); ``c₁ > 0`` and ``P - c₁I ⪰ 0``, i.e. ``c₁ ≤ λ_min(P)``
-  (item 1, ``lemma2.lower_bound``).
+* Assumption 1 (which makes ``P ≻ 0``, obligation ``lemma2.P``): ``k_i > 0``, ``k_p > 0``, ``k_v k_p > k_i``; and ``f_c > 0``.
+* Lemma 2: ``c = 2(k_v k_p - k_i)`` exactly and ``c > 0`` (item 2, ``lemma2.dVdt``); ``c₁ > 0`` and
+  ``P - c₁I ⪰ 0``, i.e. ``c₁ ≤ λ_min(P)`` (item 1, ``lemma2.lower_bound``).
 * Lemma 3, eq. (VandR): ``c₂I - P ⪰ 0``, i.e. ``c₂ ≥ λ_max(P)`` (``lemma3.R``).
-* Lemma 3, eq. (hatVdot): the k-conditions ``k_j > 0``,
-  ``k₃ > (k_i/k_v)k₁``, ``k₃ > k₂``, ``k₄ > (k_i/k_v)k₃``, ``k₄ > k_p k₂``
-  (``lemma3.hatV_derivative``).
-* Lemma 3, eq. (hatVandHatR): ``k₁k₄ > k₃²`` (the paper's ``K ≻ 0``; not
-  needed for the bounds below but part of the paper's conditions), and, for
-  the nonnegative vector ``w = (|σ|, |dz(φ)|, |v|)``, ``0 < ĉ₁ ≤ k_j/2`` for
-  ``j ∈ {1, 2, 4}`` (valid
-  because ``k₃ ≥ 0`` and ``w ≥ 0`` make ``½wᵀKw ≥ ½min(k₁,k₂,k₄)|w|²``) and
+* Lemma 3, eq. (hatVdot): the k-conditions ``k_j > 0``, ``k₃ > (k_i/k_v)k₁``, ``k₃ > k₂``, ``k₄ > (k_i/k_v)k₃``,
+  ``k₄ > k_p k₂`` (``lemma3.hatV_derivative``).
+* Lemma 3, eq. (hatVandHatR): ``k₁k₄ > k₃²`` (the paper's ``K ≻ 0``; not needed for the bounds below but part
+  of the paper's conditions), and, for the nonnegative vector ``w = (|σ|, |dz(φ)|, |v|)``, ``0 < ĉ₁ ≤ k_j/2`` for
+  ``j ∈ {1, 2, 4}`` (valid because ``k₃ ≥ 0`` and ``w ≥ 0`` make ``½wᵀKw ≥ ½min(k₁,k₂,k₄)|w|²``) and
   ``ĉ₂I - K/2 ⪰ 0`` (``lemma3.hatV_bounds``).
-* Proposition 1, eq. (stabState): ``c₁ ≤ c₂``, ``ĉ₁ ≤ ĉ₂`` (so ``κ ≥ 1``) and
-  ``overshoot_bound² ≥ c₂ĉ₂/(c₁ĉ₁)`` (``prop1.stability_bound``).
+* Proposition 1, eq. (stabState): ``c₁ ≤ c₂``, ``ĉ₁ ≤ ĉ₂`` (so ``κ ≥ 1``) and ``overshoot_bound² ≥ c₂ĉ₂/(c₁ĉ₁)`` (``prop1.stability_bound``).
 
-Signs are premises like the rest: a file may hold any exact rational, and a
-gain or constant of the wrong sign is refused here, naming the premise
-(``k1 > 0: -2 > 0 is false``).  ``k_v`` has no premise of its own:
-Assumption 1 implies ``k_v > 0`` (``k_v k_p > k_i > 0`` with ``k_p > 0``),
-so ``k_v ≤ 0`` always fails one of its three premises.  A premise whose
-instance would divide by zero (``P`` has ``k_v/k_i``, the k-conditions
-``k_i/k_v``, the bound ``c₁ĉ₁`` in a denominator) is not evaluated: it is
-reported as failing (:class:`Undefined`), beside the sign premise that the
-zero breaks, and nothing raises.
+Signs are premises like the rest: a file may hold any exact rational, and a gain or constant of the wrong sign
+is refused here, naming the premise (``k1 > 0: -2 > 0 is false``).  ``k_v`` has no premise of its own:
+Assumption 1 implies ``k_v > 0`` (``k_v k_p > k_i > 0`` with ``k_p > 0``), so ``k_v ≤ 0`` always fails one of
+its three premises.  A premise whose instance would divide by zero (``P`` has ``k_v/k_i``, the k-conditions
+``k_i/k_v``, the bound ``c₁ĉ₁`` in a denominator) is not evaluated: it is reported as failing
+(:class:`Undefined`), beside the sign premise that the zero breaks, and nothing raises.
 """
 
 from __future__ import annotations
@@ -59,6 +46,7 @@ from typing import Any, Sequence
 from flint import fmpq
 
 from .._infra.errors import CertificateError
+from .._infra.guards import ParameterTypeError, check_instance, check_items, check_path
 from .._model.kconditions import CONDITION_NAMES, k_conditions
 from .._model.lyapunov import lyapunov_matrix_entries, vhat_matrix_entries
 from .._infra.rational import format_rational
@@ -119,6 +107,14 @@ class VerificationReport:
     certificate: Certificate
     checks: tuple[Check, ...]
     source: str = "<certificate>"
+
+    def __post_init__(self) -> None:
+        """Refuse a report no verifier returns (``VerificationReport("x", "y")``), naming the field (a :class:`ParameterTypeError`)."""
+        cert = self.certificate  # a subclass's (a template beyond the paper's) is its template's: a dataclass with the gains
+        if type(self) is VerificationReport or not (dataclasses.is_dataclass(cert) and all(hasattr(cert, n) for n in PARAMETER_NAMES)):
+            check_instance(cert, Certificate, name="certificate", what="a Certificate (verify_certificate makes reports)")
+        object.__setattr__(self, "checks", tuple(check_items(self.checks, name="checks", what="a tuple of Check", high=10**6, kind=Check)))
+        check_instance(self.source, str, name="source", what="a str (a file name)")
 
     @property
     def proved(self) -> bool:
@@ -385,6 +381,11 @@ def verify_certificate(certificate: Certificate, *, source: str = "<certificate>
         ``report.proved`` is True iff every inequality holds; failing ones are
         named in ``report.failures`` with their exact numbers.
 
+    Raises
+    ------
+    ParameterTypeError
+        If ``certificate`` is not a :class:`Certificate` (also a ``TypeError``).
+
     Examples
     --------
     >>> from symbolic_friction import Parameters
@@ -393,7 +394,7 @@ def verify_certificate(certificate: Certificate, *, source: str = "<certificate>
     True
     """
     if not isinstance(certificate, Certificate):
-        raise TypeError(f"verify_certificate needs a Certificate; got {type(certificate).__name__}")
+        raise ParameterTypeError(f"verify_certificate needs a Certificate; got {type(certificate).__name__}")
     checks = tuple(decide(premise) for premise in premises(_Exact(certificate)))
     checks += provenance_checks(certificate, checks)
     return VerificationReport(certificate=certificate, checks=checks, source=source)
@@ -490,8 +491,10 @@ def verify_file(path: str | os.PathLike[str]) -> VerificationReport:
 
     Raises
     ------
+    InputFileError
+        If ``path`` is not a ``str`` or ``pathlib.Path`` (``3``, ``None``, ``b"x.json"``), or does not name a
+        readable regular file of bounded size (read by the package's bounded reader).
     CertificateFormatError
         If the file is not a well-formed certificate (the message names the key).
     """
-    path = Path(path)
-    return verify_certificate(load(path), source=str(path))
+    return verify_certificate(load(check_path(path, name="path", what="certificate file")), source=str(Path(path)))

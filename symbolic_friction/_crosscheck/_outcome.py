@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from .._infra.guards import check_count, check_instance, check_items, check_real
 from .._model.parameters import Parameters
 from ._results import Counterexample, PropertyResult
 
@@ -15,7 +16,19 @@ if TYPE_CHECKING:  # annotations only
     from ._claims import Claims
 
 __all__ = ["CertificateCheck", "CrosscheckReport", "SEARCH_MODES", "search_mode", "slowest_root", "default_horizon",
-           "sample_times"]
+           "sample_times", "MAX_SEED", "MAX_CERTIFICATES", "MAX_TRAJECTORIES", "MAX_SAMPLES", "MAX_TOTAL_SAMPLES", "MAX_HORIZON"]
+
+MAX_TRAJECTORIES = 1_000_000
+MAX_SAMPLES = 100_000
+MAX_TOTAL_SAMPLES = 20_000_000  # twice the default run (10⁵ trajectories × 101 samples); 10⁸ did not finish
+MAX_HORIZON = 1e6
+"""Bounds on the work one :func:`~._run.crosscheck` may ask for (time and memory), checked before anything is
+simulated or allocated (the command line's options have the same bounds)."""
+
+MAX_SEED = 2**31 - 1
+"""The largest seed of a run: each gain set adds its offset (``1000·i``) and scipy's optimisers take seeds below ``2**32``."""
+MAX_CERTIFICATES = 10_000
+"""The most certificates one run checks (each is verified exactly, then simulated with its gain set)."""
 
 SEARCH_MODES = ("random spheres", "grid", "special", "adversarial")
 """Sources of initial states, for the per-mode tightness ratio."""
@@ -157,6 +170,27 @@ class CrosscheckReport:
     seconds: float
     decay: dict = field(default_factory=dict)
     iss: dict = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        """Refuse a report :func:`crosscheck` never returns (``CrosscheckReport("x", 1, 1, 1, 1)``), naming the field.
+
+        Raises
+        ------
+        ParameterTypeError
+            If ``checks`` is not a tuple of :class:`CertificateCheck`, or ``decay`` or ``iss`` not a dict.
+        ParameterError
+            If ``rtol`` is not in ``(0, 1]``, ``theta`` not in ``(0, 1]``, ``seed`` not an integer from 0 to
+            :data:`MAX_SEED` or ``seconds`` not a finite number ≥ 0.
+        """
+        checks = check_items(self.checks, name="checks", what="a tuple of CertificateCheck (crosscheck makes reports)",
+                             high=MAX_CERTIFICATES, kind=CertificateCheck)
+        object.__setattr__(self, "checks", tuple(checks))
+        check_real(self.rtol, name="rtol", high=1)
+        check_real(self.theta, name="theta", high=1)
+        check_count(self.seed, name="seed", low=0, high=MAX_SEED)
+        check_real(self.seconds, name="seconds", low=0, low_open=False)
+        check_instance(self.decay, dict, name="decay", what="a dict (gain-set label -> DecayFit)")
+        check_instance(self.iss, dict, name="iss", what="a dict (gain-set label -> IssEstimate)")
 
     def __repr__(self) -> str:
         # the verdict line, not thousands of characters of nested results (format_report prints those)

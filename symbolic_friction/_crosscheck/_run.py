@@ -11,7 +11,6 @@ One gain set's run: simulate its budget of trajectories and check every certific
 
 from __future__ import annotations
 
-import math
 import os
 import time
 from pathlib import Path
@@ -20,10 +19,13 @@ from typing import Any, Iterable, Sequence
 import numpy as np
 
 from .._infra.errors import ParameterError, UnprovedCertificateError
+from .._infra.guards import check_count, check_items, check_real, shown
 from .._model.parameters import Parameters
+from .._simulation._base import MAX_EVENTS
 from ._checker import BatchChecker
 from ._claims import Claims
-from ._outcome import CertificateCheck, CrosscheckReport, default_horizon, sample_times, search_mode, SEARCH_MODES
+from ._outcome import (MAX_CERTIFICATES, MAX_HORIZON, MAX_SAMPLES, MAX_SEED, MAX_TOTAL_SAMPLES, MAX_TRAJECTORIES, CertificateCheck,
+                       CrosscheckReport, default_horizon, sample_times, search_mode, SEARCH_MODES)
 from ._property import DEFAULT_RTOL, DEFAULT_THETA
 
 __all__ = ["CertificateCheck", "CrosscheckReport", "crosscheck", "default_horizon", "sample_times", "SEARCH_MODES", "search_mode", "GroupRun"]
@@ -141,6 +143,7 @@ def crosscheck(
     certificates : sequence
         Certificate objects or paths to certificate files; with
         ``require_proved=False`` also altered copies and :class:`Claims`.
+        One certificate or one path is a list of one.
     trajectories : int, keyword-only
         Trajectories per gain set (shared by the certificates of that gain set).
     seed : int, keyword-only
@@ -179,27 +182,42 @@ def crosscheck(
     Raises
     ------
     ParameterError
-        If ``trajectories``, ``samples``, ``horizon``, ``rtol`` or ``theta``
-        is out of range.
+        Before anything is simulated, if ``trajectories``, ``samples`` (and their product), ``horizon``, ``rtol``,
+        ``theta``, ``seed``, ``chunk`` (≥ 1), ``max_events`` or ``iss_search`` is out of range (the bounds of
+        :mod:`._outcome`, ``MAX_TRAJECTORIES`` …), or no certificate is given.
+    ParameterTypeError
+        If ``certificates`` is not a list (``None``, a number, bytes); a single certificate, or a single
+        ``str`` or ``pathlib.Path`` (one certificate file), is a list of one.
+    InputFileError, CertificateFormatError
+        If a certificate file is missing, unreadable or not a certificate (the message names the file).
     UnprovedCertificateError
         If ``require_proved`` and a certificate does not verify exactly.
     """
+    from .._certify.certificate import Certificate
+    from .._certify.quadratic import Gains  # the certificates of the templates beyond the paper
     from .._infra.progress import Progress
 
-    if isinstance(trajectories, bool) or not isinstance(trajectories, (int, np.integer)) or trajectories < 1:
-        raise ParameterError(f"trajectories must be an integer ≥ 1; got {trajectories!r}")
-    if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) or samples < 3:
-        raise ParameterError(f"samples must be an integer ≥ 3; got {samples!r}")
-    if horizon is not None and not (isinstance(horizon, (int, float)) and math.isfinite(horizon) and horizon > 0):
-        raise ParameterError(f"horizon must be a finite number > 0; got {horizon!r}")
+    trajectories = check_count(trajectories, name="trajectories", high=MAX_TRAJECTORIES, why="a bound on time and memory")
+    samples = check_count(samples, name="samples", low=3, high=MAX_SAMPLES, why="a bound on memory")
+    check_count(trajectories * samples, name="trajectories × samples", high=MAX_TOTAL_SAMPLES, why="samples per gain set, a bound on memory")
+    if horizon is not None:
+        if isinstance(horizon, bool) or not isinstance(horizon, (int, float)) or not horizon > 0:  # NaN too
+            raise ParameterError(f"horizon must be a finite number > 0; got {shown(horizon)}")
+        horizon = check_real(horizon, name="horizon", high=MAX_HORIZON, why="a bound on time")
     if not (isinstance(rtol, (int, float)) and 0 < rtol < 1):
-        raise ParameterError(f"rtol must be in (0, 1); got {rtol!r}")
+        raise ParameterError(f"rtol must be in (0, 1); got {shown(rtol)}")
     if not (isinstance(theta, (int, float)) and 0 < theta <= 1):
-        raise ParameterError(f"theta must be in (0, 1]; got {theta!r}")
+        raise ParameterError(f"theta must be in (0, 1]; got {shown(theta)}")
+    seed = check_count(seed, name="seed", low=0, high=MAX_SEED, why="with each gain set's offset, below the 2**32 of scipy's optimisers")
+    chunk = check_count(chunk, name="chunk", high=MAX_TRAJECTORIES, why="trajectories simulated at a time")
+    max_events = check_count(max_events, name="max_events", high=MAX_EVENTS, why="a bound on time and memory per trajectory")
+    iss_search = tuple(check_items(iss_search, name="iss_search", what="a tuple of inflations ρ", high=16))
+    for i, rho in enumerate(iss_search):
+        check_real(rho, name=f"iss_search[{i}]", low=0, low_open=False)
     start = time.perf_counter()
-    if isinstance(max_events, bool) or not isinstance(max_events, (int, np.integer)) or max_events < 1:
-        raise ParameterError(f"max_events must be an integer ≥ 1; got {max_events!r}")
-    claims = _as_claims(certificates, require_proved=require_proved)
+    items = check_items(certificates, name="certificates", high=MAX_CERTIFICATES, single=(str, os.PathLike, Certificate, Gains, Claims),
+                        what="a list of certificates or certificate files (a str or pathlib.Path)")
+    claims = _as_claims(items, require_proved=require_proved)
     if not claims:
         raise ParameterError("no certificate to cross-check")
     groups: dict[Parameters, list[tuple[Claims, str, bool | None]]] = {}
@@ -212,9 +230,9 @@ def crosscheck(
     try:
         for gi, (params, members) in enumerate(groups.items()):
             t0 = time.perf_counter()
-            T = float(horizon) if horizon is not None else default_horizon(params)
+            T = horizon if horizon is not None else default_horizon(params)
             run = GroupRun(params, [m[0] for m in members], T=T, samples=samples, rtol=rtol, theta=theta,
-                            seed=seed + 1000 * gi, chunk=chunk, bar=bar, max_events=int(max_events))
+                            seed=seed + 1000 * gi, chunk=chunk, bar=bar, max_events=max_events)
             run.execute(trajectories, adversarial=adversarial)
             seconds = time.perf_counter() - t0
             ov = run.checker.overshoots()
@@ -259,7 +277,7 @@ def crosscheck(
             if iss:
                 from ._iss import iss_gain
 
-                iss_estimates[key] = iss_gain(params, search_rhos=tuple(iss_search))
+                iss_estimates[key] = iss_gain(params, search_rhos=iss_search)
     finally:
         bar.close()
     return CrosscheckReport(

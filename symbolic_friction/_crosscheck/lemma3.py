@@ -151,8 +151,6 @@ def slip_points(a: Any, rows: np.ndarray, cols: np.ndarray, fractions: Any) -> n
     point; ``check``'s kernel rows hold it to the kernel's there at
     ``f_c ≠ 1`` (:mod:`._kernel_check`), where an ``x*_k`` without ``f_c`` shows.
     """
-    from .._simulation.affine import MatrixExponential
-
     ch = a.ch
     k = a.k_int[rows, cols].astype(float)
     star = np.zeros((rows.size, 3))
@@ -160,7 +158,27 @@ def slip_points(a: Any, rows: np.ndarray, cols: np.ndarray, fractions: Any) -> n
     h = ch.t[rows, cols + 1] - ch.t[rows, cols]
     taus = h[:, None] * np.asarray(fractions, dtype=float)[None, :]
     y = np.broadcast_to((ch.x[rows, cols] - star)[:, None, :], taus.shape + (3,))
-    return MatrixExponential.from_params(a.params).apply(taus, y) + star[:, None, :]
+    return _distinct_times(a.params).apply(taus, y) + star[:, None, :]
+
+
+def _distinct_times(params: Any) -> Any:
+    """The package's ``e^{Aτ}`` (:class:`~.._simulation.affine.MatrixExponential`) for ``params``, whose ``w``
+    evaluates each distinct time once.
+
+    The intervals of a uniform sample grid have one length, so the times of :func:`slip_points` repeat (about six
+    times over in ``check``'s self-test), and ``w`` is the costly part of the flow in plain Python.  Each time gets
+    the very numbers ``w`` gives it, so ``apply`` returns the same flow, bit for bit.
+    """
+    from .._simulation.affine import MatrixExponential
+
+    class DistinctTimes(MatrixExponential):
+        def w(self, t: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+            t = np.asarray(t, dtype=float)
+            distinct, where = np.unique(t.reshape(-1), return_inverse=True)
+            w0, w1, w2 = super().w(distinct)
+            return w0[where].reshape(t.shape), w1[where].reshape(t.shape), w2[where].reshape(t.shape)
+
+    return DistinctTimes.from_params(params)
 
 
 def rhat_intervals(a: Any) -> np.ndarray:

@@ -188,8 +188,10 @@ def to_rational(value: object, *, name: str = "value", binary: bool = False) -> 
         if getattr(value, "is_Float", False):
             return to_rational(float(value), name=name, binary=binary)
         raise InvalidNumberError(f"{name} must be a rational number; got the sympy expression {shown(value)}")
+    if isinstance(value, numbers.Integral):  # numpy integers: a Python int, never an np.int64 numerator
+        return to_rational(int(value), name=name, binary=binary)
     if isinstance(value, numbers.Rational):
-        return Fraction(value.numerator, value.denominator)
+        return Fraction(int(value.numerator), int(value.denominator))
     if isinstance(value, numbers.Real):  # numpy floating scalars and the like
         return to_rational(float(value), name=name, binary=binary)
     raise InvalidNumberError(f"{name} must be a number; got {type(value).__name__} {shown(value)}")

@@ -38,6 +38,7 @@ from typing import Any, Sequence
 import numpy as np
 
 from .._infra.errors import SimulationError, UsageError
+from .._infra.guards import check_count, check_instance, check_items, check_real, check_states
 from .._model.parameters import Parameters
 from .tradeoff_result import CostPoint, Curve, Point, Tradeoff, fit_order
 
@@ -57,6 +58,12 @@ __all__ = [
 ]
 
 FIGURE_FORMATS = ("png", "pdf", "svg")
+
+# Bounds checked before any work: the horizon, the sample count and the timed repeats of one run, the size of a state
+# (the command line's options have the same bounds).
+MAX_T_END, MAX_SAMPLES, MAX_REPEATS, MAX_STATE = 1e3, 100_000, 1000, 1e12  # T = 1e4 took minutes even with --quick
+MAX_STATES = 100
+"""The most initial states of one measurement (each has a 50-digit reference, and every configuration runs from each)."""
 
 
 @dataclass(frozen=True)
@@ -96,7 +103,9 @@ def default_sweeps(scale: float = 1.0, *, quick: bool = False, thetas: Sequence[
     rtols = (1e-4, 1e-7, 1e-10) if quick else (1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12)
     atol = 1e-12 * scale
     moreau = []
-    for theta in dict.fromkeys(float(t) for t in thetas):
+    # each weight validated by Moreau first (SimulationError naming theta), then read as a float
+    weights = [float(Moreau(theta=t).theta) for t in check_items(thetas, name="thetas", what="a list of weights θ in [1/2, 1]", high=16)]
+    for theta in dict.fromkeys(weights):
         methods = tuple(Moreau(h=h, theta=theta) for h in hs)
         moreau.append(Sweep(moreau_label(theta), methods, methods[0].accuracy_order))
     return [
@@ -192,6 +201,19 @@ def measure_tradeoff(
         The weights of the Moreau θ-method, one curve each (default ``1`` and ``½``);
         used only when ``sweeps`` is not given.
 
+    Raises
+    ------
+    UsageError
+        Before any work, if ``z0s`` is not a non-empty list of at most :data:`MAX_STATES` states of three finite
+        numbers (each at most :data:`MAX_STATE` in size), ``t_end`` not in ``(0, MAX_T_END]``, ``samples`` not an
+        integer from 2 to :data:`MAX_SAMPLES`, ``repeats`` not from 1 to :data:`MAX_REPEATS` or ``budget`` not a
+        finite number ≥ 0.
+    ParameterTypeError
+        If ``params`` is not a :class:`Parameters`, ``z0s`` not a list (``"x"``), ``label`` not a ``str``
+        or ``sweeps`` not a list of :class:`Sweep`.
+    SimulationError
+        If a weight of ``thetas`` is outside ``[1/2, 1]``.
+
     Examples
     --------
     >>> from symbolic_friction import Parameters, measure_tradeoff
@@ -201,20 +223,19 @@ def measure_tradeoff(
     """
     from .._simulation import simulate
 
-    if not z0s:
-        raise UsageError("tradeoff needs at least one initial state")
-    if samples < 2:
-        raise UsageError(f"tradeoff needs at least 2 sample times; got {samples}")
-    if repeats < 1:
-        raise UsageError(f"tradeoff needs at least 1 repeat; got {repeats}")
-    z0s = tuple(tuple(float(c) for c in z) for z in z0s)
-    for z in z0s:
-        if len(z) != 3 or not all(map(math.isfinite, z)):
-            raise UsageError(f"an initial state is three finite numbers (e_i, s, v); got {z}")
+    check_instance(params, Parameters, name="params", what="a Parameters instance")
+    check_instance(label, str, name="label", what="a str")
+    z0s = check_states(z0s, name="z0s", high=MAX_STATES, bound=MAX_STATE, error=UsageError)
+    t_end = check_real(t_end, name="t_end", high=MAX_T_END, error=UsageError, why="the reference's cost grows with it")
+    samples = check_count(samples, name="samples", low=2, high=MAX_SAMPLES, error=UsageError, why="a bound on memory")
+    repeats = check_count(repeats, name="repeats", high=MAX_REPEATS, error=UsageError)
+    budget = check_real(budget, name="budget", low=0, low_open=False, error=UsageError)
+    if sweeps is not None:
+        sweeps = check_items(sweeps, name="sweeps", what="a list of Sweep", high=100, kind=Sweep, error=UsageError)
     scale = max(max(abs(c) for c in z) for z in z0s) or 1.0
     if sweeps is None:  # before the reference: a bad θ is refused at once
         sweeps = default_sweeps(scale, quick=quick, thetas=thetas)
-    times = np.linspace(0.0, float(t_end), int(samples))
+    times = np.linspace(0.0, t_end, samples)
     t0 = time.perf_counter()
     refs = [_reference(params, z, t_end, times) for z in z0s]
     ref_seconds = time.perf_counter() - t0
@@ -244,8 +265,8 @@ def measure_tradeoff(
         params=params,
         label=label,
         z0s=z0s,
-        t_end=float(t_end),
-        samples=int(samples),
+        t_end=t_end,
+        samples=samples,
         curves=tuple(curves),
         reference_sticks=tuple(len(r.sticks) for r in refs),
         reference_seconds=ref_seconds,

@@ -103,10 +103,11 @@ def shown(x: Fraction) -> str:
 
 
 def det(m: list[list[Fraction]]) -> Fraction:
-    """The determinant (Laplace expansion; the matrices here are at most 4×4)."""
+    """The determinant (Laplace expansion along the first row, skipping its zeros; the matrices here are at most 4×4)."""
     if len(m) == 1:
         return m[0][0]
-    return sum((-1) ** j * m[0][j] * det([row[:j] + row[j + 1:] for row in m[1:]]) for j in range(len(m)))
+    return sum((m[0][j] if j % 2 == 0 else -m[0][j]) * det([row[:j] + row[j + 1:] for row in m[1:]])
+               for j in range(len(m)) if m[0][j])
 
 
 def psd(m: list[list[Fraction]]) -> bool:

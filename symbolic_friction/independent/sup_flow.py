@@ -47,7 +47,9 @@ def _sym(e: dict[str, Fraction]) -> Matrix:
 
 
 def _mul(x: Matrix, y: Matrix) -> Matrix:
-    return [[sum((x[i][k] * y[k][j] for k in range(len(y))), ZERO) for j in range(len(y[0]))] for i in range(len(x))]
+    """``xy``; the zero products (``B_s`` and ``A`` are mostly zeros) are left out of the sums."""
+    return [[sum((x[i][k] * y[k][j] for k in range(len(y)) if x[i][k] and y[k][j]), ZERO) for j in range(len(y[0]))]
+            for i in range(len(x))]
 
 
 def _minus(x: Matrix, y: Matrix) -> Matrix:
@@ -169,9 +171,10 @@ class Flow:
 
     def gram(self, lo: Fraction, hi: Fraction):
         """``G`` for every ``t ∈ [lo, hi]``: ``E = e^{A·lo}·exp(A·[0, hi − lo])``, then ``EᵀE``."""
-        if hi - lo not in self.widths:
-            self.widths[hi - lo] = (self.a * flint.arb(0).union(ball(hi - lo))).exp()
-        e = self.at(lo) * self.widths[hi - lo]
+        h = hi - lo
+        if h not in self.widths:
+            self.widths[h] = (self.a * flint.arb(0).union(ball(h))).exp()
+        e = self.at(lo) * self.widths[h]
         return e.transpose() * e
 
     def cover(self, parts: list[tuple[Fraction, Fraction]], test, refute) -> tuple[bool | None, str]:

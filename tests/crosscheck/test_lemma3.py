@@ -60,3 +60,19 @@ def test_run_slack_matches_brute_force():
             assert first[i, p] == a
             want = min(F[i, a : p + 1]) - F[i, p + 1]
             assert slack[i, p] == pytest.approx(want, abs=1e-9)
+
+
+def test_slip_points_flow_is_the_matrix_exponentials_bit_for_bit():
+    """``slip_points`` evaluates ``w`` once per distinct time; the flow is ``MatrixExponential.apply``'s, to the bit."""
+    from symbolic_friction import Parameters
+    from symbolic_friction._crosscheck.lemma3 import _distinct_times
+    from symbolic_friction._simulation.affine import MatrixExponential
+
+    params = Parameters.table_i("a")
+    rng = np.random.default_rng(3)
+    h = np.repeat(rng.uniform(0.0, 2.0, size=7), 5)  # interval lengths that repeat, as on a uniform grid
+    taus = h[:, None] * np.array([0.125, 0.5, 0.875, 1.0])[None, :]
+    y = rng.normal(size=taus.shape + (3,))
+    got = _distinct_times(params).apply(taus, y)
+    want = MatrixExponential.from_params(params).apply(taus, y)
+    assert got.shape == want.shape and np.array_equal(got.view(np.int64), want.view(np.int64))
