@@ -24,6 +24,7 @@ SCOPE: tuple[str, ...] = (
     "symbolic_friction._cli._sections.x__crashed__mutmut_*",
     "symbolic_friction._cli._sections.x__is_verdict__mutmut_*",
     "symbolic_friction._certify.sup_flow_enclosure.*",
+    "symbolic_friction._certify.sup_flow_forms.*",
     "symbolic_friction._certify.sup_flow.x_sup_flow_premises__mutmut_*",
     "symbolic_friction._certify.sup_flow.x__paper_p__mutmut_*",
     "symbolic_friction._certify.sup_flow.x__decide__mutmut_*",
@@ -39,10 +40,14 @@ SCOPE: tuple[str, ...] = (
     "symbolic_friction._obligations._inequalities.x__is_bound_of__mutmut_*",
 )
 
-PENDING: tuple[str, ...] = ()
+PENDING: tuple[str, ...] = (
+    # the exit forms moved out of sup_flow_enclosure into sup_flow_forms (check's speed-up): both re-enter mutmut's run
+    "symbolic_friction._certify.sup_flow_enclosure.*",
+    "symbolic_friction._certify.sup_flow_forms.*",
+)
 """In scope, but mutants of these not run since their code changed or joined the scope (``not checked`` in the
 report, listed apart: neither killed nor argued; the header says what is left).  Empty: every mutant in scope was run,
-so one left ``not checked`` makes the report fail."""
+so one left ``not checked`` makes the report fail; listed here, it is counted apart until the next run."""
 
 _V = "symbolic_friction._certify.verify."
 _H = "symbolic_friction._certify.hunting_proof."
