@@ -194,6 +194,18 @@ def _failures_without_proofs(payload: dict) -> list[str]:
     return failed
 
 
+def _mutated_copy(dest: Path, mutant: Mutant | None, files: list[str], root: Path) -> bool:
+    """Copy ``files`` of ``root`` to ``dest`` and apply ``mutant`` there; False if it does not apply."""
+    _copy_tree(dest, files, root)
+    if mutant is not None:
+        path = dest / mutant.path
+        try:
+            path.write_text(apply(path.read_text(encoding="utf-8"), mutant), encoding="utf-8")
+        except DoesNotApply:
+            return False
+    return True
+
+
 def _check_sources(mutant: Mutant | None, files: list[str], root: Path) -> Outcome | None:
     """One ``check --json --no-certificates`` on a mutated copy as committed; ``None`` when it does not decide.
 
@@ -206,14 +218,8 @@ def _check_sources(mutant: Mutant | None, files: list[str], root: Path) -> Outco
     start = time.perf_counter()
     with tempfile.TemporaryDirectory(prefix="sf-mutant-") as tmp:
         dest = Path(tmp)
-        _copy_tree(dest, files, root)
-        if mutant is not None:
-            path = dest / mutant.path
-            try:
-                path.write_text(apply(path.read_text(encoding="utf-8"), mutant), encoding="utf-8")
-            except DoesNotApply:
-                return Outcome(mutant, None, None, "-", time.perf_counter() - start, "does not apply",
-                               regenerated=False)
+        if not _mutated_copy(dest, mutant, files, root):
+            return Outcome(mutant, None, None, "-", time.perf_counter() - start, "does not apply", regenerated=False)
         try:
             check = _run(SOURCES_ONLY, dest)
         except subprocess.TimeoutExpired:
@@ -247,13 +253,8 @@ def run_one(mutant: Mutant | None, files: list[str], root: Path = ROOT, *, regen
     start = time.perf_counter()
     with tempfile.TemporaryDirectory(prefix="sf-mutant-") as tmp:
         dest = Path(tmp)
-        _copy_tree(dest, files, root)
-        if mutant is not None:
-            path = dest / mutant.path
-            try:
-                path.write_text(apply(path.read_text(encoding="utf-8"), mutant), encoding="utf-8")
-            except DoesNotApply:
-                return Outcome(mutant, None, None, "-", time.perf_counter() - start, "does not apply")
+        if not _mutated_copy(dest, mutant, files, root):
+            return Outcome(mutant, None, None, "-", time.perf_counter() - start, "does not apply")
         try:
             _run(["check", "--write"], dest)
             check = _run(["check", "--json"], dest)
