@@ -17,15 +17,17 @@ import argparse
 import json
 import math
 
+from .._infra import limits
+
 
 HELP = "check certificates on exact simulated trajectories and measure how tight they are"
 
 
-MAX_TRAJECTORIES = 1_000_000
-MAX_SAMPLES = 100_000
+MAX_TRAJECTORIES = limits.CROSSCHECK_MAX_TRAJECTORIES
+MAX_SAMPLES = limits.CROSSCHECK_MAX_SAMPLES
 MAX_EVENTS = 10_000_000
-MAX_TOTAL_SAMPLES = 20_000_000  # twice the default run (10⁵ trajectories × 101 samples); 10⁸ did not finish
-MAX_HORIZON = 1e6
+MAX_TOTAL_SAMPLES = limits.CROSSCHECK_MAX_TOTAL_SAMPLES
+MAX_HORIZON = limits.CROSSCHECK_MAX_HORIZON
 """Bounds on the work one run may ask for (time and memory), said in the help and in the error when exceeded."""
 
 

@@ -14,6 +14,8 @@ import math
 import json
 import textwrap
 
+from .._infra import limits
+
 HELP = "measure each simulation method's error (vs a 50-digit reference) against its time, across its accuracy knob"
 
 _EPILOG = """examples:
@@ -29,7 +31,8 @@ DEFAULT_T = {"a": 30.0, "b": 60.0}
 
 
 # Bounds checked before any work: the horizon, the sample count and the timed repeats of one run, the size of a state.
-MAX_T_END, MAX_SAMPLES, MAX_REPEATS, MAX_STATE = 1e3, 100_000, 1000, 1e12  # T = 1e4 took minutes even with --quick
+MAX_T_END, MAX_SAMPLES, MAX_REPEATS, MAX_STATE = (limits.TRADEOFF_MAX_T_END, limits.TRADEOFF_MAX_SAMPLES,
+                                                limits.TRADEOFF_MAX_REPEATS, limits.TRADEOFF_MAX_STATE)
 # ... and the stiffness of the comparison, spectral radius × t_end: explicit methods (ivp-events DOP853) take about
 # that many steps, and 10⁶ of them ran for minutes.
 MAX_STIFFNESS = 1e5

@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from .._infra import limits
 from .._infra.guards import check_count, check_instance, check_items, check_real
 from .._model.parameters import Parameters
 from ._results import Counterexample, PropertyResult
@@ -18,10 +19,10 @@ if TYPE_CHECKING:  # annotations only
 __all__ = ["CertificateCheck", "CrosscheckReport", "SEARCH_MODES", "search_mode", "slowest_root", "default_horizon",
            "sample_times", "MAX_SEED", "MAX_CERTIFICATES", "MAX_TRAJECTORIES", "MAX_SAMPLES", "MAX_TOTAL_SAMPLES", "MAX_HORIZON"]
 
-MAX_TRAJECTORIES = 1_000_000
-MAX_SAMPLES = 100_000
-MAX_TOTAL_SAMPLES = 20_000_000  # twice the default run (10⁵ trajectories × 101 samples); 10⁸ did not finish
-MAX_HORIZON = 1e6
+MAX_TRAJECTORIES = limits.CROSSCHECK_MAX_TRAJECTORIES
+MAX_SAMPLES = limits.CROSSCHECK_MAX_SAMPLES
+MAX_TOTAL_SAMPLES = limits.CROSSCHECK_MAX_TOTAL_SAMPLES
+MAX_HORIZON = limits.CROSSCHECK_MAX_HORIZON
 """Bounds on the work one :func:`~._run.crosscheck` may ask for (time and memory), checked before anything is
 simulated or allocated (the command line's options have the same bounds)."""
 

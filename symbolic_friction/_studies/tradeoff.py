@@ -37,6 +37,7 @@ from typing import Any, Sequence
 
 import numpy as np
 
+from .._infra import limits
 from .._infra.errors import SimulationError, UsageError
 from .._infra.guards import check_count, check_instance, check_items, check_real, check_states
 from .._model.parameters import Parameters
@@ -61,7 +62,8 @@ FIGURE_FORMATS = ("png", "pdf", "svg")
 
 # Bounds checked before any work: the horizon, the sample count and the timed repeats of one run, the size of a state
 # (the command line's options have the same bounds).
-MAX_T_END, MAX_SAMPLES, MAX_REPEATS, MAX_STATE = 1e3, 100_000, 1000, 1e12  # T = 1e4 took minutes even with --quick
+MAX_T_END, MAX_SAMPLES, MAX_REPEATS, MAX_STATE = (limits.TRADEOFF_MAX_T_END, limits.TRADEOFF_MAX_SAMPLES,
+                                                limits.TRADEOFF_MAX_REPEATS, limits.TRADEOFF_MAX_STATE)
 MAX_STATES = 100
 """The most initial states of one measurement (each has a 50-digit reference, and every configuration runs from each)."""
 
