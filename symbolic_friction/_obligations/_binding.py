@@ -23,10 +23,11 @@ from .._model import symbolic as _symbolic
 from .._model.attractor import dz
 from .._model.lyapunov import V
 from .._model.parameters import Parameters
+from . import _fastpoly as fp
 from ._base import Obligation, Outcome
 from ._decide import G, Undecided, decide, is_zero, latex, resolve_piecewise, sign_of
 from ._inequalities import Case, case_grid, phi_cases, sign_cases
-
+from ._shared import shared_value
 
 INSTANCE = Parameters(k_p=3, k_i=2, k_v=1, f_c=2)
 """Gains of the exact instances: Assumption 1 holds (1·3 > 2), every
@@ -69,6 +70,87 @@ def _as_exact(x: Any) -> Fraction | bool:
     if not x.is_Rational:
         raise Undecided(f"{x} is not an exact rational")
     return Fraction(int(x.p), int(x.q))
+
+
+class _NotEvaluated(Exception):
+    """The tree has a node :func:`_evaluate` does not know; sympy evaluates it instead."""
+
+
+_RELATIONS = {
+    sp.StrictGreaterThan: lambda a, b: a > b, sp.GreaterThan: lambda a, b: a >= b,
+    sp.StrictLessThan: lambda a, b: a < b, sp.LessThan: lambda a, b: a <= b,
+    sp.Equality: lambda a, b: a == b, sp.Unequality: lambda a, b: a != b,
+}
+
+
+def _evaluate(e: Any, at: dict) -> Fraction | bool:
+    """The value of the sympy tree ``e`` with its symbols at the rationals ``at``, in exact ``Fraction`` arithmetic.
+
+    The same value as substituting and letting sympy evaluate (each node means what it means in sympy: a
+    ``Piecewise`` is its first branch whose condition holds, ``sign(0) = 0``), without building the
+    intermediate sympy trees; a node it does not know raises :class:`_NotEvaluated`.
+    """
+    if e.is_Symbol:
+        if e not in at:
+            raise _NotEvaluated(e)
+        return at[e]
+    if e.is_Rational:
+        return Fraction(int(e.p), int(e.q))
+    if e.is_Add:
+        return sum((_evaluate(a, at) for a in e.args), Fraction(0))
+    if e.is_Mul:
+        out = Fraction(1)
+        for a in e.args:
+            out *= _evaluate(a, at)
+        return out
+    if e.is_Pow:
+        if not e.exp.is_Integer:
+            raise _NotEvaluated(e)
+        base = _evaluate(e.base, at)
+        if base == 0 and e.exp < 0:
+            raise _NotEvaluated(e)  # sympy's zoo: not a rational; sympy says so
+        return base ** int(e.exp)
+    if isinstance(e, sp.Piecewise):
+        for value, cond in e.args:
+            if _evaluate(cond, at):
+                return _evaluate(value, at)
+        raise Undecided("no branch of a Piecewise applies")
+    if isinstance(e, sp.Abs):
+        return abs(_evaluate(e.args[0], at))
+    if isinstance(e, sp.sign):
+        x = _evaluate(e.args[0], at)
+        return Fraction((x > 0) - (x < 0))
+    if e is sp.true or e is sp.false:
+        return bool(e)
+    for kind, holds in _RELATIONS.items():
+        if type(e) is kind:
+            return bool(holds(_evaluate(e.lhs, at), _evaluate(e.rhs, at)))
+    if isinstance(e, sp.And):
+        return all(_evaluate(a, at) for a in e.args)
+    if isinstance(e, sp.Or):
+        return any(_evaluate(a, at) for a in e.args)
+    if isinstance(e, sp.Not):
+        return not _evaluate(e.args[0], at)
+    raise _NotEvaluated(e)
+
+
+def _symbolic_value(symbolic: Any, at: dict) -> Fraction | bool:
+    """``symbolic`` at the point ``at`` (symbol → rational): a ``Fraction``, or a ``bool`` for a relation.
+
+    Exact arithmetic on the tree (:func:`_evaluate`); a tree it does not know is substituted and
+    evaluated by sympy (:func:`._decide.resolve_piecewise`), which is what :func:`_evaluate` computes
+    faster.  A value that is not a rational raises :class:`Undecided`.
+    """
+    e = sp.sympify(symbolic)
+    try:
+        if not all(getattr(v, "is_Rational", False) for v in at.values()):
+            raise _NotEvaluated(at)
+        value = _evaluate(e, {k: Fraction(int(v.p), int(v.q)) for k, v in at.items()})
+    except (_NotEvaluated, ZeroDivisionError):
+        return _as_exact(resolve_piecewise(e.xreplace(at)))
+    if isinstance(value, bool) or isinstance(e, (sp.core.relational.Relational, sp.logic.boolalg.Boolean)):
+        return bool(value)  # a truth value, as sympy's true/false read by _as_exact
+    return Fraction(value)
 
 
 def _sign(case: Case, var: sp.Symbol) -> int:
@@ -138,7 +220,7 @@ def _verify_binding(s: BindingSubject) -> Outcome:
                 a, b = decide(got), decide(want)
                 if a is None or b is None or a != b:
                     return Outcome.fail(f"{case.label}: the package's {s.name} gives {got} ({a}), the paper {want} ({b})")
-            elif not is_zero(sp.expand(got - want)):
+            elif not is_zero(fp.expand(got - want)):
                 return Outcome.fail(f"{case.label}: the package's {s.name} = {got} differs from the paper's {want}")
         except Undecided as exc:
             return Outcome.fail(f"{case.label}: {exc}")
@@ -150,7 +232,7 @@ def _verify_binding(s: BindingSubject) -> Outcome:
         at = dict(s.constants)
         at.update(dict(zip(s.state, (sp.Rational(c) for c in point))))
         try:
-            want = _as_exact(resolve_piecewise(sp.sympify(s.symbolic).xreplace(at)))
+            want = _symbolic_value(s.symbolic, at)
         except Undecided as exc:
             return Outcome.fail(f"at {where}: {exc}")
         got = s.exact(s.params, list(point))
@@ -212,7 +294,7 @@ def _x_subject(name: str, function: Callable[[Any, Any], Any], paper: Callable[[
     g = G()
     state = [g.sigma, g.phi, g.v]
     defaults = dict(
-        symbolic=function(g, state), exact=function, floats=function, params=INSTANCE,
+        symbolic=shared_value(function, g, state), exact=function, floats=function, params=INSTANCE,
         constants=_gain_values(g, INSTANCE), cases=tuple(_state_cases(g)), points=instance_points(), state=tuple(state),
         scales=SCALES,
     )

@@ -34,6 +34,8 @@ from typing import Any, NamedTuple
 import sympy as sp
 
 from .._model import symbolic as _symbolic
+from . import _fastforms as ff
+from . import _fastpoly as fp
 
 __all__ = [
     "Undecided",
@@ -68,15 +70,7 @@ def pos(name: str) -> sp.Symbol:
     return sp.Symbol(name, positive=True)
 
 
-def _is_rational_function(expr: sp.Expr) -> bool:
-    """Whether ``expr`` is built from symbols and rationals by + - × ÷ and integer powers only."""
-    for node in sp.preorder_traversal(expr):
-        if isinstance(node, (sp.Symbol, sp.Rational, sp.Add, sp.Mul)):
-            continue
-        if isinstance(node, sp.Pow) and node.exp.is_Integer:
-            continue
-        return False
-    return True
+_is_rational_function = fp.is_rational_function  # built from symbols and rationals by + - × ÷ and integer powers
 
 
 def is_zero(expr: Any) -> bool:
@@ -96,7 +90,7 @@ def is_zero(expr: Any) -> bool:
         return _field_element(expr).numer.is_zero()
     # together() writes a rational function as P/Q with polynomials P, Q; it is
     # identically zero iff the expanded P is (no cancellation needed).
-    num = sp.expand(sp.fraction(sp.together(expr))[0])
+    num = sp.expand(sp.fraction(ff.together(expr))[0])
     if num == 0:
         return True
     if _is_rational_function(num) or num.has(sp.Piecewise, sp.Abs, sp.sign, sp.Max, sp.Min):
@@ -112,62 +106,10 @@ class _Fraction(NamedTuple):
 
 
 def _field_element(expr: sp.Expr) -> _Fraction:
-    """``expr`` (a rational function of its free symbols) as a reduced fraction over ``ℤ[symbols]``.
-
-    Each node of the expression tree becomes a pair ``(numerator, denominator)``
-    of python-flint integer polynomials in the free symbols (sparse, exact;
-    a rational constant ``p/q`` is ``(p, q)``); sums bring their terms to a
-    common denominator, and one ``gcd`` at the end cancels the common factors,
-    so ``numer/denom`` is the reduced fraction of ``Q(symbols)`` up to a
-    constant factor and equals ``expr`` wherever ``expr`` is defined.  A
-    denominator that is the zero polynomial raises :class:`ZeroDivisionError`.
-    """
-    import flint
-
-    gens = sorted(expr.free_symbols, key=sp.default_sort_key)
-    # positional names: two symbols with one name (different assumptions) stay two variables
-    ctx = flint.fmpz_mpoly_ctx.get(("x", len(gens)), "lex")
-    one = ctx.constant(1)
-    index = {s: (g, one) for s, g in zip(gens, ctx.gens())}
-    memo: dict[sp.Expr, tuple[Any, Any]] = {}
-
-    def pair(e: sp.Expr) -> tuple[Any, Any]:
-        if e in index:
-            return index[e]
-        if e in memo:
-            return memo[e]
-        if e.is_Rational:
-            out = (ctx.constant(int(e.p)), ctx.constant(int(e.q)))
-        elif e.is_Add:
-            n, d = ctx.constant(0), one
-            for a in e.args:
-                an, ad = pair(a)
-                if ad == d:
-                    n = n + an
-                else:
-                    g = d.gcd(ad)
-                    n, d = n * (ad / g) + an * (d / g), d * (ad / g)
-            out = (n, d)
-        elif e.is_Mul:
-            n, d = one, one
-            for a in e.args:
-                an, ad = pair(a)
-                n, d = n * an, d * ad
-            out = (n, d)
-        elif e.is_Pow and e.exp.is_Integer:
-            bn, bd = pair(e.base)
-            k = int(e.exp)
-            if k < 0 and bn.is_zero():
-                raise ZeroDivisionError(f"{e.base} is identically zero in {e}")
-            out = (bn ** k, bd ** k) if k >= 0 else (bd ** -k, bn ** -k)
-        else:  # _is_rational_function admits nothing else
-            raise TypeError(f"{e} is not a rational function of its symbols")
-        memo[e] = out
-        return out
-
-    numer, denom = pair(expr)
-    g = numer.gcd(denom)
-    return _Fraction(numer / g, denom / g)
+    """``expr`` (a rational function of its free symbols) as a reduced fraction over ``ℤ[symbols]``: the pair of
+    :func:`._fastpoly.rational_pair` in the free symbols in sympy's default order (a denominator that is the zero
+    polynomial raises :class:`ZeroDivisionError`, anything but a rational function :class:`TypeError`)."""
+    return _Fraction(*fp.rational_pair(expr, sorted(expr.free_symbols, key=sp.default_sort_key)))
 
 
 def _coefficient_sign(coefficients: Sequence[Any]) -> int | None:
@@ -237,7 +179,7 @@ def sign_of(expr: Any) -> int | None:
     elif not _has_denominator(expr):
         return _poly_sign(sp.expand(expr))
     else:
-        num, den = sp.fraction(sp.together(expr))
+        num, den = sp.fraction(ff.together(expr))
         sn, sd = _poly_sign(sp.expand(num)), _poly_sign(sp.expand(den))
     if sn is None or sd is None or sd == 0:
         return None
@@ -311,7 +253,7 @@ def vertices(s: sp.Set) -> list[sp.Expr]:
 
 def _stationary_points(f: sp.Expr, var: sp.Symbol) -> list[sp.Expr]:
     """Real roots of ``f'`` (exact; polynomial derivatives through ``roots``)."""
-    df = sp.together(sp.diff(f, var))
+    df = ff.together(sp.diff(f, var))
     num = sp.fraction(df)[0]
     if num.is_polynomial(var):
         poly = sp.Poly(num, var)
@@ -319,7 +261,7 @@ def _stationary_points(f: sp.Expr, var: sp.Symbol) -> list[sp.Expr]:
             return []
         if poly.degree() == 1:
             c1, c0 = poly.all_coeffs()
-            return [sp.cancel(-c0 / c1)]
+            return [fp.cancel(-c0 / c1)]
         found = sp.roots(poly)
         if sum(found.values()) == poly.degree():
             return [r for r in found if r.is_real is not False]
@@ -337,23 +279,23 @@ def _convex_quadratic_minimum(f: sp.Expr, var: sp.Symbol, s: sp.Interval) -> sp.
     quadratic or the vertex's position is not decided.
     """
     try:
-        # coefficients as expressions (EX): no polynomial domain of the other symbols to build, and every
-        # decision below is on the coefficients' values (sign_of, cancel), not on their form
-        poly = sp.Poly(f, var, domain=sp.EX)
+        # coefficients as expressions (those of Poly(f, var, domain=EX)): no polynomial domain of the other
+        # symbols to build, and every decision below is on the coefficients' values (sign_of, cancel)
+        coeffs = ff.ex_coefficients(f, var)
     except sp.PolynomialError:
         return None
-    if poly.degree() != 2:
+    if len(coeffs) != 3:
         return None
-    alpha, beta, _gamma = poly.all_coeffs()
+    alpha, beta, _gamma = coeffs
     if sign_of(alpha) != 1:
         return None
-    vertex = sp.cancel(-beta / (2 * alpha))
+    vertex = fp.cancel(-beta / (2 * alpha))
     if decide(sp.LessThan(vertex, s.start)) is True:
         return f.subs(var, s.start)
     if decide(sp.GreaterThan(vertex, s.end)) is True:
         return f.subs(var, s.end)
     if decide(sp.And(sp.StrictLessThan(s.start, vertex), sp.StrictLessThan(vertex, s.end))) is True:
-        return f.subs(var, vertex)
+        return f.xreplace({var: vertex})  # the value at the vertex, as subs gives it, without subs's bookkeeping
     return None
 
 
@@ -393,9 +335,9 @@ def affine_image(expr: sp.Expr, var: sp.Symbol, s: sp.Interval) -> sp.Interval:
     if sg is None:
         raise Undecided(f"cannot decide the sign of the slope {slope}")
     if sg == 0:
-        return sp.FiniteSet(sp.simplify(a))
+        return sp.FiniteSet(ff.simplify(a))
     lo, hi = (a, b) if sg > 0 else (b, a)
-    return sp.Interval(sp.simplify(lo), sp.simplify(hi), s.left_open if sg > 0 else s.right_open, s.right_open if sg > 0 else s.left_open)
+    return sp.Interval(ff.simplify(lo), ff.simplify(hi), s.left_open if sg > 0 else s.right_open, s.right_open if sg > 0 else s.left_open)
 
 
 def interval_partitions_reals(intervals: Sequence[sp.Interval]) -> tuple[bool, str]:
@@ -449,8 +391,22 @@ def sign_classes(tag: str) -> list[tuple[str, int, sp.Expr]]:
     return [("> 0", 1, q), ("= 0", 0, sp.Integer(0)), ("< 0", -1, -q)]
 
 
+_PRINTED: dict[Any, str] = {}
+"""LaTeX already printed, by ``(type, expression)``: the printed form is a function of the (immutable) expression,
+and the obligations print many equal ones (the type too: ``True`` and ``1`` are equal keys that print differently)."""
+
+
 def latex(expr: Any) -> str:
     """Deterministic LaTeX of a sympy object (lists and tuples become tuples)."""
     if isinstance(expr, (list, tuple)):
         expr = sp.Tuple(*expr)
-    return sp.latex(expr, order="lex")
+    try:
+        key = (type(expr), expr)
+        text = _PRINTED.get(key)
+    except TypeError:  # unhashable (a mutable matrix): printed each time
+        return sp.latex(expr, order="lex")
+    if text is None:
+        if len(_PRINTED) > 4096:
+            _PRINTED.clear()
+        text = _PRINTED[key] = sp.latex(expr, order="lex")
+    return text

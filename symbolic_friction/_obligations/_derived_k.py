@@ -13,10 +13,14 @@ import sympy as sp
 
 from .._model import symbolic as _symbolic
 from .._model.kconditions import Condition, k_conditions
-from ._statements import lemma3_hatV_nonincreasing
+from . import _fastforms as ff
+from . import _fastpoly as fp
 from ._decide import Undecided, is_zero, resolve_piecewise, sign_of
 from ._inequalities import Case, canonical, is_nonneg
 from ._region import pieces_of
+from ._shared import _SHARED as _shared_stack
+from ._shared import derivative, shared_value
+from ._statements import lemma3_hatV_nonincreasing
 
 
 @dataclass(frozen=True)
@@ -88,7 +92,7 @@ class _Derived:
 def _paper_pairs(g: _symbolic.Gains, k: tuple[sp.Symbol, ...]) -> tuple[tuple[sp.Expr, sp.Expr, sp.Expr], ...]:
     k1, k2, k3, k4 = k
     a_s, a_v = sp.Abs(g.sigma), sp.Abs(g.v)
-    dz = _symbolic.dz(g.phi, g.f_c)
+    dz = shared_value(_symbolic.dz, g.phi, g.f_c)
     a_d = sp.Abs(dz)
     # the four brackets of the displayed inequality in the proof of Lemma 3
     return (
@@ -107,14 +111,14 @@ def _leading_witness(num: sp.Expr, coeff: sp.Expr, slacks: tuple[sp.Symbol, ...]
     """
     lam = sp.Symbol("lambda", positive=True)
     for exps in itertools.product(range(3), repeat=len(slacks)):
-        scaled = sp.expand(num.xreplace({s: lam**e for s, e in zip(slacks, exps)}))
-        lc = sp.Poly(scaled, lam).LC()
-        if sign_of(sp.cancel(lc / coeff)) == 1:
+        scaled = fp.expand(num.xreplace({s: lam**e for s, e in zip(slacks, exps)}))
+        lc = ff.poly_terms(scaled, (lam,))[0][1]  # Poly(scaled, lam).LC()
+        if sign_of(fp.cancel(lc / coeff)) == 1:
             return exps
     return None
 
 
-_SHARED: list[dict[str, Any]] = []
+_SHARED = _shared_stack  # the blocks of shared_derivations (also what _shared.shared_value shares within)
 
 
 @contextlib.contextmanager
@@ -128,10 +132,25 @@ def shared_derivations() -> Iterator[None]:
         _SHARED.pop()
 
 
-def _subject_key(subject: HatVDerivativeSubject) -> str:
-    # srepr names every symbol's assumptions: subjects differing in any of them never share a derivation
-    return "|".join(sp.srepr(getattr(subject, f.name)) if isinstance(getattr(subject, f.name), sp.Basic)
-                    else repr(getattr(subject, f.name)) for f in dataclasses.fields(subject))
+def _frozen(value: Any) -> Any:
+    """``value`` as a hashable key with its type: sympy objects compare by structure, and a symbol's assumptions
+    are part of it (``Symbol('z', real=True) != Symbol('z')``); a mutable matrix is keyed as an immutable one."""
+    if isinstance(value, sp.MatrixBase):
+        return ("matrix", sp.ImmutableMatrix(value))
+    if isinstance(value, (tuple, list)):
+        return (type(value).__name__, tuple(_frozen(v) for v in value))
+    return (type(value), value)
+
+
+def _subject_key(subject: HatVDerivativeSubject) -> Any:
+    # subjects differing in any field, a symbol's assumptions included, never share a derivation
+    key = tuple((f.name, _frozen(getattr(subject, f.name))) for f in dataclasses.fields(subject))
+    try:
+        hash(key)
+    except TypeError:  # an unhashable field: its srepr, which names every symbol's assumptions
+        return "|".join(sp.srepr(getattr(subject, f.name)) if isinstance(getattr(subject, f.name), sp.Basic)
+                        else repr(getattr(subject, f.name)) for f in dataclasses.fields(subject))
+    return key
 
 
 def derived_k_conditions(subject: HatVDerivativeSubject) -> tuple[list[_Derived], list[str], dict[str, Any]]:
@@ -169,7 +188,7 @@ def _derive_k_conditions(subject: HatVDerivativeSubject) -> tuple[list[_Derived]
     s = subject
     failures: list[str] = []
     state = (s.sigma, s.phi, s.v)
-    grad = [sp.diff(s.Vhat, x).xreplace({sp.sign(s.sigma): s.zeta}) for x in state]
+    grad = [derivative(s.Vhat, x).xreplace({sp.sign(s.sigma): s.zeta}) for x in state]
     if any(gi.has(sp.sign(s.sigma)) for gi in grad):
         failures.append("the gradient still contains sign(σ) after the Clarke selection")
     found: dict[sp.Expr, _Derived] = {}
@@ -184,21 +203,20 @@ def _derive_k_conditions(subject: HatVDerivativeSubject) -> tuple[list[_Derived]
         except Undecided as exc:
             failures.append(f"{case.label}: {exc}")
             continue
-        inner = sp.expand(sum(gi * fi for gi, fi in zip(g_vals, f_vals)))
-        if any(isinstance(z, sp.sign) for z in zetas) or sp.degree(inner, s.zeta) > 1:
+        inner = fp.expand(sum(gi * fi for gi, fi in zip(g_vals, f_vals)))
+        if any(isinstance(z, sp.sign) for z in zetas) or ff.degree_in(inner, s.zeta) > 1:
             failures.append(f"{case.label}: ⟨∂V̂, F⟩ is not affine in the selection ζ of ∂|σ|")
             continue
         branch_values = []
         for zeta in zetas:
-            value = sp.together(inner.xreplace({s.zeta: zeta}))
+            value = ff.together(inner.xreplace({s.zeta: zeta}))
             branch_values.append((zeta, value))
             num, den = sp.fraction(value)
             if sign_of(den) != 1:
                 failures.append(f"{case.label}: cannot show the denominator {den} is positive")
                 continue
             gens = tuple(sorted(set(case.slacks) | {s.f_c}, key=sp.default_sort_key))
-            poly = sp.Poly(sp.expand(num), *gens)
-            for monom, coeff in poly.terms():
+            for monom, coeff in ff.poly_terms(fp.expand(num), gens):  # Poly(expand(num), *gens).terms()
                 sg = sign_of(coeff)
                 if sg in (-1, 0):
                     continue
@@ -245,7 +263,7 @@ def _c1_failures(s: HatVDerivativeSubject) -> list[str]:
     out = []
     u = sp.Symbol("u_eps", positive=True)
     eps = 2 * s.f_c * u / (1 + u)  # 0 < ε < 2 f_c, so φ = ±f_c ± ε crosses no other breakpoint
-    dphi = sp.diff(s.Vhat, s.phi)
+    dphi = derivative(s.Vhat, s.phi)
     for point in (-s.f_c, s.f_c):
         for label, expr in (("V̂", s.Vhat), ("∂V̂/∂φ", dphi)):
             try:
@@ -287,7 +305,7 @@ def _paper_claims(
             continue
         if not is_nonneg(fv_gap):
             fv_ok = False
-            failures.append(f"{case.label}: sign(v)·f_v ≤ −k_v|v| − |dz(φ)| fails (gap {sp.factor(fv_gap)})")
+            failures.append(f"{case.label}: sign(v)·f_v ≤ −k_v|v| − |dz(φ)| fails (gap {fp.factor(fv_gap)})")
         # max over ζ ∈ SGN(σ) of the ζ-term −k_i k₃|v| v ζ of ⟨∂V̂, F⟩
         k3 = s.k[2]
         term = -s.gains[1] * k3 * sp.Abs(v_val) * v_val

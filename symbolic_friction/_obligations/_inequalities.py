@@ -34,6 +34,7 @@ calling obligation fail rather than guess.
 
 from __future__ import annotations
 
+import functools
 import itertools
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -41,6 +42,8 @@ from typing import Any
 
 import sympy as sp
 
+from . import _fastforms as ff
+from . import _fastpoly as fp
 from ._decide import _has_denominator, is_zero, sign_of
 
 __all__ = [
@@ -53,6 +56,7 @@ __all__ = [
     "phi_cases",
     "case_grid",
     "block_eigen_bounds",
+    "extremum",
     "is_upper_bound_of",
     "is_lower_bound_of",
     "label_latex",
@@ -84,7 +88,7 @@ def _form_nonneg(expr: sp.Expr) -> bool:
 
 def _monomials_nonneg(poly_expr: sp.Expr) -> bool:
     """All monomials of the expanded polynomial are ``≥ 0`` by their form."""
-    p = sp.expand(poly_expr)
+    p = fp.expand(poly_expr)  # sympy.expand, the same expression (flint for a polynomial)
     if p == 0:
         return True
     if p.is_number:
@@ -137,7 +141,7 @@ def _gram_psd(poly_expr: sp.Expr) -> bool:
 
 def _factor_nonneg(poly_expr: sp.Expr) -> bool:
     """A factorisation in which every odd-power factor is sign definite."""
-    const, factors = sp.factor_list(sp.expand(poly_expr))
+    const, factors = fp.factor_list(sp.expand(poly_expr))
     if not const.is_Rational or const == 0:
         return False
     sign = 1 if const > 0 else -1
@@ -182,7 +186,7 @@ def is_nonneg(expr: Any) -> bool:
     if _form_nonneg(expr):
         return True
     if _has_denominator(expr):
-        num, den = sp.fraction(sp.together(expr))
+        num, den = sp.fraction(ff.together(expr))
     else:  # a polynomial is its own numerator (together would only regroup it; every test below expands it)
         num, den = expr, sp.Integer(1)
     den = sp.expand(den)
@@ -215,10 +219,10 @@ def canonical(expr: Any) -> sp.Expr:
     >>> canonical(6*k3*(k3*k_v - k_i*k1))
     -k1*k_i + k3*k_v
     """
-    num, den = sp.fraction(sp.together(sp.sympify(expr)))
+    num, den = sp.fraction(ff.together(sp.sympify(expr)))
     if sign_of(den) != 1:
         raise ValueError(f"the denominator {den} of the condition is not positive")
-    const, factors = sp.factor_list(sp.expand(num))
+    const, factors = fp.factor_list(sp.expand(num))
     kept = sp.Integer(1 if const > 0 else -1)
     for f, k in factors:
         if sign_of(f) == 1:
@@ -404,11 +408,18 @@ def block_eigen_bounds(M: sp.Matrix, *, what: str = "M") -> tuple[list[tuple[str
         "m": m,
         "mu_minus": mu_m,
         "mu_plus": mu_p,
-        "lam_min": sp.Min(m, mu_m),
-        "lam_max": sp.Max(m, mu_p),
+        "lam_min": extremum(sp.Min, m, mu_m),
+        "lam_max": extremum(sp.Max, m, mu_p),
         "disc": disc,
     }
     return checks, values
+
+
+@functools.lru_cache(maxsize=64)
+def extremum(kind: type, a: sp.Expr, b: sp.Expr) -> sp.Expr:
+    """``kind(a, b)`` (``Min`` or ``Max``), remembered: sympy compares the arguments through their assumptions when it
+    builds one (tens of milliseconds with a radical), and the same matrices' bounds are built by several obligations."""
+    return kind(a, b)
 
 
 def _same(a: Any, b: Any) -> bool:

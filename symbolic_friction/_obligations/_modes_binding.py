@@ -52,13 +52,26 @@ TOLS = (0.0, 16.0)
 """The caller's ``tol`` in units of ``ε·f_c`` (0: the band is rounding only)."""
 
 
+def _q(x: float | Fraction | int) -> Any:
+    """``x`` as an exact python-flint rational (``fmpq``): the same value as ``Fraction(x)``, and arithmetic in C,
+    for the some 10⁵ exact comparisons below (a float is a dyadic rational: its integer ratio is exact)."""
+    import flint
+
+    if isinstance(x, float):
+        return flint.fmpq(*x.as_integer_ratio())
+    if isinstance(x, Fraction):
+        return flint.fmpq(x.numerator, x.denominator)
+    return flint.fmpq(x)
+
+
 def band(base: int, s: int, f_c: float, excess: float, tol: float) -> Fraction:
     """The width within which ``φ = base·f_c + offset`` is put on ``s·f_s`` (module docstring)."""
     return Fraction(tol) + Fraction(SNAP_ULPS) * Fraction(EPS) * (abs(base - s) * Fraction(f_c) + Fraction(excess))
 
 
-def _row(rows: tuple[Any, ...], sigma: Fraction, phi: Fraction, f_s: Fraction, memo: dict) -> Any:
-    """The row of the proved table at ``v = 0`` (the boundaries at ``±f_s``)."""
+def _row(rows: tuple[Any, ...], sigma: Any, phi: Any, f_s: Any, memo: dict) -> Any:
+    """The row of the proved table at ``v = 0`` (the boundaries at ``±f_s``); exact numbers (``phi`` and ``f_s`` of one
+    type: Fraction or fmpq)."""
     phi_class = (
         "φ > f_c" if phi > f_s else "φ = f_c" if phi == f_s else "φ = -f_c" if phi == -f_s
         else "φ < -f_c" if phi < -f_s else "|φ| < f_c"
@@ -103,7 +116,7 @@ def verify_modes(
                 place = _Placement(f_c, excess, tol)
                 reached: dict[str, set[str]] = {}
                 for base in (-1, 0, 1):
-                    bands = {s: float(place.widths[base, s]) for s in (1, -1)}
+                    bands = {s: float(place.band_widths[base, s]) for s in (1, -1)}
                     for offset in _offsets(base, f_c, excess, bands):
                         where_phi = f"f_c = {f_c!r}, f_s = f_c + {excess!r}, tol = {tol!r}: φ = {base}·f_c + {offset!r}"
                         at = place(base, offset)
@@ -149,28 +162,32 @@ class _Placement:
     """Where the exact ``φ = base·f_c + offset`` lies against the band of each boundary ``s·f_s``."""
 
     def __init__(self, f_c: float, excess: float, tol: float) -> None:
-        self.f_c, self.excess = Fraction(f_c), Fraction(excess)
+        # exact rationals (fmpq, :func:`_q`); the widths also as Fractions, for their floats
+        self.f_c, self.excess = _q(f_c), _q(excess)
         self.f_s = self.f_c + self.excess
-        self.widths = {(b, s): band(b, s, f_c, excess, tol) for b in (-1, 0, 1) for s in (1, -1)}
+        self.on = {s: s * self.f_s for s in (1, -1)}
+        self.eps = _q(EPS)
+        self.band_widths = {(b, s): band(b, s, f_c, excess, tol) for b in (-1, 0, 1) for s in (1, -1)}
+        self.widths = {key: _q(w) for key, w in self.band_widths.items()}
         # the code's gap is (base - s)·f_c - s·excess (exact when excess = 0), then + offset: each sum
         # rounds to within ε/2 of its result; the band itself rounds within a few ε of its width
         self.terms = {
-            (b, s): (abs(b - s) * self.f_c + self.excess if excess else Fraction(0)) + self.widths[b, s] * 8
+            (b, s): (abs(b - s) * self.f_c + self.excess if excess else _q(0)) + self.widths[b, s] * 8
             for b in (-1, 0, 1) for s in (1, -1)
         }
 
-    def __call__(self, base: int, offset: float) -> tuple[int, Fraction, float] | None:
+    def __call__(self, base: int, offset: float) -> tuple[int, Any, float] | None:
         """``(s, φ on s·f_s, s·excess)`` inside a band, ``(base, φ, offset)`` outside both; ``None`` where rounding decides."""
-        phi = base * self.f_c + Fraction(offset)
+        phi = base * self.f_c + _q(offset)
         for s in (1, -1):
-            gap = abs(phi - s * self.f_s)
+            gap = abs(phi - self.on[s])
             width = self.widths[base, s]
-            slack = Fraction(EPS) * (self.terms[base, s] + gap)
+            slack = self.eps * (self.terms[base, s] + gap)
             if gap > width + slack:
                 continue
             if gap > width - slack:
                 return None
-            return s, s * self.f_s, s * float(self.excess)
+            return s, self.on[s], s * float(self.excess)
         return base, phi, offset
 
 
@@ -181,9 +198,9 @@ class _Table:
         self.rows = rows
         self.memo: dict[tuple[str, str], Any] = {}
 
-    def expect(self, sigma: float, placed: tuple[int, Fraction, float], f_s: Fraction) -> tuple[int, float, int, str]:
+    def expect(self, sigma: float, placed: tuple[int, Any, float], f_s: Any) -> tuple[int, float, int, str]:
         base, phi, offset = placed
-        row = _row(self.rows, Fraction(sigma), phi, f_s, self.memo)
+        row = _row(self.rows, sigma, phi, f_s, self.memo)  # σ's class: a float compares with 0 exactly
         return base, offset, row.k, row.label
 
 

@@ -7,6 +7,9 @@ from typing import Any
 
 import sympy as sp
 
+from ._decide import G, Undecided, decide, is_zero, latex, resolve_piecewise
+from ._inequalities import Case, case_grid, phi_cases, sign_cases
+from ._shared import distance_squared, shared_value
 from ._statements import (
     lemma2_decrease,
     lemma2_lower_bound,
@@ -14,10 +17,7 @@ from ._statements import (
     lemma3_hatV_nonincreasing,
     lemma3_V_bounds,
 )
-from ._decide import G, Undecided, decide, is_zero, latex, resolve_piecewise
-from ._inequalities import Case, case_grid, phi_cases, sign_cases
 from .lemma3 import in_R, region_R
-from ._shared import distance_squared
 
 
 @dataclass(frozen=True)
@@ -239,7 +239,7 @@ def _subject() -> StabilitySubject:
         goals=goals,
         kappa=sp.sqrt(c2 * ch2 / (c1 * ch1)),
         kappa_step="c1ĉ1 ≤ c2ĉ2",
-        region=region_R(g),
+        region=shared_value(region_R, g),
         closed_form=closed_form,
         witnesses=(("x*", (1, 0, 0), True), ("x̂*", (0, 0, 1), False)),
         dist2=distance_squared(g),

@@ -12,6 +12,8 @@ from dataclasses import dataclass
 import sympy as sp
 
 from .._model import symbolic as _symbolic
+from . import _fastforms as ff
+from . import _fastpoly as fp
 from ._base import Obligation, Outcome
 from ._decide import G, is_zero, latex, sign_of
 from ._shared import _mat
@@ -40,7 +42,7 @@ def hurwitz_minors(poly: sp.Poly) -> list[sp.Expr]:
         return coeffs[n - k] if 0 <= k <= n else sp.Integer(0)
 
     H = sp.Matrix(n, n, lambda i, j: a(n - 2 * (j + 1) + (i + 1)))
-    return [sp.factor(H[:k, :k].det()) for k in range(1, n + 1)]
+    return [fp.factored_det(H[:k, :k]) for k in range(1, n + 1)]
 
 
 class Assumption1Routh(Obligation):
@@ -66,7 +68,7 @@ class Assumption1Routh(Obligation):
         S = subject
         details: list[tuple[str, str]] = []
         for name, M in (("A", S.A), ("A_z", S.A_z)):
-            cp = sp.expand((S.s * sp.eye(3) - M).det())
+            cp = fp.expanded_det(S.s * sp.eye(3) - M)
             if not is_zero(cp - S.paper_polynomial):
                 return Outcome.fail(f"det(sI - {name}) = {cp} differs from the paper's {S.paper_polynomial}")
         details.append(("\\det(sI - A) = \\det(sI - A_z)", latex(S.paper_polynomial)))
@@ -77,31 +79,31 @@ class Assumption1Routh(Obligation):
         details.append(("\\text{Hurwitz minors } \\Delta_k", latex(sp.Matrix(minors).T)))
         # (⇐) every point of Assumption 1 is (a_1, a_2, a_3) = (positive, positive, positive); solve for the gains.
         alphas = sp.symbols(f"alpha_1:{len(S.assumption) + 1}", positive=True)
-        back = sp.solve([e - a for e, a in zip(S.assumption, alphas)], S.gains, dict=True)
+        back = ff.solve([e - a for e, a in zip(S.assumption, alphas)], S.gains, dict=True)
         if not back:
             return Outcome.fail(f"cannot solve Assumption 1's expressions {S.assumption} for the gains")
         for sol in back:
             for k, m in enumerate(minors, 1):
                 if sign_of(m.subs(sol)) != 1:
                     return Outcome.fail(
-                        f"(⇐) fails: on Assumption 1 ({sol}), Hurwitz minor Δ_{k} = {sp.factor(m.subs(sol))} is not shown positive",
+                        f"(⇐) fails: on Assumption 1 ({sol}), Hurwitz minor Δ_{k} = {fp.factor(m.subs(sol))} is not shown positive",
                         tuple(details),
                     )
         # (⇒) every Hurwitz point has positive minors d_k; solve the minors for the gains.
         ds = sp.symbols(f"d_1:{len(minors) + 1}", positive=True)
-        forth = sp.solve([m - d for m, d in zip(minors, ds)], S.gains, dict=True)
+        forth = ff.solve([m - d for m, d in zip(minors, ds)], S.gains, dict=True)
         if not forth:
             return Outcome.fail(f"cannot solve the Hurwitz minors {minors} for the gains")
         for sol in forth:
             for e in S.assumption:
-                val = sp.factor(e.subs(sol))
+                val = fp.factor(e.subs(sol))
                 if sign_of(val) != 1:
                     return Outcome.fail(
                         f"(⇒) fails: with Hurwitz minors d_k > 0 ({sol}), Assumption 1's {e} = {val} is not shown positive",
                         tuple(details),
                     )
-        details.append(("\\Leftarrow\\ \\text{on Assumption 1}", latex([sp.factor(m.subs(back[0])) for m in minors])))
-        details.append(("\\Rightarrow\\ \\text{from } \\Delta_k = d_k", latex([sp.factor(e.subs(forth[0])) for e in S.assumption])))
+        details.append(("\\Leftarrow\\ \\text{on Assumption 1}", latex([fp.factor(m.subs(back[0])) for m in minors])))
+        details.append(("\\Rightarrow\\ \\text{from } \\Delta_k = d_k", latex([fp.factor(e.subs(forth[0])) for e in S.assumption])))
         return Outcome(True, "both directions hold for real gains", tuple(details))
 
 
@@ -140,7 +142,7 @@ class Assumption1Encoding(Obligation):
         # (⇐) every k_v with k_v k_p > k_i is reached, by δ = k_v k_p − k_i > 0
         kv = sp.Symbol("k_v", real=True)
         back = image.xreplace({s.delta: kv * s.k_p - s.k_i})
-        if not is_zero(sp.simplify(back - kv)):
+        if not is_zero(ff.simplify(back - kv)):
             return Outcome.fail(f"δ = k_v k_p − k_i does not give back k_v: {back}")
         return Outcome(True, "δ = k_v k_p − k_i > 0 is a bijection onto {k_v : k_v k_p > k_i}", (("k_v", latex(image)),))
 

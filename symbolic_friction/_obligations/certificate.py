@@ -30,6 +30,7 @@ enough, so that a verifier with a premise dropped or weakened fails
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable
 from dataclasses import dataclass
 from fractions import Fraction
@@ -40,6 +41,7 @@ import sympy as sp
 from .._certify import verify as _verify
 from .._model.kconditions import Condition
 from .._model.lyapunov import lyapunov_matrix_entries, vhat_matrix_entries
+from . import _fastpoly as fp
 from ._base import Obligation, Outcome
 from ._decide import G, is_zero, latex, sign_of
 from .lemma2 import decrease_rate
@@ -100,7 +102,7 @@ def _premise_rows(premises: list[Any]) -> tuple[tuple[str, sp.Expr, str], ...]:
     for p in premises:
         if isinstance(p, _verify.Semidefinite):
             for idx, minor in p.minors():
-                rows.append((f"{p.name} [minor {{{','.join(str(i + 1) for i in idx)}}}]", sp.expand(minor), ">="))
+                rows.append((f"{p.name} [minor {{{','.join(str(i + 1) for i in idx)}}}]", fp.expand(minor), ">="))
         else:
             margin, kind = p.margin()
             rows.append((p.name, sp.expand(margin), kind))
@@ -112,7 +114,7 @@ def _psd_claims(where: str, text: str, matrix: sp.Matrix) -> list[Claim]:
     import itertools
 
     return [
-        Claim(where, f"{text}: principal minor {{{','.join(str(i + 1) for i in idx)}}} ≥ 0", sp.expand(matrix.extract(list(idx), list(idx)).det()))
+        Claim(where, f"{text}: principal minor {{{','.join(str(i + 1) for i in idx)}}} ≥ 0", fp.expanded_det(matrix.extract(list(idx), list(idx))))
         for size in range(1, n + 1)
         for idx in itertools.combinations(range(n), size)
     ]
@@ -158,18 +160,24 @@ def certificate_claims(cert: SymbolicCertificate) -> list[Claim]:
     return claims
 
 
+@functools.lru_cache(maxsize=1024)
+def _symbols(expr: sp.Expr) -> frozenset:
+    # each margin's free symbols once: every claim is compared with every premise
+    return frozenset(expr.free_symbols)
+
+
 def _supports(premise: tuple[str, sp.Expr, str], claim: Claim) -> bool:
     """Whether the premise ``margin kind 0`` implies the claim, decided exactly."""
     _, margin, kind = premise
-    if margin.free_symbols != claim.margin.free_symbols:
+    if _symbols(margin) != _symbols(claim.margin):
         return False  # neither equal nor a multiple by a factor of the shared symbols
     if claim.equal:
-        return kind == "==" and is_zero(sp.expand(margin - claim.margin))
+        return kind == "==" and is_zero(fp.expand(margin - claim.margin))
     if claim.strict and kind != ">":
         return False
     if kind == "==":
         return False
-    if is_zero(sp.expand(margin - claim.margin)):
+    if is_zero(fp.expand(margin - claim.margin)):
         return True
     if margin == 0:
         return False

@@ -26,14 +26,34 @@ from __future__ import annotations
 
 import itertools
 from dataclasses import dataclass
+from typing import Any
 
 import sympy as sp
 
 from .._model import symbolic as _symbolic
+from . import _fastforms as ff
+from . import _fastpoly as fp
 from ._base import Erratum, Obligation, Outcome
-from ._decide import G, Undecided, decide, is_zero, latex, phi_classes, pos, sign_classes, sign_of
-from .lemma2 import affine_fields, decrease_rate, friction_form, friction_minimum, lyapunov_pieces, under_assumption1
-from ._shared import sgn_sets
+from ._decide import (
+    G,
+    Undecided,
+    decide,
+    is_zero,
+    latex,
+    phi_classes,
+    pos,
+    sign_classes,
+    sign_of,
+)
+from ._shared import derivative, sgn_sets
+from .lemma2 import (
+    affine_fields,
+    decrease_rate,
+    friction_form,
+    friction_minimum,
+    lyapunov_pieces,
+    under_assumption1,
+)
 
 __all__ = ["Row", "StickBranch", "Claim1Cases", "OBLIGATIONS", "ROWS", "stick_duration_error"]
 
@@ -142,6 +162,12 @@ def stick_duration_error(T: sp.Expr) -> str | None:
     return None
 
 
+def _at(expr: Any, values: dict) -> sp.Expr:
+    """``expr`` with its symbols replaced by ``values`` (which hold none of those symbols): what ``subs`` gives then,
+    built by ``xreplace`` without ``subs``'s bookkeeping."""
+    return sp.sympify(expr).xreplace({k: sp.sympify(v) for k, v in values.items()})
+
+
 def _matches(row_value: str | None, value: str) -> bool:
     return row_value is None or row_value == value
 
@@ -185,15 +211,16 @@ class Claim1Cases(Obligation):
     def _V(self, S: Claim1Subject, point, v_sign: int) -> sp.Expr:
         """``V`` of eq. (lyapLikeV) at ``point`` whose ``v`` has sign ``v_sign``: exact min over f ∈ f_c SGN(v)."""
         sigma, phi, v = point
-        at = S.form.subs({S.state[0]: sigma, S.state[2]: v}, simultaneous=True)
+        # xreplace is a simultaneous substitution of symbols, as subs(simultaneous=True), without its bookkeeping
+        at = S.form.xreplace({S.state[0]: sp.sympify(sigma), S.state[2]: sp.sympify(v)})
         memo = getattr(self, "_minima", {})
         key = (at, phi, v_sign)
         if key not in memo:
-            memo[key] = at.subs(S.y, 0) + friction_minimum(at, S.y, phi, S.f_c, S.sgn[v_sign])
+            memo[key] = at.xreplace({S.y: sp.Integer(0)}) + friction_minimum(at, S.y, phi, S.f_c, S.sgn[v_sign])
         return memo[key]
 
     def _Vk(self, S: Claim1Subject, k: int, point) -> sp.Expr:
-        return S.V[k].subs(dict(zip(S.state, point)), simultaneous=True)
+        return S.V[k].xreplace({s: sp.sympify(p) for s, p in zip(S.state, point)})
 
     def _initial_points(self, S: Claim1Subject, row: Row):
         """Yield ``(σ̄ class or None, substitution for the bar symbols)`` covering the row's region.
@@ -247,20 +274,20 @@ class Claim1Cases(Obligation):
         k = row.k
         J = f.jacobian(sp.Matrix(S.state))
         for _sigma_label, sub in self._initial_points(S, row):
-            xb = [sp.sympify(e).subs(sub) for e in S.bar]
+            xb = [_at(e, sub) for e in S.bar]
             derivs = [sp.Matrix(xb)]
-            derivs.append(f.subs(dict(zip(S.state, xb)), simultaneous=True))
+            derivs.append(f.xreplace(dict(zip(S.state, xb))))
             for _ in range(2):
                 derivs.append(J * derivs[-1])
             vd = [d[2] for d in derivs]  # decided as values (exact, whatever their form); factored where printed
             for order, value in row.claims:
-                if not is_zero(vd[order] - sp.sympify(value).subs(sub)):
-                    return f"the paper's d^{order}ξ_v/dt^{order}(0) = {sp.sympify(value).subs(sub)} but f_{k} gives {sp.factor(vd[order])}"
+                if not is_zero(vd[order] - _at(value, sub)):
+                    return f"the paper's d^{order}ξ_v/dt^{order}(0) = {_at(value, sub)} but f_{k} gives {fp.factor(vd[order])}"
             first = None
             for n, dv in enumerate(vd):
                 s = sign_of(dv)
                 if s is None:
-                    return f"cannot decide the sign of d^{n}ξ_v/dt^{n}(0) = {sp.factor(dv)}"
+                    return f"cannot decide the sign of d^{n}ξ_v/dt^{n}(0) = {fp.factor(dv)}"
                 if s != 0:
                     first = (n, s)
                     break
@@ -268,26 +295,26 @@ class Claim1Cases(Obligation):
                 return f"ξ_v and its first {len(vd) - 1} derivatives vanish at 0; the sign of ξ_v is not determined"
             n, s = first
             if s != k:
-                return f"d^{n}ξ_v/dt^{n}(0) = {sp.factor(vd[n])} has sign {s}, so ξ_v leaves 0 with sign {s}, not k = {k}"
+                return f"d^{n}ξ_v/dt^{n}(0) = {fp.factor(vd[n])} has sign {s}, so ξ_v leaves 0 with sign {s}, not k = {k}"
             v_sign0 = sign_of(xb[2])
             if decide(sp.Contains(k, S.sgn[v_sign0]).doit()) is not True:
                 return f"at t = 0, k = {k} is not in SGN(v̄) = {S.sgn[v_sign0]}"
             # V = V_k at t = 0 (exact minimum) and on (0, T] where sign ξ_v = k.
             V0 = self._V(S, xb, v_sign0)
             if not is_zero(V0 - self._Vk(S, k, xb)):
-                return f"V(ξ(0)) = {sp.factor(V0)} but V_{k}(ξ(0)) = {sp.factor(self._Vk(S, k, xb))}"
+                return f"V(ξ(0)) = {fp.factor(V0)} but V_{k}(ξ(0)) = {fp.factor(self._Vk(S, k, xb))}"
             vq = pos("v_t") * k
             pt = [S.state[0], S.state[1], vq]
             if not is_zero(self._V(S, pt, k) - self._Vk(S, k, pt)):
                 return f"V ≠ V_{k} where sign ξ_v = {k}"
-            rate = sp.expand((sp.Matrix([sp.diff(S.V[k], s) for s in S.state]).T * f)[0] + S.c * S.state[2] ** 2)
+            rate = sp.expand((sp.Matrix([derivative(S.V[k], s) for s in S.state]).T * f)[0] + S.c * S.state[2] ** 2)
             if not is_zero(rate):
-                return f"d/dt V_{k} + c ξ_v² = {sp.factor(rate)} along f_{k}, not 0"
+                return f"d/dt V_{k} + c ξ_v² = {fp.factor(rate)} along f_{k}, not 0"
             details.append((
                 f"\\text{{({row.label})}}\\ {self._tex_region(row)},\\ k = {k}",
                 "".join(f"\\xi_v^{{({m})}}(0) = 0,\\ " for m in range(n))
-                + f"\\xi_v^{{({n})}}(0) = {latex(sp.factor(vd[n]))}"
-                + f";\\ V(\\xi(0)) = V_{{{k}}} = {latex(sp.factor(V0))}",
+                + f"\\xi_v^{{({n})}}(0) = {latex(fp.factor(vd[n]))}"
+                + f";\\ V(\\xi(0)) = V_{{{k}}} = {latex(fp.factor(V0))}",
             ))
         return None
 
@@ -314,13 +341,13 @@ class Claim1Cases(Obligation):
 
     def _stick_branch(self, S, row, f0, br: StickBranch, lab, sub, details) -> str | None:
         t = S.t
-        xb = sp.Matrix([sp.sympify(e).subs(sub) for e in S.bar])
-        xi = sp.Matrix(br.xi).subs(sub)
-        T = sp.sympify(br.T).subs(sub)
-        if not all(is_zero(e) for e in (xi.subs(t, 0) - xb)):
-            return f"ξ(0) = {list(xi.subs(t, 0))} is not the initial condition {list(xb)}"
+        xb = sp.Matrix([_at(e, sub) for e in S.bar])
+        xi = sp.Matrix(br.xi).xreplace(sub)
+        T = _at(br.T, sub)
+        if not all(is_zero(e) for e in (xi.xreplace({t: sp.Integer(0)}) - xb)):
+            return f"ξ(0) = {list(xi.xreplace({t: sp.Integer(0)}))} is not the initial condition {list(xb)}"
         dxi = xi.diff(t)
-        if not all(is_zero(e) for e in (dxi - f0.subs(dict(zip(S.state, xi)), simultaneous=True))):
+        if not all(is_zero(e) for e in (dxi - f0.xreplace(dict(zip(S.state, xi))))):
             return f"ξ(t) = {list(xi)} does not solve ξ' = f_0(ξ)"
         if not is_zero(xi[2]):
             return f"ξ_v(t) = {xi[2]} is not identically 0 on the stick"
@@ -330,14 +357,14 @@ class Claim1Cases(Obligation):
             return refused
         # Friction selection: ξ' - A ξ = -b w(t) with w(t) ∈ SGN(0) = [-1, 1] for t ∈ [0, T].
         r = dxi - S.A * xi
-        w = sp.factor(-r[2] / S.b[2])
+        w = fp.factor(-r[2] / S.b[2])
         if not all(is_zero(r[i] + S.b[i] * w) for i in range(3)):
             return f"ξ' - Aξ = {list(r)} is not a multiple of b"
         lo, hi = S.sgn[0].start, S.sgn[0].end
         if finite:
-            if sp.degree(sp.expand(sp.numer(sp.together(w))), t) > 1 or sp.together(w).as_numer_denom()[1].has(t):
+            if ff.degree_in(sp.expand(sp.numer(ff.together(w))), t) > 1 or ff.together(w).as_numer_denom()[1].has(t):
                 return f"the selection w(t) = {w} is not affine in t"
-            ends = [w.subs(t, 0), sp.factor(w.subs(t, T))]
+            ends = [_at(w, {t: 0}), fp.factor(_at(w, {t: T}))]
         else:
             if not is_zero(sp.diff(w, t)):
                 return f"the selection w(t) = {w} is not constant on an unbounded stick"
@@ -349,20 +376,20 @@ class Claim1Cases(Obligation):
         alpha, beta = pos("alpha_t"), pos("beta_t")
         times = [sp.Integer(0), T, T * alpha / (alpha + beta)] if finite else [sp.Integer(0), pos("tau")]
         for tt in times:
-            pt = list(xi.subs(t, tt))
+            pt = list(xi.xreplace({t: tt}))
             V = self._V(S, pt, 0)
             if not is_zero(V - self._Vk(S, 0, pt)):
-                return f"at t = {tt}: V(ξ) = {sp.factor(V)} but V_0(ξ) = {sp.factor(self._Vk(S, 0, pt))}"
+                return f"at t = {tt}: V(ξ) = {fp.factor(V)} but V_0(ξ) = {fp.factor(self._Vk(S, 0, pt))}"
         rate = sp.diff(self._Vk(S, 0, list(xi)), t) + S.c * xi[2] ** 2
         if not is_zero(rate):
-            return f"d/dt V_0(ξ(t)) + c ξ_v² = {sp.factor(rate)}, not 0"
+            return f"d/dt V_0(ξ(t)) + c ξ_v² = {fp.factor(rate)}, not 0"
         tag = f",\\ \\bar\\sigma {lab}" if lab and not row.sigma else ""
         details.append((
             f"\\text{{({row.label})}}\\ {self._tex_region(row)}{tag},\\ k = 0",
             f"\\xi(t) = {latex(list(xi))},\\ t \\in [0, T],\\ T = {latex(br.T)}"
-            + (f" = {latex(sp.factor(T))}" if T != br.T else "")
-            + f",\\ w(t) = {latex(sp.factor(w))}"
-            f";\\ V = V_0 = {latex(sp.factor(self._Vk(S, 0, list(xi))))}",
+            + (f" = {latex(fp.factor(T))}" if T != br.T else "")
+            + f",\\ w(t) = {latex(fp.factor(w))}"
+            f";\\ V = V_0 = {latex(fp.factor(self._Vk(S, 0, list(xi))))}",
         ))
         return None
 

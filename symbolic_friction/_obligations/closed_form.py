@@ -75,10 +75,12 @@ from .certificate import SymbolicCertificate
 
 __all__ = ["OBLIGATIONS", "ClosedFormAllGains", "ClosedFormMonotone", "ClosedFormBalanced", "AllGainsSubject", "MonotoneSubject"]
 
+from . import _fastforms as ff
+from . import _fastpoly as fp
 from ._closed_form_balanced import BALANCED_SAMPLES, BalancedSubject, stated_mismatch
 from ._closed_form_cases import (
-    K_SYMBOLS,
     BASE,
+    K_SYMBOLS,
     P_SYMBOLS,
     balanced_cases,
     decide_cases,
@@ -294,7 +296,7 @@ def _monotone_certificate() -> SymbolicCertificate:
 
 def _direction(expr: sp.Expr, var: sp.Symbol) -> int | None:
     """The sign of ``∂expr/∂var`` on the positive orthant (1, 0, -1), or None if not decided."""
-    return sign_of(sp.together(sp.diff(expr, var)))
+    return sign_of(ff.together(sp.diff(expr, var)))
 
 
 def _loewner_direction(matrix: sp.Matrix, var: sp.Symbol) -> int | None:
@@ -305,7 +307,7 @@ def _loewner_direction(matrix: sp.Matrix, var: sp.Symbol) -> int | None:
     n = d.shape[0]
     for sgn in (1, -1):
         m = sgn * d
-        if all(sign_of(sp.together(m.extract(list(idx), list(idx)).det())) in (0, 1)
+        if all(sign_of(ff.together(m.extract(list(idx), list(idx)).det())) in (0, 1)
                for size in range(1, n + 1) for idx in itertools.combinations(range(n), size)):
             return sgn
     return None
@@ -349,7 +351,7 @@ class ClosedFormMonotone(Obligation):
                     return Outcome.fail(f"premise {name} depends on k_i beyond a = k_v/k_i")
                 dirs = [_loewner_direction(value, v) for v in subject.variables]
             else:
-                reduced = next((r for j in range(3) if subject.scale not in (r := sp.cancel(value / subject.scale**j)).free_symbols), None)
+                reduced = next((r for j in range(3) if subject.scale not in (r := fp.cancel(value / subject.scale**j)).free_symbols), None)
                 if reduced is None:
                     return Outcome.fail(f"premise {name} depends on k_i beyond a = k_v/k_i and a positive power of k_i")
                 dirs = [_direction(reduced, v) for v in subject.variables]

@@ -7,6 +7,7 @@ from dataclasses import dataclass
 import sympy as sp
 
 from .._model import symbolic as _symbolic
+from . import _fastpoly as fp
 from ._base import Erratum, Obligation, Outcome
 from ._decide import G, is_zero, latex
 from ._shared import _mat
@@ -59,14 +60,14 @@ class Coordinates(Obligation):
 
     def verify(self, subject: CoordinatesSubject) -> Outcome:
         S = subject
-        det = sp.factor(S.T.det())
-        const, factors = sp.factor_list(det)
+        det = fp.factored_det(S.T)
+        const, factors = fp.factor_list(det)
         details = [("T", latex(S.T)), ("\\det T", latex(det))]
         if const == 0 or any(not is_zero(f - S.k_i) and not is_zero(f + S.k_i) for f, _ in factors) or not factors:
             return Outcome.fail(f"det T = {det} does not vanish exactly when {S.k_i} = 0", tuple(details))
         eye = sp.eye(3)
         for name, prod in (("T_inv·T", S.T_inv * S.T), ("T·T_inv", S.T * S.T_inv)):
-            residual = (prod - eye).applyfunc(lambda e: sp.cancel(e))
+            residual = (prod - eye).applyfunc(lambda e: fp.cancel(e))
             if not all(is_zero(e) for e in residual):
                 return Outcome.fail(f"{name} - I = {residual.tolist()} is not zero", tuple(details))
         if list(S.T[2, :]) != [0, 0, 1]:
@@ -80,7 +81,7 @@ class Coordinates(Obligation):
             )
         details += [
             ("x = T z", latex(x)),
-            ("T A_z T^{-1}", latex((S.T * S.A_z * S.T_inv).applyfunc(sp.cancel))),
+            ("T A_z T^{-1}", latex((S.T * S.A_z * S.T_inv).applyfunc(fp.cancel))),
             ("A", latex(S.A)),
             ("T b", latex(S.T * S.b_z)),
             ("T(A_z z - b w) = A\\,Tz - b\\,w", latex((S.T * (S.A_z * S.z - S.b_z * S.w)).applyfunc(sp.expand))),

@@ -27,9 +27,18 @@ import sympy as sp
 
 from .._model import symbolic as _symbolic
 from .._model.attractor import attractor_bound_z, squared_distance_z
+from . import _fastpoly as fp
 from ._base import Erratum, Obligation, Outcome
 from ._decide import G, Undecided, decide, is_zero, latex, resolve_piecewise
-from ._inequalities import Case, is_nonneg, label_latex, line_cases, rows_latex, sign_cases
+from ._inequalities import (
+    Case,
+    is_nonneg,
+    label_latex,
+    line_cases,
+    rows_latex,
+    sign_cases,
+)
+from ._shared import shared_value
 
 __all__ = ["OBLIGATIONS", "Inflation", "Distances", "InflationSubject", "DistancesSubject"]
 
@@ -54,7 +63,10 @@ def _expand_abs_relations(expr: Any) -> Any:
             return sp.And(y <= c, y >= -c)
         return rel
 
-    return sp.sympify(expr).replace(is_abs_rel, rewrite)
+    expr = sp.sympify(expr)
+    if not expr.has(sp.Abs):  # nothing to rewrite: replace() would walk the whole tree to return it unchanged
+        return expr
+    return expr.replace(is_abs_rel, rewrite)
 
 
 def _resolve(expr: Any) -> sp.Expr:
@@ -264,7 +276,7 @@ class Distances(Obligation):
         g = G()
         beta = attractor_bound_z(g)
         # the package's |z|²_𝒜, the distance the ISS estimate and the cross-check measure
-        dist2 = squared_distance_z(g, [g.e_i, g.s, g.v])
+        dist2 = shared_value(squared_distance_z, g, [g.e_i, g.s, g.v])
         return DistancesSubject(
             e_i=g.e_i,
             s=g.s,
@@ -289,7 +301,7 @@ class Distances(Obligation):
         rep = {s.f_c: beta * s.k_i}
         for case in s.cases:
             try:
-                dist2, norm2, bound2 = (sp.cancel(_resolve(case(e)).xreplace(rep)) for e in (s.dist2, s.norm2, s.bound2))
+                dist2, norm2, bound2 = (fp.cancel(_resolve(case(e)).xreplace(rep)) for e in (s.dist2, s.norm2, s.bound2))
             except Undecided as exc:
                 failures.append(f"{case.label}: {exc}")
                 continue
@@ -298,14 +310,14 @@ class Distances(Obligation):
                     continue
                 witness = _counterexample(gap)
                 extra = f"; it is negative at {witness}" if witness else ""
-                failures.append(f"{case.label}: {label} not shown (gap {sp.factor(gap)}){extra}")
+                failures.append(f"{case.label}: {label} not shown (gap {fp.factor(gap)}){extra}")
             rows.append(
-                f"{label_latex(case.label)}: |z|^2 - |z|_{{\\mathcal A}}^2 = {latex(sp.factor(norm2 - dist2))},\\ "
-                f"2|z|_{{\\mathcal A}}^2 + 2\\beta^2 - |z|^2 = {latex(sp.factor(bound2 - norm2))}"
+                f"{label_latex(case.label)}: |z|^2 - |z|_{{\\mathcal A}}^2 = {latex(fp.factor(norm2 - dist2))},\\ "
+                f"2|z|_{{\\mathcal A}}^2 + 2\\beta^2 - |z|^2 = {latex(fp.factor(bound2 - norm2))}"
             )
         # |z|² ≤ 2D² + 2β² ≤ 2(D + β)² for D = |z|_𝒜 ≥ 0
         d = sp.Symbol("D", nonnegative=True)
-        offset = sp.cancel(sp.sympify(s.offset).xreplace(rep))
+        offset = fp.cancel(sp.sympify(s.offset).xreplace(rep))
         last = 2 * (d + offset) ** 2 - (2 * d**2 + 2 * offset**2)
         if not is_zero(offset - beta) or not is_nonneg(last):
             failures.append(f"2(|z|_𝒜 + {s.offset})² ≥ 2|z|_𝒜² + 2(f_c/k_i)² not shown (gap {sp.expand(last)})")

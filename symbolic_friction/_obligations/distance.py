@@ -6,8 +6,17 @@ from dataclasses import dataclass
 
 import sympy as sp
 
+from . import _fastpoly as fp
 from ._base import Obligation, Outcome
-from ._decide import G, Undecided, is_zero, latex, minimum_on, phi_classes, resolve_piecewise
+from ._decide import (
+    G,
+    Undecided,
+    is_zero,
+    latex,
+    minimum_on,
+    phi_classes,
+    resolve_piecewise,
+)
 from ._shared import attractor_x, distance_squared
 
 __all__ = ["Distance", "OBLIGATIONS"]
@@ -52,12 +61,12 @@ class Distance(Obligation):
             exact = fixed_part + inner
             if not is_zero(exact - claimed):
                 return Outcome.fail(
-                    f"piece {label} (φ = {value}): inf |x - y|² = {sp.factor(exact)} but the formula gives {sp.factor(claimed)}",
+                    f"piece {label} (φ = {value}): inf |x - y|² = {fp.factor(exact)} but the formula gives {fp.factor(claimed)}",
                     tuple(details),
                 )
             details.append((
                 f"{tex},\\ \\phi = {latex(value)}",
-                f"\\inf_{{y\\in\\mathcal A}}|x-y|^2 = {latex(sp.factor(exact))}",
+                f"\\inf_{{y\\in\\mathcal A}}|x-y|^2 = {latex(fp.factor(exact))}",
             ))
         return Outcome(True, "the formula equals the exact infimum on every piece", tuple(details))
 

@@ -7,6 +7,8 @@ from dataclasses import dataclass
 import sympy as sp
 
 from .._model import symbolic as _symbolic
+from . import _fastforms as ff
+from . import _fastpoly as fp
 from ._base import Obligation, Outcome
 from ._decide import G, Undecided, affine_image, is_zero, latex, sign_of
 from ._shared import _mat, attractor_x, attractor_z, sgn_sets
@@ -38,7 +40,7 @@ def _equilibria_match(M: sp.ImmutableMatrix, b: sp.ImmutableMatrix, target: tupl
         return False, f"M = {M.tolist()} is singular, so the v ≠ 0 case is not settled", details
     for sgn_v in (1, -1):
         (wv,) = sgn[sgn_v].args
-        sol = M.LUsolve(b * wv).applyfunc(sp.cancel)
+        sol = M.LUsolve(b * wv).applyfunc(fp.cancel)
         # The unique solution is an equilibrium only if its v really has the sign assumed.
         consistent = sign_of(sgn_v * sol[2])
         if consistent == 1:
@@ -47,7 +49,7 @@ def _equilibria_match(M: sp.ImmutableMatrix, b: sp.ImmutableMatrix, target: tupl
             return False, f"cannot exclude an equilibrium with {names[2]} of sign {sgn_v}: {list(sol)}", details
     # v = 0: solve M x = b w for the other two components, w ∈ SGN(0).
     eqs = list(M * X.subs(xs[2], 0) - b * w)
-    sols = sp.solve(eqs, xs[:2], dict=True)
+    sols = ff.solve(eqs, xs[:2], dict=True)
     if len(sols) != 1 or set(sols[0]) != set(xs[:2]):
         return False, f"the equilibria with {names[2]} = 0 are not a curve parametrised by w: {sols}", details
     sol = sols[0]

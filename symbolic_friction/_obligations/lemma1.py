@@ -22,6 +22,7 @@ from dataclasses import dataclass
 import sympy as sp
 
 from .._model import symbolic as _symbolic
+from . import _fastpoly as fp
 from ._base import Obligation, Outcome
 from ._decide import G, Undecided, is_zero, latex, sign_classes, sign_of, vertices
 from ._shared import sgn_sets
@@ -55,12 +56,12 @@ class Lemma1Uniqueness(Obligation):
         w1, w2 = sp.symbols("w_1 w_2", real=True)
         delta = z1 - z2
         # Friction part of δᵀδ': everything in δᵀ(F(z_1) - F(z_2)) beyond the linear term δᵀ A_z δ.
-        friction = sp.expand((delta.T * ((S.A_z * z1 - S.b * w1) - (S.A_z * z2 - S.b * w2)))[0] - (delta.T * S.A_z * delta)[0])
+        friction = fp.expand((delta.T * ((S.A_z * z1 - S.b * w1) - (S.A_z * z2 - S.b * w2)))[0] - (delta.T * S.A_z * delta)[0])
         f_c = S.b[2]
         paper_form = sp.expand(delta[2] * (f_c * w2 - f_c * w1))  # δ_v (f_2 - f_1) with f_j = f_c w_j
-        details = [("\\delta^T(F(z_1)-F(z_2)) - \\delta^T A_\\delta \\delta", latex(sp.factor(friction)))]
+        details = [("\\delta^T(F(z_1)-F(z_2)) - \\delta^T A_\\delta \\delta", latex(fp.factor(friction)))]
         if not is_zero(friction - paper_form):
-            return Outcome.fail(f"the friction term is {sp.factor(friction)}, not δ_v(f_2 - f_1) = {sp.factor(paper_form)}", tuple(details))
+            return Outcome.fail(f"the friction term is {fp.factor(friction)}, not δ_v(f_2 - f_1) = {fp.factor(paper_form)}", tuple(details))
         if sp.Poly(friction, w1, w2).degree(w1) > 1 or sp.Poly(friction, w1, w2).degree(w2) > 1:
             return Outcome.fail(f"the friction term {friction} is not multi-affine in the selections")
         # z_{1,v} = a and z_{2,v} = z_{1,v} - δ_v = bb, each of sign 1, 0 or -1
@@ -85,10 +86,10 @@ class Lemma1Uniqueness(Obligation):
                 bad = values[signs.index(1)]
                 return Outcome.fail(
                     f"case sign(z_1v) = {s1}, sign(z_1v - δ_v) = {s2} (z_1v = {a}, z_2v = {bb}): "
-                    f"M(t) ≥ {sp.factor(bad)} > 0",
+                    f"M(t) ≥ {fp.factor(bad)} > 0",
                     tuple(details),
                 )
-            shown = ", ".join(sorted({latex(sp.factor(v)) for v in values}))
+            shown = ", ".join(sorted({latex(fp.factor(v)) for v in values}))
             details.append((label, f"M = \\max\\{{{shown}\\}} \\le 0"))
         return Outcome(True, "M(t) ≤ 0 in all nine sign cases", tuple(details))
 

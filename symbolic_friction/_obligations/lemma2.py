@@ -22,10 +22,12 @@ import sympy as sp
 
 from .._model import symbolic as _symbolic
 from .._model.lyapunov import V_k, quadratic_form
+from . import _fastforms as ff
+from . import _fastpoly as fp
 from ._base import Erratum, Obligation, Outcome
-from ._statements import lemma2_decrease, lemma2_lower_bound, statement_failure
 from ._decide import (
     G,
+    Undecided,
     is_zero,
     latex,
     minimum_on,
@@ -34,9 +36,10 @@ from ._decide import (
     resolve_piecewise,
     sign_classes,
     sign_of,
-    Undecided,
 )
+from ._inequalities import extremum
 from ._shared import distance_squared, sgn_sets
+from ._statements import lemma2_decrease, lemma2_lower_bound, statement_failure
 
 __all__ = [
     "Lemma2P",
@@ -58,7 +61,7 @@ F0_MATRIX = ((0, 0, 0), (1, 0, 0), (0, 0, 0))
 
 def under_assumption1(expr: sp.Expr) -> sp.Expr:
     """Encode ``k_v k_p - k_i = δ > 0`` (Assumption 1) in ``expr``."""
-    return sp.factor(sp.sympify(expr).subs(_symbolic.assumption1_substitution(G())))
+    return fp.factor(sp.sympify(expr).subs(_symbolic.assumption1_substitution(G())))
 
 
 def affine_fields(g: _symbolic.Gains) -> dict[int, sp.ImmutableMatrix]:
@@ -97,7 +100,8 @@ def friction_minimum(form: sp.Expr, y: sp.Symbol, phi: Any, f_c: Any, sgn_set: s
         From :func:`._decide.minimum_on`.
     """
     w = sp.Symbol("w", real=True)
-    moving = sp.expand(form.subs(y, phi - f_c * w) - form.subs(y, 0))
+    # xreplace: a symbol for a value, as subs does it, without subs's bookkeeping
+    moving = sp.expand(form.xreplace({y: sp.sympify(phi - f_c * w)}) - form.xreplace({y: sp.Integer(0)}))
     return minimum_on(moving, w, sgn_set)
 
 
@@ -127,19 +131,19 @@ class Lemma2P(Obligation):
         S = subject
         if not all(is_zero(e) for e in (S.P - S.P.T)):
             return Outcome.fail(f"P is not symmetric: P - Pᵀ = {(S.P - S.P.T).tolist()}")
-        minors = [sp.factor(S.P[:k, :k].det()) for k in range(1, S.P.rows + 1)]
+        minors = [fp.factored_det(S.P[:k, :k]) for k in range(1, S.P.rows + 1)]
         details = [("P", latex(S.P)), ("\\text{leading principal minors}", latex(minors))]
         delta = pos("delta")
-        sols = sp.solve(sp.Eq(S.condition, delta), S.solve_for, dict=True)
+        sols = ff.solve(sp.Eq(S.condition, delta), S.solve_for, dict=True)
         if len(sols) != 1:
             return Outcome.fail(f"cannot write the condition {S.condition} = δ as a unique {S.solve_for}")
-        under = [sp.factor(m.subs(sols[0])) for m in minors]
+        under = [fp.factor(m.subs(sols[0])) for m in minors]
         for k, m in enumerate(under, 1):
             if sign_of(m) != 1:
                 return Outcome.fail(f"(⇐) fails: with {S.condition} = δ > 0 the minor Δ_{k} = {m} is not shown positive", tuple(details))
         details.append((f"{latex(S.condition)} = \\delta > 0 \\Rightarrow", latex(under)))
         for k, m in enumerate(minors, 1):
-            ratio = sp.factor(S.condition / m)
+            ratio = fp.factor(S.condition / m)
             if sign_of(ratio) == 1:
                 details.append(("\\Rightarrow", f"{latex(S.condition)} = {latex(ratio)} \\cdot \\Delta_{k} > 0"))
                 return Outcome(True, f"all minors positive iff {S.condition} > 0", tuple(details))
@@ -188,7 +192,7 @@ class Lemma2LowerBound(Obligation):
             P=P,
             form=form,
             g_min=g_min,
-            c1=sp.Min(g_min, 1),
+            c1=extremum(sp.Min, g_min, sp.Integer(1)),  # sp.Min(g_min, 1), built once (see extremum)
             dist2=distance_squared(g),
             sgn=sgn_sets(),
             sigma=g.sigma,
@@ -210,16 +214,16 @@ class Lemma2LowerBound(Obligation):
             return Outcome.fail(f"the φ row of P is {list(S.P[1, :])}, not (0, 1, 0): the friction term is not decoupled")
         M2 = sp.Matrix(S.P).extract([0, 2], [0, 2])
         lam = sp.Symbol("lambda")
-        cp_P = sp.expand((lam * sp.eye(3) - S.P).det())
-        cp_2 = sp.expand((lam * sp.eye(2) - M2).det())
+        cp_P = fp.expanded_det(lam * sp.eye(3) - S.P)
+        cp_2 = fp.expanded_det(lam * sp.eye(2) - M2)
         if not is_zero(cp_P - (lam - 1) * cp_2):
-            return Outcome.fail(f"det(λI - P) = {sp.factor(cp_P)} is not (λ - 1)·det(λI - P_σv)")
+            return Outcome.fail(f"det(λI - P) = {fp.factor(cp_P)} is not (λ - 1)·det(λI - P_σv)")
         details = [("\\det(\\lambda I - P)", f"(\\lambda - 1)\\left({latex(sp.collect(cp_2, lam))}\\right)")]
         tr, det = M2.trace(), M2.det()
         disc = sp.expand(tr**2 - 4 * det)
         if not is_zero(disc - sp.expand((M2[0, 0] - M2[1, 1]) ** 2 + 4 * M2[0, 1] ** 2)):
             return Outcome.fail(f"the discriminant {disc} is not a sum of squares")
-        if not is_zero(sp.expand((S.g_min * sp.eye(2) - M2).det())):
+        if not is_zero(fp.expanded_det(S.g_min * sp.eye(2) - M2)):
             return Outcome.fail(f"𝔤 = {S.g_min} is not an eigenvalue of the (σ, v) block")
         if not is_zero(sp.expand(tr - 2 * S.g_min - sp.sqrt(disc))):
             return Outcome.fail(f"𝔤 = {S.g_min} is not the smaller eigenvalue (tr - 2𝔤 ≠ √disc ≥ 0)")
@@ -228,7 +232,7 @@ class Lemma2LowerBound(Obligation):
         if sign_of(under_assumption1(det)) != 1 or sign_of(under_assumption1(tr)) != 1:
             return Outcome.fail(f"under Assumption 1, det = {under_assumption1(det)} or trace = {under_assumption1(tr)} of P_σv is not shown positive")
         details.append(("\\det P_{\\sigma v},\\ \\operatorname{tr} P_{\\sigma v}", latex([under_assumption1(det), under_assumption1(tr)])))
-        if S.c1 != sp.Min(S.g_min, 1):
+        if S.c1 != extremum(sp.Min, S.g_min, sp.Integer(1)):
             return Outcome.fail(f"c₁ = {S.c1} is not min{{𝔤, 1}} = λ_min(P)")
         details.append(("c_1 = \\min\\{\\mathfrak g, 1\\} = \\lambda_{\\min}(P)", latex(S.c1)))
         # Distance formula: σ² + v² + (a term in φ only).
@@ -240,14 +244,14 @@ class Lemma2LowerBound(Obligation):
         for (vlabel, sv, vval), (plabel, ptex, pval, _reg) in itertools.product(sign_classes("q_v"), phi_classes(S.f_c, "_phi")):
             try:
                 m = friction_minimum(S.form, S.y, pval, S.f_c, S.sgn[sv])
-                d = resolve_piecewise(dz2.subs(S.phi, pval))
+                d = resolve_piecewise(dz2.xreplace({S.phi: pval}))  # as subs(S.phi, pval), without its bookkeeping
             except Undecided as exc:
                 return Outcome.fail(f"case v {vlabel}, {plabel}: {exc}", tuple(details))
             if sign_of(m - d) not in (0, 1):
                 return Outcome.fail(f"case v {vlabel}, {plabel}: min (φ - f)² = {m} is not shown ≥ dz(φ)² = {d}", tuple(details))
             if sv == 0 and plabel in ("φ = f_c", "|φ| < f_c", "φ = -f_c") and not is_zero(m):
                 return Outcome.fail(f"V ≠ 0 on 𝒜: at v = 0, {plabel} the friction term is {m}", tuple(details))
-            details.append((f"v {vlabel},\\ {ptex}", f"\\min_f(\\phi-f)^2 - \\mathrm{{dz}}(\\phi)^2 = {latex(sp.factor(m - d))} \\ge 0"))
+            details.append((f"v {vlabel},\\ {ptex}", f"\\min_f(\\phi-f)^2 - \\mathrm{{dz}}(\\phi)^2 = {latex(fp.factor(m - d))} \\ge 0"))
         details.append(
             ("V - c_1|x|^2_{\\mathcal A}", "\\ge (\\mathfrak g - c_1)(\\sigma^2+v^2) + (1-c_1)\\,\\mathrm{dz}(\\phi)^2 \\ge 0")
         )
@@ -305,7 +309,7 @@ class Lemma2dVdt(Obligation):
         if problem:
             return Outcome.fail(f"Lemma 2 item 2 as Proposition 1 uses it: {problem}")
         sigma, phi, v = S.state
-        details = [("A^T P + P A", latex((S.A.T * S.P + S.P * S.A).applyfunc(sp.factor)))]
+        details = [("A^T P + P A", latex((S.A.T * S.P + S.P * S.A).applyfunc(fp.factor)))]
         if sign_of(under_assumption1(S.c)) != 1:
             return Outcome.fail(f"c = {S.c} is not shown positive under Assumption 1 (c = {under_assumption1(S.c)} with δ = k_v k_p - k_i)")
         for k in (1, -1, 0):
@@ -313,8 +317,8 @@ class Lemma2dVdt(Obligation):
             rate = sp.expand((grad.T * S.f[k])[0])
             target = sp.Integer(0) if k == 0 else -S.c * v**2
             if not is_zero(rate - target):
-                return Outcome.fail(f"d/dt V_{k} along f_{k} = {sp.factor(rate)}, not {sp.factor(target)}", tuple(details))
-            details.append((f"\\tfrac{{d}}{{dt}} V_{{{k}}} \\text{{ along }} f_{{{k}}}", latex(sp.factor(rate))))
+                return Outcome.fail(f"d/dt V_{k} along f_{k} = {fp.factor(rate)}, not {fp.factor(target)}", tuple(details))
+            details.append((f"\\tfrac{{d}}{{dt}} V_{{{k}}} \\text{{ along }} f_{{{k}}}", latex(fp.factor(rate))))
         if not is_zero(S.f[0][2]):
             return Outcome.fail(f"f_0 moves v (v' = {S.f[0][2]}), so v ≡ 0 along f_0 fails")
         if not is_zero(S.V[0] - S.V0_corrected):

@@ -24,15 +24,24 @@ Three obligations, each for symbolic gains and symbolic ``k₁ … k₄``:
 
 from __future__ import annotations
 
-
 import sympy as sp
 
 from .._model import symbolic as _symbolic
 from .._model.kconditions import k_conditions
 from .._model.lyapunov import friction_selection
+from . import _fastforms as ff
+from . import _fastpoly as fp
 from ._base import Erratum, Obligation, Outcome
-from ._statements import statement_failure
 from ._decide import G, Undecided, decide, is_zero, latex, resolve_piecewise, sign_of
+from ._derived_k import (
+    HatVDerivativeSubject,
+    _c1_failures,
+    _condition_key,
+    _Derived,
+    _paper_claims,
+    _paper_pairs,
+    derived_k_conditions,
+)
 from ._inequalities import (
     block_eigen_bounds,
     canonical,
@@ -45,17 +54,18 @@ from ._inequalities import (
     rows_latex,
     sign_cases,
 )
-from ._shared import distance_squared
-from ._region import HatVBoundsSubject, RSubject, _fmt_failures, in_R, k_symbols, pieces_of, region_R, vhat_expression
-from ._derived_k import (
-    _c1_failures,
-    _condition_key,
-    _Derived,
-    _paper_claims,
-    _paper_pairs,
-    derived_k_conditions,
-    HatVDerivativeSubject,
+from ._region import (
+    HatVBoundsSubject,
+    RSubject,
+    _fmt_failures,
+    in_R,
+    k_symbols,
+    pieces_of,
+    region_R,
+    vhat_expression,
 )
+from ._shared import distance_squared, shared_value
+from ._statements import statement_failure
 
 __all__ = [
     "OBLIGATIONS",
@@ -104,13 +114,13 @@ class LemmaR(Obligation):
         nonzero = sp.Ne(g.v, 0)
         P = _symbolic.P(g)
         _, eig = block_eigen_bounds(P, what="P")
-        dz = _symbolic.dz(g.phi, fc)
+        dz = shared_value(_symbolic.dz, g.phi, fc)
         return RSubject(
             sigma=g.sigma,
             phi=g.phi,
             v=g.v,
             f_c=fc,
-            region=region_R(g),
+            region=shared_value(region_R, g),
             sgn_lo=sp.Piecewise((fc * sp.sign(g.v), nonzero), (-fc, True)),
             sgn_hi=sp.Piecewise((fc * sp.sign(g.v), nonzero), (fc, True)),
             # the closed form _lyapunov.V uses: the projection of φ on f_c·SGN(v)
@@ -183,7 +193,7 @@ class LemmaR(Obligation):
             ("P", latex(s.P)),
             ("\\text{eigenvalues of } P", f"1,\\ {latex(eig['mu_minus'])},\\ {latex(eig['mu_plus'])}"),
             ("c_1 = \\lambda_{min}(P),\\ c_2 = \\lambda_{max}(P)", f"{latex(s.c1)},\\quad {latex(s.c2)}"),
-            ("\\det(\\text{outer block of }P)\\text{ under Assumption 1}", latex(sp.factor(det_b))),
+            ("\\det(\\text{outer block of }P)\\text{ under Assumption 1}", latex(fp.factor(det_b))),
         )
         if failures:
             return Outcome.fail(_fmt_failures(failures), details)
@@ -215,7 +225,7 @@ class HatVBounds(Obligation):
         k = k_symbols()
         K = _symbolic.K_hat(*k)
         _, eig = block_eigen_bounds(K, what="K")
-        dz = _symbolic.dz(g.phi, g.f_c)
+        dz = shared_value(_symbolic.dz, g.phi, g.f_c)
         definiteness = next(c for c in k_conditions(g.k_p, g.k_i, g.k_v, *k) if c.kind == "definiteness")
         return HatVBoundsSubject(
             sigma=g.sigma,
@@ -223,7 +233,7 @@ class HatVBounds(Obligation):
             v=g.v,
             f_c=g.f_c,
             k=k,
-            Vhat=vhat_expression(g, k),
+            Vhat=shared_value(vhat_expression, g, k),
             K=K,
             w=(sp.Abs(g.sigma), sp.Abs(dz), sp.Abs(g.v)),
             dist2=distance_squared(g),
@@ -252,9 +262,9 @@ class HatVBounds(Obligation):
                 failures.append(f"{case.label}: {exc}")
                 continue
             if not is_zero(vhat - quad):
-                failures.append(f"{case.label}: V̂ − ½wᵀKw = {sp.factor(vhat - quad)} ≠ 0")
+                failures.append(f"{case.label}: V̂ − ½wᵀKw = {fp.factor(vhat - quad)} ≠ 0")
             if not is_zero(dist - norm):
-                failures.append(f"{case.label}: |x|²_𝒜 − |w|² = {sp.factor(dist - norm)} ≠ 0")
+                failures.append(f"{case.label}: |x|²_𝒜 − |w|² = {fp.factor(dist - norm)} ≠ 0")
         # Sylvester's criterion: K ≻ 0 iff its leading principal minors are positive
         minors = [s.K[:n, :n].det() for n in (1, 2, 3)]
         for n, m in enumerate(minors[:2], start=1):
@@ -263,7 +273,7 @@ class HatVBounds(Obligation):
         third = canonical(minors[2]) if sign_of(minors[2]) is None else None
         if third is None or third != canonical(s.definiteness):
             failures.append(
-                f"det K = {sp.factor(minors[2])} is not a positive multiple of the stated condition "
+                f"det K = {fp.factor(minors[2])} is not a positive multiple of the stated condition "
                 f"{s.definiteness} > 0"
             )
         checks, eig = block_eigen_bounds(s.K, what="K")
@@ -298,10 +308,10 @@ class HatVBounds(Obligation):
                 )
                 continue
             at_unit = gap.xreplace({W[i]: (1 if i == j else 0) for i in range(3)})
-            tight_rows.append(f"e_{j + 1}: {latex(sp.simplify(at_unit))}")
+            tight_rows.append(f"e_{j + 1}: {latex(ff.simplify(at_unit))}")
         details = (
             ("K", latex(s.K)),
-            ("\\text{leading principal minors of } K", ",\\ ".join(latex(sp.factor(m)) for m in minors)),
+            ("\\text{leading principal minors of } K", ",\\ ".join(latex(fp.factor(m)) for m in minors)),
             ("K \\succ 0 \\iff", f"{latex(s.definiteness)} > 0"),
             ("\\hat c_1 \\text{ (nonnegative } w)", latex(s.c1_hat)),
             ("\\hat c_1 = \\tfrac12\\lambda_{min}(K),\\ \\hat c_2 = \\tfrac12\\lambda_{max}(K)", f"{latex(s.c1_hat_eig)},\\quad {latex(s.c2_hat)}"),
@@ -354,7 +364,7 @@ class HatVDerivative(Obligation):
         k = k_symbols()
         x = sp.Matrix([g.sigma, g.phi, g.v])
         F = _symbolic.A(g) * x - _symbolic.b(g) * sp.sign(g.v)
-        dz = _symbolic.dz(g.phi, g.f_c)
+        dz = shared_value(_symbolic.dz, g.phi, g.f_c)
         pairs = _paper_pairs(g, k)
         return HatVDerivativeSubject(
             sigma=g.sigma,
@@ -364,9 +374,9 @@ class HatVDerivative(Obligation):
             gains=(g.k_p, g.k_i, g.k_v),
             k=k,
             zeta=sp.Symbol("zeta", real=True),
-            Vhat=vhat_expression(g, k),
+            Vhat=shared_value(vhat_expression, g, k),
             F=tuple(F),
-            region=region_R(g),
+            region=shared_value(region_R, g),
             K=_symbolic.K_hat(*k),
             stated=k_conditions(g.k_p, g.k_i, g.k_v, *k),
             paper_bound=sp.Add(*[p[0] for p in pairs]),

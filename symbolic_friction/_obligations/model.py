@@ -53,18 +53,23 @@ import sympy as sp
 from .._model import symbolic as _symbolic
 from .._model.attractor import dz, squared_distance_x, squared_distance_z
 from .._model.coordinates import input_vector, system_matrix, x_to_z, z_to_x
-from .._model.lyapunov import V, V_hat, V_hat_rate, in_R, lyapunov_matrix, quadratic_form
+from .._model.lyapunov import (
+    V,
+    V_hat,
+    V_hat_rate,
+    in_R,
+    lyapunov_matrix,
+    quadratic_form,
+)
 from .._model.parameters import Parameters
 from .._simulation._kernel import mode_after_slip
 from .._simulation.modes import mode_at_rest, select_mode, table_row
+from . import _fastpoly as fp
 from ._base import Obligation, Outcome
-from ._decide import G, Undecided, minimum_on, resolve_piecewise, sign_of
-from ._inequalities import Case, case_grid, line_cases, sign_cases
-from .claim1 import table_rows
-from ._shared import sgn_sets
 from ._binding import (
     INSTANCE,
     K_INSTANCE,
+    BindingSubject,
     _as_exact,
     _Binding,
     _gain_values,
@@ -72,9 +77,12 @@ from ._binding import (
     _sign,
     _state_cases,
     _x_subject,
-    BindingSubject,
     instance_points,
 )
+from ._decide import G, Undecided, minimum_on, resolve_piecewise, sign_of
+from ._inequalities import Case, case_grid, line_cases, sign_cases
+from ._shared import derivative, sgn_sets, shared_value
+from .claim1 import table_rows
 
 __all__ = [
     "INSTANCE",
@@ -111,7 +119,7 @@ class VRuntime(_Binding):
 
         def paper(case: Case) -> sp.Expr:
             vec = sp.Matrix([case(g.sigma), case(g.phi) - g.f_c * w, case(g.v)])
-            form = sp.expand(case((vec.T * P * vec)[0]))
+            form = fp.expand(case((vec.T * P * vec)[0]))
             return minimum_on(form, w, sgn[_sign(case, g.v)])
 
         return _x_subject("V", V, paper)
@@ -139,7 +147,8 @@ class HatVRuntime(_Binding):
 
         constants = _gain_values(g, INSTANCE)
         constants.update(zip(k, (sp.Rational(q) for q in K_INSTANCE)))
-        return _x_subject("V̂", runtime, paper, symbolic=V_hat(g, [g.sigma, g.phi, g.v], k), constants=constants)
+        return _x_subject("V̂", runtime, paper, symbolic=shared_value(V_hat, g, [g.sigma, g.phi, g.v], k),
+                           constants=constants)
 
 
 class HatVRateRuntime(_Binding):
@@ -155,10 +164,10 @@ class HatVRateRuntime(_Binding):
         k = tuple(sp.symbols("k_1 k_2 k_3 k_4", positive=True))
         zeta = sp.Symbol("zeta", real=True)
         state = (g.sigma, g.phi, g.v)
-        Vh = V_hat(g, list(state), k)
+        Vh = shared_value(V_hat, g, list(state), k)
         F = _symbolic.A(g) * sp.Matrix(state) - _symbolic.b(g) * sp.sign(g.v)
         # Clarke: ∂|σ| = SGN(σ); keep ζ for the element of SGN(σ) that sympy writes sign(σ)
-        rate = sum(sp.diff(Vh, x) * F[i] for i, x in enumerate(state)).xreplace({sp.sign(g.sigma): zeta})
+        rate = sum(derivative(Vh, x) * F[i] for i, x in enumerate(state)).xreplace({sp.sign(g.sigma): zeta})
 
         def paper(case: Case) -> sp.Expr:
             if _sign(case, g.sigma) != 0:
@@ -181,7 +190,7 @@ class HatVRateRuntime(_Binding):
         cases = tuple(c for c in _state_cases(g) if in_rhat(c))
         points = tuple(p for p in instance_points() if p[2] != 0 and (1 if p[2] > 0 else -1) * p[1] < INSTANCE.f_c)
         return _x_subject(
-            "V̂°", runtime, paper, symbolic=V_hat_rate(g, list(state), k), constants=constants, cases=cases, points=points
+            "V̂°", runtime, paper, symbolic=shared_value(V_hat_rate, g, list(state), k), constants=constants, cases=cases, points=points
         )
 
 
@@ -232,7 +241,7 @@ class DistanceZRuntime(_Binding):
 
         points = tuple((e, s, v) for s, e, v in instance_points(INSTANCE.f_c / INSTANCE.k_i))
         return _x_subject(
-            "|z|²_𝒜", squared_distance_z, paper, symbolic=squared_distance_z(g, [g.e_i, g.s, g.v]),
+            "|z|²_𝒜", squared_distance_z, paper, symbolic=shared_value(squared_distance_z, g, [g.e_i, g.s, g.v]),
             cases=tuple(cases), points=points, state=(g.e_i, g.s, g.v),
         )
 

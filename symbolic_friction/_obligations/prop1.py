@@ -54,11 +54,29 @@ from dataclasses import dataclass
 import sympy as sp
 
 from .._model import symbolic as _symbolic
+from . import _fastforms as ff
+from . import _fastpoly as fp
 from ._base import Obligation, Outcome
-from ._decide import G, Undecided, decide, is_zero, latex, phi_classes, sign_classes, sign_of
+from ._decide import (
+    G,
+    Undecided,
+    decide,
+    is_zero,
+    latex,
+    phi_classes,
+    sign_classes,
+    sign_of,
+)
 from ._inequalities import is_nonneg
 from ._shared import attractor_x, sgn_sets
-from ._stability_chain import Ineq, StabilitySubject, _closedness_failures, _subject, _tex_rel, _witness_failures
+from ._stability_chain import (
+    Ineq,
+    StabilitySubject,
+    _closedness_failures,
+    _subject,
+    _tex_rel,
+    _witness_failures,
+)
 
 __all__ = ["Prop1Invariance", "StabilityBound", "OBLIGATIONS"]
 
@@ -97,7 +115,7 @@ class Prop1Invariance(Obligation):
     def verify(self, subject: InvarianceSubject) -> Outcome:
         S = subject
         sigma, phi, v = S.state
-        if S.ell.has(sigma) or S.ell.has(phi) or sp.solve(S.ell, v) != [0]:
+        if S.ell.has(sigma) or S.ell.has(phi) or ff.solve(S.ell, v) != [0]:
             return Outcome.fail(f"Σ = {{ℓ = {S.ell} = 0}} is not the plane v = 0")
         if not (isinstance(S.attractor[1], sp.Interval) and S.attractor[2] == 0):
             return Outcome.fail(f"𝒜 = {S.attractor} is not a φ-interval inside v = 0")
@@ -108,8 +126,8 @@ class Prop1Invariance(Obligation):
         t = sp.Symbol("t", nonnegative=True)
         sb, pb = sp.symbols("sigmabar phibar", real=True)
         traj = (B * t).exp() * sp.Matrix([sb, pb])
-        x_t = [sp.expand(sp.simplify(traj[0])), sp.expand(sp.simplify(traj[1])), sp.Integer(0)]
-        w_t = sp.expand(sp.cancel((S.A * sp.Matrix(x_t))[2] / S.b[2]))  # 0 = v' = (A x)_3 - b_3 w
+        x_t = [sp.expand(ff.simplify(traj[0])), sp.expand(ff.simplify(traj[1])), sp.Integer(0)]
+        w_t = sp.expand(fp.cancel((S.A * sp.Matrix(x_t))[2] / S.b[2]))  # 0 = v' = (A x)_3 - b_3 w
         details = [
             ("(\\sigma, \\phi)(t) \\text{ while } v \\equiv 0", latex(sp.Matrix(x_t[:2]).T)),
             ("w(t) = (Ax)_3 / f_c", latex(w_t)),
@@ -211,7 +229,7 @@ class StabilityBound(Obligation):
             if bad:
                 failures.append(f"step {step.name!r}: multipliers {bad} are not shown nonnegative")
                 continue
-            remainder = sp.expand(
+            remainder = fp.expand(
                 step.claim.gap - sum(sp.sympify(m) * known[u].gap for m, u in zip(step.multipliers, step.uses))
             )
             if not is_nonneg(remainder):

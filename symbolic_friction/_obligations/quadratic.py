@@ -46,6 +46,7 @@ import sympy as sp
 from .._model import quadratic as model
 from .._model import symbolic as _symbolic
 from .._model.lyapunov import lyapunov_matrix_entries
+from . import _fastpoly as fp
 from ._base import Obligation, Outcome
 from ._decide import G, is_zero, latex, sign_of
 from ._inequalities import is_nonneg
@@ -124,12 +125,12 @@ class QuadraticPStructure(Obligation):
             return Outcome.fail(f"the first row of AᵀP+PA for the template's P is {row}, not 0")
         if s.template_p != s.template_p.T:
             return Outcome.fail("the template's P is not symmetric")
-        diff = (s.at_paper - s.paper_p).applyfunc(sp.cancel)
+        diff = (s.at_paper - s.paper_p).applyfunc(fp.cancel)
         if any(not is_zero(e) for e in diff):
             return Outcome.fail(f"the template's P at (k_v/k_i, 1, k_p) differs from eq. (lyapLikeP) by {list(diff)}")
         if not is_zero(s.rest_form - s.rest_expected):
             return Outcome.fail(f"at v = 0 the form is {s.rest_form}, not P₁₁σ² + P₂₂(φ−f)²")
-        details = (("(A^\\top P + PA)_{11}", latex(q11)), ("P", latex(s.template_p)), ("Q = A^\\top P + PA", latex(s.template_q.applyfunc(sp.factor))))
+        details = (("(A^\\top P + PA)_{11}", latex(q11)), ("P", latex(s.template_p)), ("Q = A^\\top P + PA", latex(s.template_q.applyfunc(fp.factor))))
         return Outcome(True, "", details)
 
 
@@ -164,7 +165,7 @@ class QuadraticVDecrease(Obligation):
         for k in (1, -1):
             w = x - k * g.f_c * sp.Matrix([0, 1, 0])
             flows.append((sp.Matrix(fields[k]), A * w, w))
-            residuals.append(sp.expand(2 * (w.T * p * sp.Matrix(fields[k]))[0] - (w.T * q * w)[0]))
+            residuals.append(fp.expand(2 * (w.T * p * sp.Matrix(fields[k]))[0] - (w.T * q * w)[0]))
         stick = sp.expand(2 * p11 * g.sigma * fields[0][0])
         return VDecreaseSubject(tuple(flows), tuple(residuals), stick)
 
@@ -226,14 +227,14 @@ class QuadraticURate(Obligation):
             ydot = _y_rate(g, field, {g.sigma: s * y1, g.phi: -y2 - g.f_c, g.v: y3}, s)
             flow_gap = sp.expand(sum((ydot - (b * y - sp.Matrix([0, 0, 2 * g.f_c]))).applyfunc(lambda e: e**2)))
             udot = 2 * (y.T * k * ydot)[0]
-            outside.append((flow_gap, sp.expand(udot - (-(y.T * m * y)[0] - 2 * (k * y)[2] * 2 * g.f_c))))
+            outside.append((flow_gap, fp.expand(udot - (-(y.T * m * y)[0] - 2 * (k * y)[2] * 2 * g.f_c))))
             # inside the band: y₂ = 0, φ free in [−f_c, f_c]
             yb = sp.Matrix([y1, 0, y3])
             ydot_b = sp.Matrix([s * field[0], 0, field[2]]).subs({g.sigma: s * y1, g.v: y3})
             udot_b = 2 * (yb.T * k * ydot_b)[0]
             form = _m(model.band_rate_entries(g.k_i, g.k_v, tuple(tuple(k[i, j] for j in range(3)) for i in range(3)), s))
             u2 = sp.Matrix([y1, y3])
-            band.append(sp.expand(udot_b - (-(u2.T * form * u2)[0] - 2 * (k * yb)[2] * (g.f_c - g.phi))))
+            band.append(fp.expand(udot_b - (-(u2.T * form * u2)[0] - 2 * (k * yb)[2] * (g.f_c - g.phi))))
         sv = sp.Symbol("sgn_v", real=True)
         x = sp.Matrix([g.sigma, g.phi, g.v])
         F = lambda xx, sg: _symbolic.A(g) * xx - _symbolic.b(g) * sg  # noqa: E731
@@ -298,7 +299,7 @@ class QuadraticUExit(Obligation):
             w = sp.Matrix([sigma, 0, v])  # φ − f_c sign(v) = 0
             u = sp.Matrix([m, 0, n])
             diff = (u.T * k * u)[0] - (w.T * p * w)[0] - (sp.Matrix([m, n]).T * at_edge * sp.Matrix([m, n]))[0]
-            remainders.append(sp.expand(diff))
+            remainders.append(fp.expand(diff))
         return UExitSubject(rest, tuple(remainders))
 
     def verify(self, s: UExitSubject) -> Outcome:

@@ -8,8 +8,18 @@ from typing import Any
 import sympy as sp
 
 from .._model import symbolic as _symbolic
+from . import _fastpoly as fp
 from ._base import Obligation, Outcome
-from ._decide import G, Undecided, affine_image, decide, interval_partitions_reals, is_zero, latex, sign_of
+from ._decide import (
+    G,
+    Undecided,
+    affine_image,
+    decide,
+    interval_partitions_reals,
+    is_zero,
+    latex,
+    sign_of,
+)
 from ._shared import _mat, sgn_sets
 
 __all__ = ["Regularization", "OBLIGATIONS"]
@@ -88,7 +98,7 @@ class Regularization(Obligation):
             slope = sp.expand(sp.diff(eq, w))
             if sp.diff(slope, w) != 0 or sign_of(slope) not in (1, -1):
                 return Outcome.fail(f"branch '{br.label}': no unique selection w with u - f_c w = {br.vdot}")
-            w_sel = sp.cancel(-eq.subs(w, 0) / slope)
+            w_sel = fp.cancel(-eq.subs(w, 0) / slope)
             allowed = S.sgn[br.v_sign]
             try:
                 if isinstance(allowed, sp.FiniteSet):

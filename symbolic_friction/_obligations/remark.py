@@ -11,6 +11,7 @@ from dataclasses import dataclass
 
 import sympy as sp
 
+from . import _fastpoly as fp
 from ._base import Obligation, Outcome
 from ._decide import G, Undecided, is_zero, latex, phi_classes, pos, sign_of
 from ._shared import sgn_sets
@@ -65,8 +66,8 @@ class RemarkArmstrong(Obligation):
             except Undecided as exc:
                 return Outcome.fail(f"stick with {label}: {exc}")
             if not is_zero(V - S.stick_value):
-                return Outcome.fail(f"stick with {label}: V = {sp.factor(V)}, not {S.stick_value}", tuple(details))
-            details.append((f"v = 0,\\ {tex}", f"V = {latex(sp.factor(V))}"))
+                return Outcome.fail(f"stick with {label}: V = {fp.factor(V)}, not {S.stick_value}", tuple(details))
+            details.append((f"v = 0,\\ {tex}", f"V = {latex(fp.factor(V))}"))
         poly = sp.Poly(S.stick_value, S.sigma)
         if poly.monoms() != [(2,)]:
             return Outcome.fail(f"the stick value {S.stick_value} is not a multiple of σ² alone")
@@ -74,7 +75,7 @@ class RemarkArmstrong(Obligation):
         if kappa.has(S.y) or sign_of(kappa) != 1:
             return Outcome.fail(f"the stick value's coefficient {kappa} is not shown positive")
         integral = pos("I_v")  # ∫_{t_i}^{t_{i+1}} v² dt > 0 over a slip phase of positive length
-        bound = sp.factor(under_assumption1(S.c) * integral / kappa)
+        bound = fp.factor(under_assumption1(S.c) * integral / kappa)
         if sign_of(bound) != 1:
             return Outcome.fail(f"c·∫v²/κ = {bound} is not shown positive, so the decrease of V is not strict")
         details.append(

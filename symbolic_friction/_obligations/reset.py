@@ -41,8 +41,19 @@ from typing import Any, Callable
 import sympy as sp
 
 from .._model import reset as _reset
+from . import _fastforms as ff
+from . import _fastpoly as fp
 from ._base import Obligation, Outcome
-from ._decide import G, Undecided, is_zero, latex, phi_classes, pos, sign_classes, sign_of
+from ._decide import (
+    G,
+    Undecided,
+    is_zero,
+    latex,
+    phi_classes,
+    pos,
+    sign_classes,
+    sign_of,
+)
 from ._shared import attractor_x, sgn_sets
 from .lemma2 import friction_form, friction_minimum
 
@@ -70,8 +81,9 @@ def _subject() -> JumpSubject:
 
 def _v_at_rest(S: JumpSubject, sigma: Any, phi: Any) -> sp.Expr:
     """``V(σ, φ, 0)`` of eq. (lyapLikeV): the form at ``y = 0`` plus its exact minimum over ``f ∈ f_c SGN(0)``."""
-    stick = S.form.subs(S.g.v, 0).subs(S.g.sigma, sigma)
-    return sp.factor(stick.subs(S.y, 0) + friction_minimum(stick, S.y, phi, S.g.f_c, sgn_sets()[0]))
+    # xreplace: the symbols' values, as subs gives them here, without subs's bookkeeping
+    stick = S.form.xreplace({S.g.v: sp.Integer(0)}).xreplace({S.g.sigma: sp.sympify(sigma)})
+    return fp.factor(stick.xreplace({S.y: sp.Integer(0)}) + friction_minimum(stick, S.y, phi, S.g.f_c, sgn_sets()[0]))
 
 
 def _sign_sigma(label: str, tag: str) -> sp.Expr:
@@ -110,7 +122,7 @@ class ResetVJump(Obligation):
                     return Outcome.fail(f"σ {s_label}, {label}: {exc}")
                 if post[0] != sigma or post[2] != 0:
                     return Outcome.fail(f"σ {s_label}, {label}: the jump changes σ or v: {post}")
-                change = sp.factor(after - before)
+                change = fp.factor(after - before)
                 if label in ("φ = f_c", "|φ| < f_c", "φ = -f_c"):
                     if not is_zero(change):
                         return Outcome.fail(f"σ {s_label}, {label}: V(x⁺) - V(x) = {change}, not 0", tuple(details))
@@ -142,7 +154,7 @@ class ResetNoSecondJump(Obligation):
                 if sign_of(margins[3]) != -1:
                     return Outcome.fail(f"σ {s_label}, {label}: the timer margin after a jump is {margins[3]}, not < 0")
                 if s_label != "= 0" and not is_zero(margins[2]):
-                    return Outcome.fail(f"σ {s_label}, {label}: after the jump f_c|σ| - σφ⁺ = {sp.factor(margins[2])}, not 0")
+                    return Outcome.fail(f"σ {s_label}, {label}: after the jump f_c|σ| - σφ⁺ = {fp.factor(margins[2])}, not 0")
             details.append((f"\\sigma {s_label}", "\\tau^+ - \\tau_d = -\\tau_d < 0"))
         return Outcome(True, "the timer margin is -τ_d < 0 after every jump; σφ⁺ = f_c|σ| for σ ≠ 0", tuple(details))
 
@@ -198,7 +210,7 @@ class ResetBasicConditions(Obligation):
             eqs = [sp.Max(sigma, 0) * (1 - s), sp.Max(-sigma, 0) * (1 + s)]
             sols = sp.Interval(-1, 1)
             for e in eqs:
-                e = sp.simplify(e)
+                e = ff.simplify(e)  # 0 if identically 0: its zero set is then all of ℝ either way
                 if e != 0:
                     sols = sols.intersect(sp.solveset(e, s, sp.S.Reals))
             post = {S.jump_map_x(sigma, 0, 0, 1, t)[1] for t in ((1,) if sign == 1 else (-1,) if sign == -1 else (-1, 0, 1))}
@@ -265,14 +277,14 @@ class ResetSameStickExits(Obligation):
                     post = S.jump_map_x(sigma, phi, 0, S.g.f_c, sp.Integer(sign))
                     if post[0] != sigma or post[2] != 0:
                         return Outcome.fail(f"{f_label}, σ {s_label}, {label}: the jump changes σ or v: {post}")
-                    after = sp.factor((sign * f_s - post[1]) / sigma)  # stick time left after the jump
-                    before = sp.factor((sign * f_s - phi) / sigma)  # without it
+                    after = fp.factor((sign * f_s - post[1]) / sigma)  # stick time left after the jump
+                    before = fp.factor((sign * f_s - phi) / sigma)  # without it
                     if sign_of(after) not in (0, 1):
                         return Outcome.fail(f"{f_label}, σ {s_label}, {label}: after the jump the exit is {after} time units away, not ≥ 0")
-                    if sign_of(sp.factor(before - after)) not in (0, 1):
-                        return Outcome.fail(f"{f_label}, σ {s_label}, {label}: the jump lengthens the stick by {sp.factor(after - before)}")
+                    if sign_of(fp.factor(before - after)) not in (0, 1):
+                        return Outcome.fail(f"{f_label}, σ {s_label}, {label}: the jump lengthens the stick by {fp.factor(after - before)}")
                 details.append((rf"{f_label},\ \sigma {s_label}",
-                                rf"x_{{exit}} = (\sigma, {latex(sign * f_s)}, 0),\ t_{{left}} = {latex(sp.factor((sign * f_s - S.jump_map_x(sigma, 0, 0, S.g.f_c, sign)[1]) / sigma))}"))
+                                rf"x_{{exit}} = (\sigma, {latex(sign * f_s)}, 0),\ t_{{left}} = {latex(fp.factor((sign * f_s - S.jump_map_x(sigma, 0, 0, S.g.f_c, sign)[1]) / sigma))}"))
         return Outcome(True, "the stick ends at (σ, sign(σ) f_s, 0) with or without a jump, no later with it", tuple(details))
 
 

@@ -28,6 +28,8 @@ import sympy as sp
 
 from .._model import symbolic as _symbolic
 from .._model.parameters import Parameters
+from . import _fastforms as ff
+from . import _fastpoly as fp
 from ._base import Obligation, Outcome
 from ._decide import latex
 
@@ -187,7 +189,7 @@ class TableI(Obligation):
             details.append(
                 (
                     f"\\text{{case ({case.label}): }} k_v = {latex(case.k_v)},\\ k_p = {latex(case.k_p)},\\ k_i = {latex(case.k_i)}",
-                    f"{latex(poly.as_expr())} = {latex(sp.factor(poly.as_expr()))}",
+                    f"{latex(poly.as_expr())} = {latex(fp.factor(poly.as_expr()))}",
                 )
             )
             details.append((f"\\text{{roots (40 digits), case ({case.label})}}", ",\\ ".join(sp.latex(r) for r in numeric)))
@@ -197,9 +199,9 @@ class TableI(Obligation):
                     f"{list(case.printed)}"
                 )
                 continue
-            _, factors = sp.factor_list(poly.as_expr())
+            _, factors = fp.factor_list(poly.as_expr())
             if all(sp.degree(f, s) == 1 for f, _ in factors):
-                exact = sorted((sp.solve(f, s)[0] for f, _ in factors), key=sp.default_sort_key)
+                exact = sorted((ff.solve(f, s)[0] for f, _ in factors), key=sp.default_sort_key)
                 exact_match = all(
                     any(_rat(t[0]) == r and t[2] == 0 for t in targets) for r in exact
                 )

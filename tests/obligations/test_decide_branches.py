@@ -15,7 +15,7 @@ import textwrap
 import pytest
 import sympy as sp
 
-from symbolic_friction._obligations import _decide, _inequalities, _region
+from symbolic_friction._obligations import _decide, _fastpoly, _inequalities, _region
 from symbolic_friction._obligations._decide import pos
 from symbolic_friction._obligations._inequalities import Case
 
@@ -185,12 +185,12 @@ MUTANTS = [
                           "(_coefficient_sign(list(map(abs, p.coeffs()))) for p in (element.numer, element.denom))")],
      refuses_a_fraction_with_coefficients_of_both_signs),
     (_decide, "is_zero", [("return _field_element(expr).numer.is_zero()", "return True")], refuses_a_nonzero_rational_function),
-    (_decide, "_field_element", [("n * (ad / g) + an * (d / g)", "n + an")], adds_fractions_over_a_common_denominator),
-    (_decide, "_field_element", [("n, d = n * an, d * ad", "n, d = n * an, d")], adds_fractions_over_a_common_denominator),
-    (_decide, "_field_element", [("(bd ** -k, bn ** -k)", "(bn ** -k, bd ** -k)")], adds_fractions_over_a_common_denominator),
-    (_decide, "_field_element", [("(ctx.constant(int(e.p)), ctx.constant(int(e.q)))",
+    (_fastpoly, "rational_pair", [("n * (ad / g) + an * (d / g)", "n + an")], adds_fractions_over_a_common_denominator),
+    (_fastpoly, "rational_pair", [("n, d = n * an, d * ad", "n, d = n * an, d")], adds_fractions_over_a_common_denominator),
+    (_fastpoly, "rational_pair", [("(bd ** -k, bn ** -k)", "(bn ** -k, bd ** -k)")], adds_fractions_over_a_common_denominator),
+    (_fastpoly, "rational_pair", [("(ctx.constant(int(e.p)), ctx.constant(int(e.q)))",
                                   "(ctx.constant(int(e.q)), ctx.constant(int(e.p)))")], adds_fractions_over_a_common_denominator),
-    (_decide, "_field_element", [("return _Fraction(numer / g, denom / g)", "return _Fraction(numer, denom)")],
+    (_fastpoly, "rational_pair", [("return numer / g, denom / g", "return numer, denom")],
      adds_fractions_over_a_common_denominator),
     (_decide, "sign_of", [("s.is_positive is not True", "s.is_nonnegative is not True")], refuses_real_symbols),
     (_decide, "sign_of", [("s.is_positive is not True", "s.is_real is not True")], refuses_real_symbols),
