@@ -11,11 +11,10 @@ function on the same arguments.  If the child dies without answering, this
 process decides what it left undone itself (so a section is never lost, and
 never passes unless decided).
 
-The child can also take work *ahead* of its sections (``ahead``: named
-functions, e.g. the costliest obligation) so that both cores stay busy; this
-process asks for each result by name when it reaches it (:class:`Inbox`).
-Once its sections are done, the child takes more from the *back* of a list
-of named functions (``tail``) that this process works through from the front;
+Once its sections are done, the child takes work from the *back* of a list
+of named functions (``tail``: ``check``'s obligations) that this process works
+through from the front, and this process asks for the result of each item
+the child took by name when it reaches it (:class:`Inbox`);
 each item is claimed under a lock (:class:`Claims`) by whichever process gets
 there first, so the split adapts to how fast each core really is (a busy
 machine, a slower section) and no item is done twice or left out.
@@ -111,12 +110,12 @@ class Claims:
 
 def _send_result(send: Any, key: str, work: Callable[[], Any]) -> None:
     try:
-        send.send(("ahead", key, work()))
+        send.send(("claimed", key, work()))
     except Exception as exc:  # the parent reports the error where it needed the value
-        send.send(("ahead", key, exc if _picklable(exc) else RuntimeError(repr(exc))))
+        send.send(("claimed", key, exc if _picklable(exc) else RuntimeError(repr(exc))))
 
 
-def _child(makers: list[Maker], args: argparse.Namespace, send: Any, ahead: dict[str, Callable[[], Any]],
+def _child(makers: list[Maker], args: argparse.Namespace, send: Any,
            tail: list[tuple[str, Callable[[], Any]]] = (), claims: Claims | None = None,  # type: ignore[assignment]
            context: Callable[[], Any] | None = None) -> None:
     import contextlib
@@ -124,8 +123,6 @@ def _child(makers: list[Maker], args: argparse.Namespace, send: Any, ahead: dict
     from .._infra.output import set_verbosity
 
     set_verbosity(0)  # no progress bar or note from here: this process's output is the parent's to print
-    for key, work in ahead.items():
-        _send_result(send, key, work)
     sections = [(make, _safe(make, args)) for make in makers]
     # the tail before the sections: a large section could fill the pipe, which the parent reads only when it needs
     # a value, and the child would then claim nothing while this process does every item itself
@@ -173,13 +170,12 @@ class Inbox:
 
 
 def run_sections(makers: list[Maker], args: argparse.Namespace, *, parallel: bool | None = None,
-                 ahead: dict[str, Callable[[], Any]] | None = None,
                  tail: list[tuple[str, Callable[[], Any]]] | None = None, together: tuple[tuple[str, ...], ...] = (),
                  context: Callable[[], Any] | None = None) -> Iterator[Section]:
     """Each section of ``makers``, in order (module docstring).
 
     With the child, ``args.inbox`` is an :class:`Inbox` holding the results of
-    ``ahead`` and of the items of ``tail`` the child claimed, and ``args.claims``
+    the items of ``tail`` the child claimed, and ``args.claims``
     the :class:`Claims` of ``tail`` (both ``None`` when everything runs here: do
     the work yourself).  Items named in one tuple of ``together`` are claimed
     as one; the child works through the tail within ``context()`` if given.
@@ -200,7 +196,7 @@ def run_sections(makers: list[Maker], args: argparse.Namespace, *, parallel: boo
     quiet.json = True  # the child streams nothing: this process prints its tables, in order
     tail = list(tail or [])
     claims = Claims(ctx, [name for name, _ in tail], together) if tail else None
-    proc = ctx.Process(target=_child, args=(makers[1:], quiet, send, dict(ahead or {}), tail, claims, context),
+    proc = ctx.Process(target=_child, args=(makers[1:], quiet, send, tail, claims, context),
                        daemon=True)
     proc.start()
     send.close()

@@ -106,12 +106,9 @@ def obligations_section(args: argparse.Namespace) -> Section:
 
     only = getattr(args, "only", None)
     obligations = [ob for ob in all_obligations() if _selected(ob.id, only)]
-    inbox = getattr(args, "inbox", None)
-    if inbox is not None:  # decided meanwhile on the other core (see run())
-        obligations = [_Decided(ob, inbox) if ob.id in OFFLOADED else ob for ob in obligations]
     claims = getattr(args, "claims", None)
-    if claims is not None:  # the tail: each decided here unless the other core has claimed it
-        obligations = [_Claimed(ob, claims, inbox) if ob.id in claims.names else ob for ob in obligations]
+    if claims is not None:  # each decided here unless the other core has claimed it (see run())
+        obligations = [_Claimed(ob, claims, args.inbox) if ob.id in claims.names else ob for ob in obligations]
     stream = not getattr(args, "json", False)
     layout = _ObligationLayout()
     if stream:
@@ -190,49 +187,35 @@ def obligations_section(args: argparse.Namespace) -> Section:
     )
 
 
-OFFLOADED = ("claim1.cases",)
-"""Obligations the second core decides first, while this process decides the others in order (the costliest, and
-late enough in the order to be ready when this process reaches it)."""
-
-
-class _Decided:
-    """An obligation decided in the worker process: ``run()`` waits for its result."""
-
-    def __init__(self, ob: Any, inbox: Any) -> None:
-        self.ob, self.inbox = ob, inbox
-        self.id, self.paper, self.statement, self.method = ob.id, ob.paper, ob.statement, ob.method
-
-    def run(self) -> Any:
-        try:
-            return self.inbox.get("ahead", self.id)
-        except RuntimeError:  # the worker is gone: decide it here
-            return self.ob.run()
-
-
 TOGETHER = (("lemma3.hatV_derivative", "certificate.verifier"),)
 """Obligations one process decides together: one derivation of Lemma 3's k-conditions serves both."""
 
 
-class _Claimed(_Decided):
-    """An obligation of the tail: decided here if this process claims it first, else its result is the worker's."""
+class _Claimed:
+    """An obligation both processes may claim: decided here if this process claims it first, else its result is the
+    worker's (and decided here after all if the worker is gone)."""
 
     def __init__(self, ob: Any, claims: Any, inbox: Any) -> None:
-        super().__init__(ob, inbox)
-        self.claims = claims
+        self.ob, self.claims, self.inbox = ob, claims, inbox
+        self.id, self.paper, self.statement, self.method = ob.id, ob.paper, ob.statement, ob.method
 
     def run(self) -> Any:
-        return self.ob.run() if self.claims.take_front(self.id) else super().run()
+        if self.claims.take_front(self.id):
+            return self.ob.run()
+        try:
+            return self.inbox.get("claimed", self.id)
+        except RuntimeError:  # the worker is gone: decide it here
+            return self.ob.run()
 
 
 def _decide_tail() -> list[tuple[str, Callable[[], Any]]]:
-    """``[(id, run it)]`` for the obligations after the last of :data:`OFFLOADED`: the worker takes them from the back
-    once its sections are done, this process from the front (:class:`._parallel.Claims`, each group of :data:`TOGETHER`
-    as one), so the cores finish together however fast each one is."""
+    """``[(id, run it)]`` for every obligation: the worker takes them from the back once its sections are done, this
+    process from the front (:class:`._parallel.Claims`, each group of :data:`TOGETHER` as one), so the cores finish
+    together however fast each one is (measured: the sections alone are about as long as the obligations, so a fixed
+    split leaves one core idle whichever way it errs)."""
     from .._obligations import all_obligations, run_checked
 
-    obligations = all_obligations()
-    start = max((i + 1 for i, ob in enumerate(obligations) if ob.id in OFFLOADED), default=0)
-    return [(ob.id, (lambda ob=ob: run_checked([ob])[0])) for ob in obligations[start:]]
+    return [(ob.id, (lambda ob=ob: run_checked([ob])[0])) for ob in all_obligations()]
 
 
 def _import_shared() -> None:
@@ -241,13 +224,6 @@ def _import_shared() -> None:
     import sympy.tensor.tensor  # noqa: F401
 
     from .._infra import junit  # noqa: F401
-
-
-def _decide_offloaded() -> dict[str, Callable[[], Any]]:
-    """``{id: run it}`` for :data:`OFFLOADED` (a crash is a failing result, as in the sequential run)."""
-    from .._obligations import all_obligations, run_checked
-
-    return {ob.id: (lambda ob=ob: run_checked([ob])[0]) for ob in all_obligations() if ob.id in OFFLOADED}
 
 
 def certificates_section(args: argparse.Namespace) -> Section:
@@ -440,12 +416,11 @@ def run(args: argparse.Namespace) -> int:
     makers = ([obligations_section] if only else SECTIONS) + ([smt_section] if wants_smt(args) else [])
     from ._parallel import run_sections
 
-    ahead = _decide_offloaded() if not only else {}
     tail = _decide_tail() if not only else []
     _import_shared()
     from .._obligations._derived_k import shared_derivations as shared
 
-    for section in run_sections(list(makers), args, ahead=ahead, tail=tail, together=TOGETHER, context=shared):
+    for section in run_sections(list(makers), args, tail=tail, together=TOGETHER, context=shared):
         sections.append(gate(section))
         if not as_json:
             if not section.streamed:

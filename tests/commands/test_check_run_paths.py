@@ -244,21 +244,23 @@ def _run_sections_calls(monkeypatch, tmp_path) -> list[dict]:
     return seen
 
 
-def test_the_costly_obligations_go_to_the_other_core_unless_only_is_given(monkeypatch, tmp_path):
-    """Without --only, run_sections gets the offloaded obligations (decided ahead on the second core); with it, none."""
+def test_every_obligation_may_go_to_the_other_core_unless_only_is_given(monkeypatch, tmp_path):
+    """Without --only, run_sections gets every obligation, in the paper's order, as the tail both cores claim from;
+    with it, none."""
+    from symbolic_friction._obligations import all_obligations
+
     seen = _run_sections_calls(monkeypatch, tmp_path)
-    assert [None if kw.get("ahead") is None else sorted(kw["ahead"]) for kw in seen] == [sorted(check.OFFLOADED), []]
+    assert [[name for name, _ in kw.get("tail") or []] for kw in seen] == [[ob.id for ob in all_obligations()], []]
 
 
 def test_the_tail_is_shared_in_its_groups_within_the_shared_derivations_unless_only_is_given(monkeypatch, tmp_path):
-    """Without --only, run_sections gets the obligations after the offloaded ones (the tail both processes claim, from
-    either end), the groups of TOGETHER (claimed as one) and the shared derivations the worker decides them within;
+    """Without --only, run_sections gets the obligations (the tail both processes claim, from either end), the groups of TOGETHER (claimed as one) and the shared derivations the worker decides them within;
     with --only, an empty tail."""
     from symbolic_friction._obligations._derived_k import shared_derivations
 
     seen = _run_sections_calls(monkeypatch, tmp_path)
     tail = [name for name, _ in check._decide_tail()]
-    assert tail and not set(tail) & set(check.OFFLOADED)
+    assert tail
     got = [(None if kw.get("tail") is None else [name for name, _ in kw["tail"]], kw.get("together"), kw.get("context"))
            for kw in seen]
     assert got == [(tail, check.TOGETHER, shared_derivations), ([], check.TOGETHER, shared_derivations)]

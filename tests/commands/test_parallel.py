@@ -63,24 +63,31 @@ def test_one_job_runs_everything_here(monkeypatch):
     assert {s.rows[0][0] for s in got} == {str(os.getpid())}
 
 
-def _small_check(monkeypatch, tmp_path, later):
-    """``check.run`` on two obligations (claim1.cases decided by the worker) and one cheap later section."""
+def _small_check(monkeypatch, tmp_path, later, *, tail=None):
+    """``check.run`` on two obligations (coordinates slowed, so that the worker, done with its cheap later section,
+    claims claim1.cases from the back of the tail) and one cheap later section."""
+    import time
+
     from symbolic_friction import _obligations
     from symbolic_friction._cli import check
     from symbolic_friction._obligations.claim1 import Claim1Cases
     from symbolic_friction._obligations.coordinates import Coordinates
 
+    real = Coordinates.verify
+    monkeypatch.setattr(Coordinates, "verify", lambda self, s: (time.sleep(3), real(self, s))[1])
     monkeypatch.delenv(_parallel.ENV, raising=False)
     monkeypatch.setattr(_parallel, "parallel_allowed", lambda: True)  # also under pytest-xdist's threads
     monkeypatch.setattr(_obligations, "all_obligations", lambda: [Coordinates(), Claim1Cases()])
     monkeypatch.setattr(check, "SECTIONS", [check.obligations_section, later])
+    if tail is not None:
+        monkeypatch.setattr(check, "_decide_tail", tail)
     monkeypatch.chdir(tmp_path)
     args = argparse.Namespace(json=True, write=False, proofs=str(tmp_path), config=None, no_certificates=True,
                               only=None, junit_xml=None)
     return check.run(args)
 
 
-def test_an_offloaded_obligation_is_decided_by_the_worker_and_reported(monkeypatch, tmp_path, capsys):
+def test_an_obligation_the_worker_claims_is_decided_there_and_reported(monkeypatch, tmp_path, capsys):
     from symbolic_friction._obligations._base import Outcome
     from symbolic_friction._obligations.claim1 import Claim1Cases
 
@@ -95,15 +102,19 @@ def test_an_offloaded_obligation_is_decided_by_the_worker_and_reported(monkeypat
     assert row["status"] != "holds" and "decided in" in row["reason"] and str(parent) not in row["reason"]
 
 
-def test_a_worker_that_dies_before_an_offloaded_obligation_leaves_it_to_this_process(monkeypatch, tmp_path, capsys):
+def test_a_worker_that_dies_on_a_claimed_obligation_leaves_it_to_this_process(monkeypatch, tmp_path, capsys):
     from symbolic_friction._cli import check
     from symbolic_friction._obligations._base import Outcome
     from symbolic_friction._obligations.claim1 import Claim1Cases
 
     parent = os.getpid()
-    monkeypatch.setattr(check, "_decide_offloaded", lambda: {"claim1.cases": lambda: os._exit(5)})
+    real_tail = check._decide_tail
+
+    def dying_tail():
+        return [(name, (lambda: os._exit(5)) if name == "claim1.cases" else work) for name, work in real_tail()]
+
     monkeypatch.setattr(Claim1Cases, "verify", lambda self, s: Outcome.fail(f"decided in {os.getpid()}"))
-    _small_check(monkeypatch, tmp_path, _maker("later"))
+    _small_check(monkeypatch, tmp_path, _maker("later"), tail=dying_tail)
     import json
 
     row = next(o for o in json.loads(capsys.readouterr().out)["obligations"] if o["id"] == "claim1.cases")
@@ -180,7 +191,7 @@ def _tail_user(names, wait_for_child):
                 rows.append((name, str(os.getpid())))
             else:
                 try:
-                    rows.append((name, str(args.inbox.get("ahead", name))))
+                    rows.append((name, str(args.inbox.get("claimed", name))))
                 except RuntimeError as exc:
                     rows.append((name, f"here: {exc}"))
         return Section("first", ("item", "by"), rows, {}, True, [], summary="first")
@@ -230,7 +241,7 @@ def test_a_tail_obligation_claimed_by_the_worker_is_reported_from_there(monkeypa
     monkeypatch.setattr(_obligations, "all_obligations", lambda: [Coordinates(), Claim1Cases(), TableI()])
     monkeypatch.setattr(check, "SECTIONS", [check.obligations_section, _maker("later")])
     monkeypatch.chdir(tmp_path)
-    assert [name for name, _ in check._decide_tail()] == ["table1"]
+    assert [name for name, _ in check._decide_tail()] == ["coordinates", "claim1.cases", "table1"]
     args = argparse.Namespace(json=True, write=False, proofs=str(tmp_path), config=None, no_certificates=True,
                               only=None, junit_xml=None)
     assert check.run(args) == 1
