@@ -6,7 +6,9 @@ fixture (a run of ``check``, the extremes matrix, a certificate search, the
 reference trajectories of a module) is computed once.  Modules with a test
 marked ``slow`` are handed out first, the longest of all (:data:`EARLY`)
 before them, so that the longest work starts at once and no worker is left
-with a long tail.
+with a long tail.  Modules that share a session fixture of seconds
+(:data:`SHARED`) are handed out together, as one unit, so that it is computed
+once, not once per worker.
 
 ``-m "not slow"`` deselects the long runs for a quick local check; the
 default run (``.ci/run``) runs everything.
@@ -14,7 +16,10 @@ default run (``.ci/run``) runs everything.
 
 from __future__ import annotations
 
+import functools
 import os
+import re
+from pathlib import Path
 
 import pytest
 
@@ -32,16 +37,65 @@ EARLY = (
     "tests/test_extremes.py",  # ≈ 75 s alone (the matrix fixture)
     "tests/independent/test_tampered_sup_flow.py",  # ≈ 45 s
     "tests/test_notebooks.py",  # ≈ 45 s
-    "tests/test_hostile_options.py",  # ≈ 40 s (933 command lines; none of its tests is slow)
+    "tests/test_hostile_options.py",  # ≈ 40 s (933 command lines, none slow); test_hostile_inputs.py with it (SHARED)
     "tests/test_project_ci.py",  # ≈ 35 s
 )
 """The longest modules, longest first: handed out before the other slow ones, which are handed out before the rest.
 (A long module handed out last leaves the other worker idle; ``tests/test_hostile_options.py`` and
 ``tests/test_extremes.py`` are collected near the end.)"""
 
+SHARED = {
+    "crosscheck reports": ("paper_report", "wrong_report"),  # tests/crosscheck/conftest.py: seeded runs, ≈ 15 s
+    "fork server": ("fork_server",),  # below: the warm interpreter of the hostile-input modules, ≈ 5 s to start
+}
+"""Session fixtures several modules use, by the group those modules form: a module whose source names one of them
+is handed out with the others of its group (one xdist unit), so the fixture is computed on one worker only."""
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+@functools.cache
+def shared_group(module: str) -> str | None:
+    """The :data:`SHARED` group of ``module`` (a path relative to the checkout), or ``None``."""
+    try:
+        text = (ROOT / module).read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError):
+        return None
+    for group, fixtures in SHARED.items():
+        if any(re.search(rf"\b{name}\b", text) for name in fixtures):
+            return group
+    return None
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_xdist_make_scheduler(config, log):
+    """``--dist loadscope`` with the modules of a :data:`SHARED` group as one unit (else one unit per module)."""
+    if config.getvalue("dist") != "loadscope":
+        return None
+    from xdist.scheduler import LoadScopeScheduling
+
+    class SharedFixtureScheduling(LoadScopeScheduling):
+        def _split_scope(self, nodeid: str) -> str:
+            group = shared_group(nodeid.split("::")[0])
+            return f"[{group}]" if group else super()._split_scope(nodeid)
+
+    return SharedFixtureScheduling(config, log)
+
+
+@pytest.fixture(scope="session")
+def fork_server(tmp_path_factory):
+    """One warm interpreter (``tests/forkserver.py``) for the hostile-input modules, its numba kernel compiled."""
+    from tests.forkserver import ForkServer
+    from tests.test_hostile_inputs import warm_jit
+
+    forks = ForkServer()
+    warm_jit(forks, tmp_path_factory.mktemp("warm"))  # the kernel's one-time compile is not a case's time
+    yield forks
+    forks.close()
+
 
 def pytest_configure(config) -> None:
-    """Run every worker with the environment of a plain ``pytest`` run.
+    """Run every worker with the environment of a plain ``pytest`` run; keep the order below.
 
     pytest-xdist starts its workers with ``COLUMNS`` set, which would make
     the commands wrap their notes as on a terminal; the tests expect the
@@ -50,11 +104,17 @@ def pytest_configure(config) -> None:
     """
     if os.environ.get("PYTEST_XDIST_WORKER"):
         os.environ.pop("COLUMNS", None)
+    # pytest-xdist's loadscope hands out the modules with the most tests first (its --loadscope-reorder, on by
+    # default), which puts the few-test long modules (EARLY: one fixture of a minute, five notebooks) last, each
+    # then the suite's tail on one worker while the other is idle; the order of
+    # pytest_collection_modifyitems below is the one wanted
+    if getattr(config.option, "loadscopereorder", False):
+        config.option.loadscopereorder = False
 
 
 def pytest_collection_modifyitems(config, items: list[pytest.Item]) -> None:
     """Hand out :data:`EARLY`, then the other modules that hold slow tests, first (stable: otherwise the collection
-    order)."""
+    order).  A :data:`SHARED` group's unit is handed out where its first module is."""
     slow_modules = {item.nodeid.split("::")[0] for item in items if item.get_closest_marker("slow") is not None}
 
     def rank(item: pytest.Item) -> int:

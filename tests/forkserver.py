@@ -43,8 +43,22 @@ PRELOAD = (
     "symbolic_friction._studies.scenes", "symbolic_friction._crosscheck", "symbolic_friction._hunting._study",
     "symbolic_friction._obligations", "symbolic_friction._studies.tradeoff", "symbolic_friction._extremes",
     "symbolic_friction._infra.junit",
+    # what many runs import on their way to refusing the input (measured over the hostile cases: every run imports
+    # _infra.output, about a hundred each the certificate templates, gain maps, the independent verifier, the
+    # simulators, the configuration reader); imported once here instead of in every child
+    "symbolic_friction._infra.output", "symbolic_friction._infra.config", "symbolic_friction._certify.choose",
+    "symbolic_friction._studies.gainmap", "symbolic_friction._studies.gainmap_run", "symbolic_friction.independent",
+    "symbolic_friction.independent.paper", "symbolic_friction._simulation.friction", "symbolic_friction._simulation.event",
+    "symbolic_friction._simulation.moreau", "symbolic_friction._simulation.regularized",
+    "symbolic_friction._studies.figures_run", "symbolic_friction._studies.crosscheck_figures",
+    "symbolic_friction._studies.gainmap_plot", "numpy.random", "numpy.ma", "scipy.linalg", "scipy.optimize",
+    # a few runs draw (about half a second of imports each); pyplot's import chooses no backend, the command does
+    "matplotlib", "matplotlib.pyplot",
 )
-"""Imported once by the server; everything else a command needs is imported by the child, as in a real run."""
+"""Imported once by the server; everything else a command needs is imported by the child, as in a real run.
+
+The list only saves time: a child imports whatever is missing, so a command's behaviour does not depend on it
+(:func:`tests.test_hostile_options.test_fork_and_fresh_interpreter_agree` holds forks to fresh interpreters)."""
 
 
 @dataclass(frozen=True)
@@ -141,12 +155,14 @@ def serve() -> None:  # pragma: no cover - runs in the server process
     for name in PRELOAD:
         importlib.import_module(name)
     from symbolic_friction._certify._schema import _validator
+    from symbolic_friction._certify.templates import builtin_templates
     from symbolic_friction._cli.main import build_parser
     from symbolic_friction._obligations import all_obligations
 
     all_obligations()  # the registry imports every obligation module: check's --only and --config cases need it
     build_parser()  # every command module
     _validator()  # jsonschema and the certificate schema
+    builtin_templates()  # every certificate template's module: verify and certify read them all
     gc.collect()
     gc.freeze()  # the children's collector leaves the server's objects alone: fewer pages copied after each fork
     _send(wire_out, "ready")

@@ -28,8 +28,20 @@ from symbolic_friction._model.python_control import closed_loop_matrices
 from symbolic_friction._model.transfer_function import read_transfer_function
 from symbolic_friction.errors import AssumptionError, NonFiniteError, ParameterError
 
-ct = pytest.importorskip("control")
-s = ct.tf("s")
+# python-control (with scipy.signal and matplotlib, about 1.5 s) is imported when the module's first test runs, not
+# at collection, which every pytest-xdist worker does for every module: `_control` below binds these names
+ct = s = GOOD_PID = GOOD_PLANT = None
+
+
+@pytest.fixture(scope="module", autouse=True)
+def _control():
+    """python-control (each test skipped without it), its Laplace variable and the refusals' good plant and PID."""
+    global ct, s, GOOD_PID, GOOD_PLANT
+    ct = pytest.importorskip("control")
+    s = ct.tf("s")
+    GOOD_PID = 6 + 8 / s + 12.3 * s
+    GOOD_PLANT = 1 / (2 * s**2 + 0.5 * s)
+
 
 # Table I of the paper as typed there: (k_p, k_i, k_v) with f_c = 1 (the floats python-control holds)
 TABLE_I_TYPED = {"a": (3, 4, 6.4), "b": (0.66, 0.08, 1.5)}
@@ -130,37 +142,45 @@ def test_a_filter_that_is_not_negligible_is_refused_with_what_was_found():
 # ---------------------------------------------------------------- refusals
 
 
-GOOD_PID = 6 + 8 / s + 12.3 * s
-GOOD_PLANT = 1 / (2 * s**2 + 0.5 * s)
+# Each case's plant and controller are made when it runs (a lambda of the names `_control` binds); the ids are
+# those pytest gives the systems themselves (plant0, controller0, …).
+REFUSED = [
+    (lambda: ct.ss(np.zeros((2, 2)), np.eye(2), np.eye(2), np.zeros((2, 2))), lambda: GOOD_PID,
+     r"plant is MIMO \(2 inputs, 2 outputs\)"),
+    (lambda: ct.tf([1], [1, 0, 0], 0.1), lambda: GOOD_PID,
+     r"plant is a discrete-time transfer function \(dt = 0.1\)"),
+    (lambda: GOOD_PLANT, lambda: ct.tf([1, 1], [1, 0], True), r"controller is a discrete-time"),
+    (3.0, lambda: GOOD_PID, "plant must be a python-control TransferFunction or StateSpace; got float"),
+    (lambda: ct.frd([1, 1], [1, 2]), lambda: GOOD_PID, "got FrequencyResponseData"),
+    (lambda: (s + 1) / s**2, lambda: GOOD_PID, r"plant \(s \+ 1\)/\(s\^2\) has a zero at s = -1"),
+    (lambda: 1 / (s**3 + s**2), lambda: GOOD_PID, r"plant 1/\(s\^3 \+ s\^2\) is of order 3"),
+    (lambda: 1 / s, lambda: GOOD_PID, "is of order 1"),
+    (lambda: 1 / (s**2 + s + 2), lambda: GOOD_PID,
+     "nonzero constant term in its denominator .a spring of stiffness 2"),
+    (lambda: -1 / s**2, lambda: GOOD_PID, "negative mass m = -1"),
+    (lambda: 1 / (s**2 - 0.5 * s), lambda: GOOD_PID, "negative viscous coefficient alpha_v = -1/2"),
+    (lambda: GOOD_PLANT, lambda: 6 + 12.3 * s, r"controller 123/10 s \+ 6 has no integral action"),
+    (lambda: GOOD_PLANT, lambda: (s + 2) / (s + 3), "nonzero constant term 3 in its denominator: no integrator"),
+    (lambda: GOOD_PLANT, lambda: GOOD_PID * s, "no integral action"),
+    (lambda: GOOD_PLANT, lambda: GOOD_PID / s,
+     r"wrong order \(numerator degree 2, denominator degree 2\)|double integrator"),
+    (lambda: GOOD_PLANT, lambda: (s**2 + s + 1) / s**2, "double integrator"),
+    (lambda: GOOD_PLANT, lambda: GOOD_PID * (s + 1), r"wrong order \(numerator degree 3, denominator degree 1\)"),
+    (lambda: GOOD_PLANT, lambda: 6 + 8 / s + 12.3 * s / (-0.001 * s + 1), "negative time constant tau = -1/1000"),
+    (lambda: GOOD_PLANT, lambda: ct.tf([0], [1]), "controller is zero"),
+    (lambda: Parameters.table_i("a").to_control(), lambda: GOOD_PID, "has a zero at s = -1.333"),
+    (lambda: ct.ss(np.diag(np.arange(11.0)), np.ones((11, 1)), np.ones((1, 11)), 0), lambda: GOOD_PID,
+     "has 11 states; at most 10"),
+]
 
 
 @pytest.mark.parametrize(
-    ("plant", "controller", "fragment"),
-    [
-        (ct.ss(np.zeros((2, 2)), np.eye(2), np.eye(2), np.zeros((2, 2))), GOOD_PID, r"plant is MIMO \(2 inputs, 2 outputs\)"),
-        (ct.tf([1], [1, 0, 0], 0.1), GOOD_PID, r"plant is a discrete-time transfer function \(dt = 0.1\)"),
-        (GOOD_PLANT, ct.tf([1, 1], [1, 0], True), r"controller is a discrete-time"),
-        (3.0, GOOD_PID, "plant must be a python-control TransferFunction or StateSpace; got float"),
-        (ct.frd([1, 1], [1, 2]), GOOD_PID, "got FrequencyResponseData"),
-        ((s + 1) / s**2, GOOD_PID, r"plant \(s \+ 1\)/\(s\^2\) has a zero at s = -1"),
-        (1 / (s**3 + s**2), GOOD_PID, r"plant 1/\(s\^3 \+ s\^2\) is of order 3"),
-        (1 / s, GOOD_PID, "is of order 1"),
-        (1 / (s**2 + s + 2), GOOD_PID, "nonzero constant term in its denominator .a spring of stiffness 2"),
-        (-1 / s**2, GOOD_PID, "negative mass m = -1"),
-        (1 / (s**2 - 0.5 * s), GOOD_PID, "negative viscous coefficient alpha_v = -1/2"),
-        (GOOD_PLANT, 6 + 12.3 * s, r"controller 123/10 s \+ 6 has no integral action"),
-        (GOOD_PLANT, (s + 2) / (s + 3), "nonzero constant term 3 in its denominator: no integrator"),
-        (GOOD_PLANT, GOOD_PID * s, "no integral action"),
-        (GOOD_PLANT, GOOD_PID / s, r"wrong order \(numerator degree 2, denominator degree 2\)|double integrator"),
-        (GOOD_PLANT, (s**2 + s + 1) / s**2, "double integrator"),
-        (GOOD_PLANT, GOOD_PID * (s + 1), r"wrong order \(numerator degree 3, denominator degree 1\)"),
-        (GOOD_PLANT, 6 + 8 / s + 12.3 * s / (-0.001 * s + 1), "negative time constant tau = -1/1000"),
-        (GOOD_PLANT, ct.tf([0], [1]), "controller is zero"),
-        (Parameters.table_i("a").to_control(), GOOD_PID, "has a zero at s = -1.333"),
-        (ct.ss(np.diag(np.arange(11.0)), np.ones((11, 1)), np.ones((1, 11)), 0), GOOD_PID, "has 11 states; at most 10"),
-    ],
+    ("plant", "controller", "fragment"), REFUSED,
+    ids=[f"{'3.0' if plant == 3.0 else f'plant{n}'}-controller{n}-{fragment}"
+         for n, (plant, _, fragment) in enumerate(REFUSED)],
 )
 def test_what_does_not_fit_is_refused_by_name(plant, controller, fragment):
+    plant, controller = (x() if callable(x) else x for x in (plant, controller))
     with pytest.raises(ParameterError, match=fragment):
         Parameters.from_control(plant, controller, f_c_bar=1)
 

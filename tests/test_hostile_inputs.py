@@ -252,13 +252,9 @@ FRESH_ENV = ("PYTHONIOENCODING", "PYTHONUTF8", "LANG", "LC_ALL")
 
 
 @pytest.fixture(scope="module")
-def server(tmp_path_factory):
-    from tests.forkserver import ForkServer
-
-    forks = ForkServer()
-    warm_jit(forks, tmp_path_factory.mktemp("warm"))
-    yield forks
-    forks.close()
+def server(fork_server):
+    """The warm interpreter of tests/conftest.py, shared with tests/test_hostile_options.py (started once)."""
+    return fork_server
 
 
 def warm_jit(forks, directory: Path) -> None:

@@ -425,14 +425,9 @@ def _check(result, name: str) -> None:
 
 
 @pytest.fixture(scope="module")
-def server(tmp_path_factory):
-    from tests.forkserver import ForkServer
-    from tests.test_hostile_inputs import warm_jit
-
-    forks = ForkServer()
-    warm_jit(forks, tmp_path_factory.mktemp("warm"))  # the kernel's one-time compile is not a case's time
-    yield forks
-    forks.close()
+def server(fork_server):
+    """The warm interpreter of tests/conftest.py, shared with tests/test_hostile_inputs.py (started once)."""
+    return fork_server
 
 
 def test_every_option_of_every_command_has_a_kind():

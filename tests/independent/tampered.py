@@ -199,10 +199,15 @@ def get(obj: object, path: tuple) -> object:
 
 
 class Lazy:
-    """An edit of ``data`` at ``path`` made only when asked (a sup-flow file has thousands of numbers)."""
+    """An edit of ``data`` at ``path`` made only when asked (a sup-flow file has thousands of numbers).
 
-    def __init__(self, data: object, path: tuple, new: object = None, *, remove: bool = False) -> None:
-        self.data, self.path, self.new, self.remove = data, path, new, remove
+    ``written``: ``(original, q)``, the new value is ``written_like(original, q)``, spelt only then (a 4400-digit
+    nudge of each of those numbers took most of the time to list a file's edits, of which a sample is made).
+    """
+
+    def __init__(self, data: object, path: tuple, new: object = None, *, remove: bool = False,
+                 written: tuple[object, Fraction] | None = None) -> None:
+        self.data, self.path, self.new, self.remove, self.written = data, path, new, remove, written
 
     def __call__(self) -> object:
         out = copy.copy(self.data)
@@ -213,7 +218,7 @@ class Lazy:
         if self.remove:
             del holder[self.path[-1]]  # type: ignore[attr-defined]
         else:
-            holder[self.path[-1]] = self.new  # type: ignore[index]
+            holder[self.path[-1]] = self.new if self.written is None else written_like(*self.written)  # type: ignore[index]
         return out
 
 
@@ -267,7 +272,7 @@ def numeric_edits(data: dict) -> Iterator[tuple[str, str, object]]:
             changes += [(f"set to {t}", "from zero", Fraction(t)) for t in ("1/1000000000000", "1/100", "-1/100", "1")]
         for label, family, y in changes:
             if y != q:
-                yield f"{name} {label}", family, replaced(data, path, written_like(x, y))
+                yield f"{name} {label}", family, Lazy(data, path, written=(x, y))
 
 
 FULLWIDTH = str.maketrans("0123456789", "０１２３４５６７８９")
