@@ -8,7 +8,9 @@ marked ``slow`` are handed out first, the longest of all (:data:`EARLY`)
 before them, so that the longest work starts at once and no worker is left
 with a long tail.  Modules that share a session fixture of seconds
 (:data:`SHARED`) are handed out together, as one unit, so that it is computed
-once, not once per worker.
+once, not once per worker.  While the module held to a wall-clock budget
+(:data:`TIMED`) runs, the other workers are handed no module that keeps two
+processes busy (:data:`BUSY`).
 
 ``-m "not slow"`` deselects the long runs for a quick local check; the
 default run (``.ci/run``) runs everything.
@@ -51,6 +53,24 @@ SHARED = {
 """Session fixtures several modules use, by the group those modules form: a module whose source names one of them
 is handed out with the others of its group (one xdist unit), so the fixture is computed on one worker only."""
 
+TIMED = "tests/test_extremes.py"
+"""The module whose fixture is held to a wall-clock budget (the extremes matrix: under 120 s, about 65 s on a core
+of its own).  It is handed out first (:data:`EARLY`), and while it runs the other workers get no :data:`BUSY`
+module, so that on two cores it shares them with one other busy process, never with two."""
+
+BUSY = (
+    "tests/test_project_ci.py",  # the CI hook and `check` in a user's project: `check` forks a second process
+    "tests/test_mutation.py",  # the mutation runner's `check --json` runs
+    "tests/commands/test_check.py",  # `check` as a command
+    "tests/crosscheck/test_selftest.py",  # check's cross-check section
+    "tests/crosscheck/test_overshoot.py",
+    "tests/commands/test_figures.py",  # figures drawn by a pool of two (--jobs 2)
+    "tests/simulation/test_event_buffer.py",
+)
+"""Modules whose tests keep two processes busy at once for much of their time (measured in a whole run: on average
+1.2 to 1.8 runnable threads in the worker's process tree, sampled every 0.2 s, where the other modules stay at one,
+the worker or a child it waits for)."""
+
 ROOT = Path(__file__).resolve().parents[1]
 
 
@@ -69,7 +89,8 @@ def shared_group(module: str) -> str | None:
 
 @pytest.hookimpl(optionalhook=True)
 def pytest_xdist_make_scheduler(config, log):
-    """``--dist loadscope`` with the modules of a :data:`SHARED` group as one unit (else one unit per module)."""
+    """``--dist loadscope`` with the modules of a :data:`SHARED` group as one unit (else one unit per module), and no
+    :data:`BUSY` module started beside :data:`TIMED`."""
     if config.getvalue("dist") != "loadscope":
         return None
     from xdist.scheduler import LoadScopeScheduling
@@ -78,6 +99,20 @@ def pytest_xdist_make_scheduler(config, log):
         def _split_scope(self, nodeid: str) -> str:
             group = shared_group(nodeid.split("::")[0])
             return f"[{group}]" if group else super()._split_scope(nodeid)
+
+        def _assign_work_unit(self, node) -> None:
+            """Hand out the next unit, passing over :data:`BUSY` ones while :data:`TIMED` runs on another node."""
+            if self._timed_elsewhere(node):
+                for scope, unit in self.workqueue.items():
+                    if not any(nodeid.split("::")[0] in BUSY for nodeid in unit):
+                        self.workqueue.move_to_end(scope, last=False)  # the base class pops the first unit
+                        break  # none left: the next BUSY one (a worker is never left idle for this)
+            super()._assign_work_unit(node)
+
+        def _timed_elsewhere(self, node) -> bool:
+            return any(other is not node and not done and nodeid.split("::")[0] == TIMED
+                       for other, units in self.assigned_work.items() for unit in units.values()
+                       for nodeid, done in unit.items())
 
     return SharedFixtureScheduling(config, log)
 
