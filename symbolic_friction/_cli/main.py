@@ -12,13 +12,14 @@ provides ``HELP`` (one line), ``add_arguments(parser)`` and
 from __future__ import annotations
 
 import argparse
+import functools
 import importlib
 import re
 import sys
 from collections.abc import Sequence
 from typing import Any, NoReturn
 
-__all__ = ["main", "build_parser"]
+__all__ = ["main", "build_parser", "shared_parser"]
 
 COMMANDS = ("check", "certify", "verify", "simulate", "figures", "crosscheck", "hunting", "settling", "tradeoff", "extremes", "map")
 
@@ -71,6 +72,18 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+@functools.cache
+def shared_parser() -> argparse.ArgumentParser:
+    """The parser :func:`main` parses with: :func:`build_parser`'s, built once per process.
+
+    Building it (a dozen parsers, about 180 options, each checked by a help formatter) costs more than most
+    refused command lines do; a process that runs :func:`main` many times (the tests, a fork server that
+    builds it before forking) builds it once.  Parsing leaves a parser as it was: the help's width is read when
+    help is printed, and :func:`main` gives each run its own copy of a list default.
+    """
+    return build_parser()
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; return the exit code.
 
@@ -83,12 +96,15 @@ def main(argv: Sequence[str] | None = None) -> int:
     from .._infra.output import install_ascii_fallback, set_verbosity
 
     install_ascii_fallback()
-    parser = build_parser()
+    parser = shared_parser()
     if not (sys.argv[1:] if argv is None else list(argv)):
         # a bare command is a request for help, not a usage error
         parser.print_help()
         return 0
     args = parser.parse_args(argv)
+    for name, value in vars(args).items():
+        if isinstance(value, list):  # a list default (``--format``'s) is the shared parser's own object
+            setattr(args, name, list(value))
     set_verbosity(0 if getattr(args, "quiet", False) else 2 if getattr(args, "verbose", False) else 1)
     prefix = f"symbolic-friction {args.command}: error:"
     try:
