@@ -1,8 +1,9 @@
 """The ``symbolic-friction`` command line.
 
 Start-up must stay fast: this module and the command modules
-import only the standard library at top level; each command imports sympy,
-scipy or cvxpy inside its ``run`` function, and only what it needs.
+import only the standard library (and ``_infra``, which does too) at top level;
+each command imports sympy, scipy or cvxpy inside its ``run`` function, and
+only what it needs.
 
 Each subcommand lives in ``symbolic_friction/_cli/<name>.py`` and
 provides ``HELP`` (one line), ``add_arguments(parser)`` and
@@ -18,6 +19,11 @@ import re
 import sys
 from collections.abc import Sequence
 from typing import Any, NoReturn
+
+# every run needs these two: imported with this module, so that a process that imports it before running many
+# command lines (a fork server) has them already
+from .._infra.errors import SymbolicFrictionError
+from .._infra.output import install_ascii_fallback, set_verbosity
 
 __all__ = ["main", "build_parser", "shared_parser"]
 
@@ -92,9 +98,6 @@ def main(argv: Sequence[str] | None = None) -> int:
     ``error: …`` to stderr and return 2, without a traceback.  Output that
     cannot be encoded (``PYTHONIOENCODING=ascii``) falls back to ASCII.
     """
-    from .._infra.errors import SymbolicFrictionError
-    from .._infra.output import install_ascii_fallback, set_verbosity
-
     install_ascii_fallback()
     parser = shared_parser()
     if not (sys.argv[1:] if argv is None else list(argv)):
