@@ -68,6 +68,7 @@ extensions = [
     "sphinx.ext.autodoc",
     "sphinx.ext.autosummary",
     "numpydoc",
+    "sf_numpydoc",  # after numpydoc: its docstring template compiled once per build (_ext/sf_numpydoc.py)
     "sphinx.ext.mathjax",
     "sf_cli",
     "sf_proof",
