@@ -156,11 +156,11 @@ def serve() -> None:  # pragma: no cover - runs in the server process
         importlib.import_module(name)
     from symbolic_friction._certify._schema import _validator
     from symbolic_friction._certify.templates import builtin_templates
-    from symbolic_friction._cli.main import build_parser
+    from symbolic_friction._cli.main import shared_parser
     from symbolic_friction._obligations import all_obligations
 
     all_obligations()  # the registry imports every obligation module: check's --only and --config cases need it
-    build_parser()  # every command module
+    shared_parser()  # every command module, and the parser each child's main() parses with (built once, here)
     _validator()  # jsonschema and the certificate schema
     builtin_templates()  # every certificate template's module: verify and certify read them all
     gc.collect()
