@@ -1,7 +1,6 @@
-"""Where each method stops being trustworthy: a fixed matrix of hard cases of
-the inclusion ``x' ∈ A x - b SGN(v)`` (eq. xDot), each simulated by every
-method at its default knob and certified by ``certify``, and every outcome
-classified against the independent 50-digit reference (:mod:`._reference`).
+"""Where each method stops being trustworthy: a fixed matrix of hard cases of the inclusion
+``x' ∈ A x - b SGN(v)`` (eq. xDot), each simulated by every method at its default knob and certified by
+``certify``, and every outcome classified against the independent 50-digit reference (:mod:`._reference`).
 
 The cells (:func:`cells`):
 
@@ -15,21 +14,18 @@ The cells (:func:`cells`):
 
 Each (cell, method) is one of
 
-* ``ok`` — the run completed and its state error (sup over the sample times
-  of ``|z - z_ref|∞``, relative to ``max_t |z_ref(t)|∞``) is within the
-  method's claim at its knob, :func:`claimed_error`;
+* ``ok`` — the run completed and its state error (sup over the sample times of ``|z - z_ref|∞``, relative
+  to ``max_t |z_ref(t)|∞``) is within the method's claim at its knob, :func:`claimed_error`;
 * ``refused`` — the method raised :class:`~symbolic_friction.errors.SimulationError`
   or stopped early with a status that says so; the reason is kept;
 * ``wrong`` — the run completed, said nothing, and its error exceeds the
   claim: *silently wrong*.  The package's contract is that no cell is;
-* ``no answer`` — the run had not returned after :data:`RUN_LIMIT` seconds
-  and was stopped (each run is made in a forked child process for this):
-  not wrong, but not usable either.
+* ``no answer`` — the run had not returned after :data:`RUN_LIMIT` seconds and was stopped (each run is
+  made in a forked child process for this): not wrong, but not usable either.
 
-``certify`` is ``proved`` (the exact verifier proved the certificate *and*
-its overshoot bound ``|x(t)|_𝒜 ≤ κ |x(0)|_𝒜`` holds along the reference
-solution), ``refused`` (an error with its reason), or ``wrong`` (proved, but
-the reference solution violates the bound).
+``certify`` is ``proved`` (the exact verifier proved the certificate *and* its overshoot bound
+``|x(t)|_𝒜 ≤ κ |x(0)|_𝒜`` holds along the reference solution), ``refused`` (an error with its reason), or
+``wrong`` (proved, but the reference solution violates the bound).
 """
 
 from __future__ import annotations
@@ -207,6 +203,11 @@ def classify_run(method: Any, cell: Cell, ref: _Ref) -> Outcome:
 def classify_run_limited(method: Any, cell: Cell, ref: _Ref, limit: float = RUN_LIMIT) -> Outcome:
     """:func:`classify_run` in a forked child, stopped after ``limit`` seconds (then ``no answer``)."""
     import multiprocessing as mp
+
+    # what the methods import when they run, imported here in the parent once: else each forked child imports it
+    # again (scipy.integrate about 0.5 CPU-s, python-flint for the event kernel's roots), half the matrix's CPU
+    import flint  # noqa: F401
+    import scipy.integrate  # noqa: F401
 
     try:
         ctx = mp.get_context("fork")
