@@ -115,6 +115,8 @@ class IvpEvents(SimulationMethod):
     ) -> Solution:
         from scipy.integrate import solve_ivp
 
+        from ._radau import integrator as solver
+
         k_p, k_i, k_v, f_c = params.as_floats()
         rtol, atol = float(options["rtol"]), float(options["atol"])
         integrator = options["integrator"]
@@ -144,8 +146,12 @@ class IvpEvents(SimulationMethod):
             return select_mode(sigma, phi_of(z), z[2], f_c)
 
         def slip_rhs(sign: float):
+            # A_δ z - sign b as ndarray.dot (the same product as @, with less dispatch) minus the vector made once:
+            # the integrator's every stage calls this
+            dot, signed_b = a_z.dot, sign * b
+
             def rhs(_t: float, z: np.ndarray) -> np.ndarray:
-                return a_z @ z - sign * b
+                return dot(z) - signed_b
 
             return rhs
 
@@ -199,7 +205,7 @@ class IvpEvents(SimulationMethod):
                 rhs,
                 (t0, t_end),
                 z,
-                method=integrator,
+                method=solver(integrator),
                 rtol=rtol,
                 atol=atol,
                 events=evs,
