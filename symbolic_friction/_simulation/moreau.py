@@ -155,6 +155,11 @@ class _Recorder:
                 self.add(tau, *(a + th * (b - a) for a, b in zip(z0, z1)), mode)
             self.k += 1
 
+    def upcoming(self) -> float:
+        """The next ``t_eval`` time not yet recorded (``inf`` when none is left, or without ``t_eval``)."""
+        te = self.t_eval
+        return float(te[self.k]) if te is not None and self.k < te.size else math.inf
+
     def hold(self, t: float, z: tuple[float, float, float], t_end: float) -> None:
         """The state stays at ``z`` from ``t`` to ``t_end`` (equilibrium)."""
         if self.t_eval is None:
@@ -271,6 +276,9 @@ class Moreau(SimulationMethod):
         # calls (a third of the time of a run with a friction law went into those calls).
         grid = t_eval is None
         t_add, e_add, s_add, v_add, m_add = rec.t.append, rec.e.append, rec.s.append, rec.v.append, rec.mode.append
+        # With t_eval, most steps contain no sample: the recorder is called only for a step that ends after the next
+        # sample time (or the last step), the test its loop starts with, so the samples are the same.
+        upcoming = rec.upcoming()
         for n in range(n_steps):
             t0 = n * h
             last = n == n_steps - 1
@@ -315,8 +323,9 @@ class Moreau(SimulationMethod):
                 m_add(mode)
                 if last:
                     rec.add(t1, e1, s1, w, mode)
-            else:
+            elif upcoming < t1 or last:
                 rec.step(t0, t1, (e, s, v), (e1, s1, w), mode, last)
+                upcoming = rec.upcoming()
             prev_mode = mode
             e, s, v = e1, s1, w
         t, z, modes = rec.arrays()
