@@ -48,6 +48,7 @@ from .._infra.errors import CertificateFormatError
 from .._infra.rational import format_rational as _f
 from .._model import quadratic as quad
 from .._model.lyapunov import lyapunov_matrix_entries
+from ._memo import Memo
 from ._template import Template, register
 from .quadratic import (
     PARAMETERS,
@@ -304,8 +305,49 @@ def sup_flow_premises(cert: SupFlowCertificate) -> list[Any]:
 
 def _decide(premise: Any, budget: Budget | None = None) -> Check:
     if isinstance(premise, (FlowNorm, FlowExit)):
-        return decide_flow(premise, budget or Budget())
+        return _decide_flow(premise, budget or Budget())
     return decide_premise(premise)
+
+
+_FLOW_DECISIONS = Memo()
+shared_flow_decisions = _FLOW_DECISIONS.sharing
+"""Within the block, a premise on the flow with the same numbers as one decided before is not bisected again (the
+self-check's false files and an edited certificate's copies share most of their pieces with a true file)."""
+
+
+def _exact_key(*numbers: Fraction) -> tuple[int, ...]:
+    return tuple(n for x in numbers for n in (x.numerator, x.denominator))
+
+
+def _flow_key(premise: FlowNorm | FlowExit) -> tuple[Any, ...]:
+    """Everything :func:`decide_flow` reads of ``premise``, as exact integers (its name and obligation too)."""
+    cert = premise.certificate
+    common = (type(premise).__name__, premise.obligation, premise.name, _exact_key(cert.k_p, cert.k_i, cert.k_v),
+              tuple((s, _exact_key(*(x for row in d for x in row))) for s, d in cert.drag_maps()),
+              _exact_key(*(x for row in premise.p_matrix for x in row), cert.constants["p"], cert.pieces[-1].start))
+    if isinstance(premise, FlowNorm):
+        return common + (_exact_key(cert.constants["c2"]),)
+    piece = cert.pieces[premise.index]
+    return common + (_exact_key(piece.start), piece.end is None or _exact_key(piece.end),
+                     tuple((s, _exact_key(*(x for row in k for x in row))) for s, k in piece.signed_forms()))
+
+
+def _decide_flow(premise: FlowNorm | FlowExit, budget: Budget) -> Check:
+    """:func:`decide_flow`, or its verdict on the same numbers earlier in a :func:`shared_flow_decisions` block.
+
+    A kept verdict is reused only where the budget cannot have changed it: the decision that made it never came
+    near the end of its budget (every test of a part then saw at least 2 parts left), and this budget has room for
+    the same parts again; the parts are then taken from this budget as the bisection would take them.
+    """
+    kept = _FLOW_DECISIONS.get(_flow_key(premise), list)  # outside a block: a new empty list, so nothing is kept
+    if kept and budget.left - kept[1] >= 2:
+        budget.left -= kept[1]
+        return kept[0]
+    before = budget.left
+    check = decide_flow(premise, budget)
+    if budget.left >= 2:
+        kept[:] = [check, before - budget.left]
+    return check
 
 
 @dataclass(frozen=True)

@@ -36,8 +36,14 @@ KINDS = tuple(k for k in tampered.KINDS if not k.startswith("sup-flow"))  # sup-
 
 
 def check_kind(kind: str) -> None:
-    """The default sample of ``kind``: no problem, every class and every type of edit in it (also for sup-flow)."""
-    tally, outcomes, found = tampered.default_run(kind)
+    """The default sample of ``kind``: no problem, every class and every type of edit in it (also for sup-flow).
+
+    Every edit is decided by both verifiers; the main one's premises on the flow that an edit leaves as they were
+    (most pieces of a sup-flow file) keep their first verdict within the sample, as in the self-check."""
+    from symbolic_friction._certify.sup_flow import shared_flow_decisions
+
+    with shared_flow_decisions():
+        tally, outcomes, found = tampered.default_run(kind)
     assert not found, "\n".join(found[:20])
     assert tally.edits >= 100 and tally.edits == tally.both_refuse + tally.both_accept + tally.disagree
     assert {"same", "weaker", "false", "other"} <= {o.edit.claim for o in outcomes}
