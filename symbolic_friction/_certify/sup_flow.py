@@ -44,6 +44,8 @@ from fractions import Fraction
 from pathlib import Path
 from typing import Any, ClassVar
 
+from flint import fmpq
+
 from .._infra.errors import CertificateFormatError
 from .._infra.rational import format_rational as _f
 from .._model import quadratic as quad
@@ -276,6 +278,22 @@ def bound_premises(cert: SupFlowCertificate, obligation: str) -> list[Any]:
     return out
 
 
+def _as(kind: type, x: Any) -> Any:
+    """``x`` (a number or nested tuples and lists of them) with every exact rational as ``kind`` (fmpq or Fraction)."""
+    if isinstance(x, (tuple, list)):
+        return type(x)(_as(kind, y) for y in x)
+    if kind is fmpq:
+        return fmpq(x.numerator, x.denominator) if isinstance(x, (Fraction, int)) and not isinstance(x, bool) else x
+    return Fraction(int(x.p), int(x.q)) if type(x) is fmpq else x
+
+
+def in_fmpq(function: Any, *args: Any) -> Any:
+    """``function(*args)`` of the model's forms evaluated on python-flint's fmpq, its result as Fractions: the same
+    exact values (the forms are sums of products), several times faster than Fraction arithmetic, which was most of
+    a sup-flow verification's time."""
+    return _as(Fraction, function(*_as(fmpq, args)))
+
+
 def sup_flow_premises(cert: SupFlowCertificate) -> list[Any]:
     """Every premise of a sup-flow certificate, in proof order."""
     k_p, k_i, k_v = cert.k_p, cert.k_i, cert.k_v
@@ -291,9 +309,10 @@ def sup_flow_premises(cert: SupFlowCertificate) -> list[Any]:
         k, tag = piece.k_matrix(), f"piece {i + 1}"
         for s, sign in ((1, "+"), (-1, "−")):
             b = quad.slip_rate_entries(k_p, k_i, k_v, zero + s)
-            out.append(Copositive("quadratic.U_rate", f"{tag}: −(K·B{sign} + B{sign}ᵀ·K) copositive", quad.u_rate_entries(k, b)))
+            out.append(Copositive("quadratic.U_rate", f"{tag}: −(K·B{sign} + B{sign}ᵀ·K) copositive",
+                                  in_fmpq(quad.u_rate_entries, k, b)))
             out.append(Copositive("quadratic.U_rate", f"{tag}: band form (s = {sign}1) copositive",
-                                  quad.band_rate_entries(k_i, k_v, k, zero + s)))
+                                  in_fmpq(quad.band_rate_entries, k_i, k_v, k, zero + s)))
         for j in range(3):
             out.append(Inequality("quadratic.U_rate", f"{tag}: K3{j + 1} ≥ 0", k[2][j], ">=", zero))
         out.append(Copositive("sup_flow.stability_bound", f"{tag}: gamma·I − K copositive",
@@ -306,13 +325,18 @@ def sup_flow_premises(cert: SupFlowCertificate) -> list[Any]:
 def _decide(premise: Any, budget: Budget | None = None) -> Check:
     if isinstance(premise, (FlowNorm, FlowExit)):
         return _decide_flow(premise, budget or Budget())
+    if isinstance(premise, Copositive) and all(type(x) in (Fraction, int) for row in premise.matrix for x in row):
+        # a pure function of the name and the exact matrix (anything else, a bool, a float, is decided, and refused)
+        key = (premise.obligation, premise.name, tuple(_exact_key(*row) for row in premise.matrix))
+        return _DECISIONS.get(key, lambda: decide_premise(premise))
     return decide_premise(premise)
 
 
-_FLOW_DECISIONS = Memo()
-shared_flow_decisions = _FLOW_DECISIONS.sharing
-"""Within the block, a premise on the flow with the same numbers as one decided before is not bisected again (the
-self-check's false files and an edited certificate's copies share most of their pieces with a true file)."""
+_DECISIONS = Memo()
+shared_decisions = _DECISIONS.sharing
+"""Within the block, a premise on the flow or a copositivity premise with the same numbers as one decided before is
+not decided again (the self-check's false files and an edited certificate's copies share most of their pieces with
+a true file)."""
 
 
 def _exact_key(*numbers: Fraction) -> tuple[int, ...]:
@@ -333,13 +357,13 @@ def _flow_key(premise: FlowNorm | FlowExit) -> tuple[Any, ...]:
 
 
 def _decide_flow(premise: FlowNorm | FlowExit, budget: Budget) -> Check:
-    """:func:`decide_flow`, or its verdict on the same numbers earlier in a :func:`shared_flow_decisions` block.
+    """:func:`decide_flow`, or its verdict on the same numbers earlier in a :func:`shared_decisions` block.
 
     A kept verdict is reused only where the budget cannot have changed it: the decision that made it never came
     near the end of its budget (every test of a part then saw at least 2 parts left), and this budget has room for
     the same parts again; the parts are then taken from this budget as the bisection would take them.
     """
-    kept = _FLOW_DECISIONS.get(_flow_key(premise), list)  # outside a block: a new empty list, so nothing is kept
+    kept = _DECISIONS.get(_flow_key(premise), list)  # outside a block: a new empty list, so nothing is kept
     if kept and budget.left - kept[1] >= 2:
         budget.left -= kept[1]
         return kept[0]

@@ -57,6 +57,7 @@ from .sup_flow import (
     bound_premises,
     dumps_sup_flow,
     frame_premises,
+    in_fmpq,
     verify_sup_flow,
 )
 from .sup_flow_enclosure import FlowExit, FlowNorm
@@ -148,9 +149,9 @@ def sup_flow_v2_premises(cert: SupFlowCertificateV2) -> list[Any]:
             b = quad.slip_rate_entries(k_p, k_i, k_v, zero + s)
             out.append(Inequality("sup_flow_v2.U_rate", f"{tag}: {'' if s > 0 else '−'}K{sign}12 ≥ 0", s * k[0][1], ">=", zero))
             out.append(Copositive("sup_flow_v2.U_rate", f"{tag}: drag rate form of K{sign} (s = {sign}1) copositive",
-                                  quad.drag_rate_entries(k, b, ell)))
+                                  in_fmpq(quad.drag_rate_entries, k, b, ell)))
             out.append(Copositive("sup_flow_v2.U_rate", f"{tag}: drag band form of K{sign} (s = {sign}1) copositive",
-                                  quad.drag_band_entries(k_i, k_v, k, zero + s, ell)))
+                                  in_fmpq(quad.drag_band_entries, k_i, k_v, k, zero + s, ell)))
             for j in range(3):
                 out.append(Inequality("sup_flow_v2.U_rate", f"{tag}: K{sign}3{j + 1} ≥ 0", k[2][j], ">=", zero))
             out.append(Copositive("sup_flow_v2.stability_bound", f"{tag}: gamma·I − K{sign} copositive",

@@ -40,9 +40,9 @@ def check_kind(kind: str) -> None:
 
     Every edit is decided by both verifiers; the main one's premises on the flow that an edit leaves as they were
     (most pieces of a sup-flow file) keep their first verdict within the sample, as in the self-check."""
-    from symbolic_friction._certify.sup_flow import shared_flow_decisions
+    from symbolic_friction._certify.sup_flow import shared_decisions
 
-    with shared_flow_decisions():
+    with shared_decisions():
         tally, outcomes, found = tampered.default_run(kind)
     assert not found, "\n".join(found[:20])
     assert tally.edits >= 100 and tally.edits == tally.both_refuse + tally.both_accept + tally.disagree
