@@ -39,6 +39,7 @@ from typing import Any
 
 from .._infra.errors import AssumptionError, CertificateError, CertificateFormatError, ParameterError
 from .._infra.rational import format_rational as _f
+from ._memo import Memo
 from ._template import Template, register
 from .certificate import Certificate, _signed_rational_field
 from .verify import Check, verify_certificate
@@ -256,6 +257,12 @@ def _cover_checks(cert: BoxCertificate) -> list[Check]:
     ]
 
 
+_CORNERS = Memo()
+shared_corners = _CORNERS.sharing
+"""Within the block, a corner with the same numbers as one verified before keeps its report (the self-check's and an
+edited file's copies of a box share most pieces, and neighbouring pieces share corners)."""
+
+
 def verify_box(cert: BoxCertificate, *, source: str = "<certificate>") -> BoxReport:
     """Decide a box certificate exactly: the cover, the physical box, and the real verifier at every piece's 4 corners."""
     checks: list[Check] = []
@@ -288,7 +295,9 @@ def verify_box(cert: BoxCertificate, *, source: str = "<certificate>") -> BoxRep
             except CertificateFormatError as exc:
                 failed.append(Check("lemma2.P", where, str(exc), False))
                 continue
-            report = verify_certificate(point)
+            key = (tuple((n, x.numerator, x.denominator) for n, x in sorted({**corner, **piece.constants}.items())),
+                   point.c.numerator, point.c.denominator, point.overshoot_bound)
+            report = _CORNERS.get(key, lambda: verify_certificate(point))
             count = len(report.checks)
             failed += [dataclasses.replace(c, name=f"{where}: {c.name}") for c in report.failures]
         checks += failed or [Check(MONOTONE, f"piece {i + 1}: its 4 corners", f"all {count} inequalities hold at each", True)]

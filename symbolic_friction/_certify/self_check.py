@@ -214,9 +214,10 @@ def refuse_false_certificates(directory: str | Path = DIRECTORY) -> SelfCheck:
     manifest = json.loads((directory / "manifest.json").read_text(encoding="utf-8"))["false_certificates"]
     from .hunting import shared_proofs
     from .reset_contraction_proof import shared_enclosures
+    from .box import shared_corners
     from .sup_flow import shared_decisions
 
-    with shared_proofs(), shared_enclosures(), shared_decisions():
+    with shared_proofs(), shared_enclosures(), shared_decisions(), shared_corners():
         refusals = tuple(_one(directory / entry["file"], entry) for entry in manifest)
     uncovered = tuple(
         f"{template}: {name}"
