@@ -61,8 +61,10 @@ def _eye(c: Fraction) -> Matrix:
 
 
 def _q(x):
-    """A rational (``Fraction`` or ``fmpq``), or a matrix of them, as ``fmpq``."""
-    return [_q(row) for row in x] if isinstance(x, list) else flint.fmpq(x.numerator, x.denominator)
+    """A rational (``Fraction`` or ``fmpq``), or a matrix (a list of rows) of them, as ``fmpq``."""
+    if isinstance(x, list):
+        return [[flint.fmpq(v.numerator, v.denominator) for v in row] for row in x]
+    return flint.fmpq(x.numerator, x.denominator)
 
 
 def _arb(x: Matrix):
