@@ -52,6 +52,10 @@ PENDING: tuple[str, ...] = (
     "symbolic_friction._obligations._decide.*",
     "symbolic_friction._obligations._fastpoly.x_rational_pair__mutmut_*",
     "symbolic_friction._obligations._fastpoly.x_is_rational_function__mutmut_*",
+    # the sup-flow verifier's forms in fmpq and its verdicts shared within shared_flow_decisions(): the premises'
+    # mutants are re-numbered (their equivalents below, argued on the old numbering, to be re-checked)
+    "symbolic_friction._certify.sup_flow.x_sup_flow_premises__mutmut_*",
+    "symbolic_friction._certify.sup_flow.x__decide__mutmut_*",
 )
 """In scope, but mutants of these not run since their code changed or joined the scope (``not checked`` in the
 report, listed apart: neither killed nor argued; the header says what is left).  Empty: every mutant in scope was run,
