@@ -53,24 +53,30 @@ def solve(equations: Any, symbols: Any, **flags: Any) -> list:
     through ``sympy.simplify`` (which imports the same module): callers factor or decide them, which
     does not depend on how they are written.
     """
+    from sympy.core.assumptions import check_assumptions
     from sympy.solvers.solvers import solve as sympy_solve
 
     as_dicts = bool(flags.get("dict"))
-    one = isinstance(symbols, sp.Symbol) and not as_dicts
+    # one unknown without dict: sympy answers a list of values only for one equation (for a list, a dict or tuples)
+    one = isinstance(symbols, sp.Symbol) and not as_dicts and not isinstance(equations, (list, tuple))
     if not (as_dicts or one) or "check" in flags or "simplify" in flags:
         return sympy_solve(equations, symbols, **flags)
     eqs = list(equations) if isinstance(equations, (list, tuple)) else [equations]
     eqs = [sp.sympify(e) for e in eqs]
     eqs = [e.lhs - e.rhs if isinstance(e, sp.Equality) else e for e in eqs]
+    unknowns = [symbols] if isinstance(symbols, sp.Symbol) else list(symbols)
+    if any(not isinstance(e, sp.Expr) or (e != 0 and not e.has(*unknowns)) for e in eqs):
+        return sympy_solve(equations, symbols, **flags)  # an equation free of the unknowns: sympy has its own rule
     chain = _linear_chain(eqs, list(symbols)) if as_dicts and isinstance(symbols, (list, tuple)) else None
     found = chain if chain is not None else sympy_solve(equations, symbols, check=False, simplify=False, **flags)
     kept = []
     for sol in found:
         mapping = sol if as_dicts else {symbols: sol}
         verdicts = [_vanishes(e.xreplace(mapping)) for e in eqs]
-        if None in verdicts:
-            return sympy_solve(equations, symbols, **flags)
-        if all(verdicts):
+        if None in verdicts or not all(_fastpoly.is_rational_function(v) for v in mapping.values()):
+            return sympy_solve(equations, symbols, **flags)  # a radical: sympy's check and its form of the value
+        # sympy's check also drops a solution that contradicts an unknown's assumptions (±i·√k_p for a real x)
+        if all(verdicts) and all(check_assumptions(v, x) is not False for x, v in mapping.items()):
             kept.append(sol)
     return kept
 
@@ -170,6 +176,8 @@ def ex_coefficients(f: sp.Expr, var: sp.Symbol) -> list[sp.Expr]:
     this does the same.  Raises ``sympy.PolynomialError`` as sympy does when ``var`` occurs otherwise than in
     a nonnegative integer power (through sympy itself, for any form this does not take).
     """
+    if f.has(sp.zoo, sp.nan, sp.oo, -sp.oo):  # not an element of EX: sympy refuses it (CoercionFailed)
+        return sp.Poly(f, var, domain=sp.EX).all_coeffs()
     expanded = _expanded(f)
     by_power: dict[int, list[sp.Expr]] = {}
     for term in sp.Add.make_args(expanded):

@@ -59,8 +59,8 @@ def is_rational_function(expr: sp.Expr) -> bool:
 
 
 def polynomial_gens(expr: sp.Expr) -> tuple[sp.Symbol, ...] | None:
-    """sympy's generators of ``expr`` in its order (``_sort_gens``); ``None`` if two symbols print alike (sympy then
-    orders them by an accident of hashing) or there are none."""
+    """sympy's generators of ``expr`` in its order (``_sort_gens``); ``None`` if two symbols print alike or have one
+    sort key (``x`` and ``x0``: sympy then orders them by an accident of hashing), or there are none."""
     syms = expr.free_symbols
     if not syms:
         return None
@@ -74,14 +74,15 @@ def _sorted_gens(syms: frozenset) -> tuple[sp.Symbol, ...] | None:
     from sympy.polys.polyutils import _gens_order, _max_order, _re_gen
 
     names = {s: s.name if type(s) is sp.Symbol else str(s) for s in syms}  # a plain symbol prints as its name
-    if len(set(names.values())) != len(syms):
-        return None
 
     def key(gen: sp.Symbol) -> tuple[int, str, int]:
         name, index = _re_gen.match(names[gen]).groups()
         return (_gens_order.get(name, _max_order), name, int(index) if index else 0)
 
-    return tuple(sorted(syms, key=key))
+    keys = {s: key(s) for s in syms}
+    if len(set(keys.values())) != len(syms):  # printed alike, or x and x0: sympy orders them by an accident of hashing
+        return None
+    return tuple(sorted(syms, key=keys.__getitem__))
 
 
 def rational_pair(expr: sp.Expr, gens: list[sp.Symbol]) -> tuple[Any, Any]:
