@@ -34,26 +34,9 @@ from .._model import symbolic as _symbolic
 from . import _fastforms as ff
 from . import _fastpoly as fp
 from ._base import Erratum, Obligation, Outcome
-from ._decide import (
-    G,
-    Undecided,
-    decide,
-    is_zero,
-    latex,
-    phi_classes,
-    pos,
-    sign_classes,
-    sign_of,
-)
+from ._decide import G, Undecided, decide, is_zero, latex, phi_classes, pos, sign_classes, sign_of
 from ._shared import derivative, sgn_sets
-from .lemma2 import (
-    affine_fields,
-    decrease_rate,
-    friction_form,
-    friction_minimum,
-    lyapunov_pieces,
-    under_assumption1,
-)
+from .lemma2 import affine_fields, decrease_rate, friction_form, friction_minimum, lyapunov_pieces, under_assumption1
 
 __all__ = ["Row", "StickBranch", "Claim1Cases", "OBLIGATIONS", "ROWS", "stick_duration_error"]
 

@@ -30,14 +30,7 @@ from .._model.attractor import attractor_bound_z, squared_distance_z
 from . import _fastpoly as fp
 from ._base import Erratum, Obligation, Outcome
 from ._decide import G, Undecided, decide, is_zero, latex, resolve_piecewise
-from ._inequalities import (
-    Case,
-    is_nonneg,
-    label_latex,
-    line_cases,
-    rows_latex,
-    sign_cases,
-)
+from ._inequalities import Case, is_nonneg, label_latex, line_cases, rows_latex, sign_cases
 from ._shared import shared_value
 
 __all__ = ["OBLIGATIONS", "Inflation", "Distances", "InflationSubject", "DistancesSubject"]

@@ -8,15 +8,7 @@ import sympy as sp
 
 from . import _fastpoly as fp
 from ._base import Obligation, Outcome
-from ._decide import (
-    G,
-    Undecided,
-    is_zero,
-    latex,
-    minimum_on,
-    phi_classes,
-    resolve_piecewise,
-)
+from ._decide import G, Undecided, is_zero, latex, minimum_on, phi_classes, resolve_piecewise
 from ._shared import attractor_x, distance_squared
 
 __all__ = ["Distance", "OBLIGATIONS"]

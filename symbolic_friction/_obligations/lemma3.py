@@ -54,16 +54,7 @@ from ._inequalities import (
     rows_latex,
     sign_cases,
 )
-from ._region import (
-    HatVBoundsSubject,
-    RSubject,
-    _fmt_failures,
-    in_R,
-    k_symbols,
-    pieces_of,
-    region_R,
-    vhat_expression,
-)
+from ._region import HatVBoundsSubject, RSubject, _fmt_failures, in_R, k_symbols, pieces_of, region_R, vhat_expression
 from ._shared import distance_squared, shared_value
 from ._statements import statement_failure
 

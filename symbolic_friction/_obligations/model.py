@@ -53,14 +53,7 @@ import sympy as sp
 from .._model import symbolic as _symbolic
 from .._model.attractor import dz, squared_distance_x, squared_distance_z
 from .._model.coordinates import input_vector, system_matrix, x_to_z, z_to_x
-from .._model.lyapunov import (
-    V,
-    V_hat,
-    V_hat_rate,
-    in_R,
-    lyapunov_matrix,
-    quadratic_form,
-)
+from .._model.lyapunov import V, V_hat, V_hat_rate, in_R, lyapunov_matrix, quadratic_form
 from .._model.parameters import Parameters
 from .._simulation._kernel import mode_after_slip
 from .._simulation.modes import mode_at_rest, select_mode, table_row

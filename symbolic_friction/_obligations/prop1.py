@@ -57,26 +57,10 @@ from .._model import symbolic as _symbolic
 from . import _fastforms as ff
 from . import _fastpoly as fp
 from ._base import Obligation, Outcome
-from ._decide import (
-    G,
-    Undecided,
-    decide,
-    is_zero,
-    latex,
-    phi_classes,
-    sign_classes,
-    sign_of,
-)
+from ._decide import G, Undecided, decide, is_zero, latex, phi_classes, sign_classes, sign_of
 from ._inequalities import is_nonneg
 from ._shared import attractor_x, sgn_sets
-from ._stability_chain import (
-    Ineq,
-    StabilitySubject,
-    _closedness_failures,
-    _subject,
-    _tex_rel,
-    _witness_failures,
-)
+from ._stability_chain import Ineq, StabilitySubject, _closedness_failures, _subject, _tex_rel, _witness_failures
 
 __all__ = ["Prop1Invariance", "StabilityBound", "OBLIGATIONS"]
 

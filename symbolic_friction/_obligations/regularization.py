@@ -10,16 +10,7 @@ import sympy as sp
 from .._model import symbolic as _symbolic
 from . import _fastpoly as fp
 from ._base import Obligation, Outcome
-from ._decide import (
-    G,
-    Undecided,
-    affine_image,
-    decide,
-    interval_partitions_reals,
-    is_zero,
-    latex,
-    sign_of,
-)
+from ._decide import G, Undecided, affine_image, decide, interval_partitions_reals, is_zero, latex, sign_of
 from ._shared import _mat, sgn_sets
 
 __all__ = ["Regularization", "OBLIGATIONS"]

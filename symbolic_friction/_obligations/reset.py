@@ -44,16 +44,7 @@ from .._model import reset as _reset
 from . import _fastforms as ff
 from . import _fastpoly as fp
 from ._base import Obligation, Outcome
-from ._decide import (
-    G,
-    Undecided,
-    is_zero,
-    latex,
-    phi_classes,
-    pos,
-    sign_classes,
-    sign_of,
-)
+from ._decide import G, Undecided, is_zero, latex, phi_classes, pos, sign_classes, sign_of
 from ._shared import attractor_x, sgn_sets
 from .lemma2 import friction_form, friction_minimum
 
