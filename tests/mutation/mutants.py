@@ -385,6 +385,15 @@ SUP_FLOW_TAIL = (
     Mutant("sf.tail_entries_swapped", "verifier", _SF, 'return tuple(tuple(c[f"{min(i, j)}{max(i, j)}"] for j in (1, 2, 3)) for i in (1, 2, 3))',
            'return tuple(tuple(c[f"{min(i, j)}{max(i, j)}"] for i in (1, 2, 3)) for j in (3, 2, 1))',
            "the file's tail P read in the wrong order"),
+    # the key under which the self-check shares a flow premise's verdict among files (shared_flow_decisions): each
+    # number decide_flow reads must be in it, or a false file inherits a true file's verdict
+    Mutant("sf.key_drops_c2", "verifier", _SF, 'return common + (_exact_key(cert.constants["c2"]),)', "return common",
+           "c₂ ≥ ‖e^{At}‖² shared among files with different c₂"),
+    Mutant("sf.key_drops_piece_end", "verifier", _SF, "piece.end is None or _exact_key(piece.end),", "piece.end is None,",
+           "an exit premise shared among pieces with different ends"),
+    Mutant("sf.key_drops_forms", "verifier", _SF,
+           "tuple((s, _exact_key(*(x for row in k for x in row))) for s, k in piece.signed_forms()))", "())",
+           "an exit premise shared among pieces with different forms"),
 )
 MUTANTS = MUTANTS + SUP_FLOW_TAIL
 
