@@ -354,3 +354,25 @@ def test_k_i_zero_without_a_tail_p_is_refused_not_a_traceback():
         del data["constants"][name]
     report = _verify(data)
     assert not report.proved and "k_i > 0" in [c.name for c in report.failures]
+
+
+def test_a_shared_flow_verdict_is_keyed_by_every_number_its_premise_reads():
+    """``shared_flow_decisions`` (the self-check's) hands a premise the verdict of one decided before only under the
+    same key: moving a piece's end (the interval its exit premise covers) or ``c₂`` gives another key, so a file
+    differing there is decided again (the self-check's false files alone did not catch an end left out)."""
+    import dataclasses
+
+    cert = sup_flow.load_sup_flow(PROOFS / "case_a.json")
+    assert len(cert.pieces) >= 2
+    first, second = cert.pieces[0], cert.pieces[1]
+    middle = (first.start + first.end) / 2
+    moved = dataclasses.replace(cert, pieces=(dataclasses.replace(first, end=middle),
+                                              dataclasses.replace(second, start=middle), *cert.pieces[2:]))
+    raised = dataclasses.replace(cert, constants={**cert.constants, "c2": cert.constants["c2"] + 1})
+
+    def keys(c, kind):
+        return [sup_flow._flow_key(p) for p in sup_flow.sup_flow_premises(c) if type(p).__name__ == kind]
+
+    assert keys(moved, "FlowExit")[0] != keys(cert, "FlowExit")[0]
+    assert keys(raised, "FlowNorm") != keys(cert, "FlowNorm")
+    assert keys(cert, "FlowExit") == keys(sup_flow.load_sup_flow(PROOFS / "case_a.json"), "FlowExit")
