@@ -358,8 +358,9 @@ def test_k_i_zero_without_a_tail_p_is_refused_not_a_traceback():
 
 def test_a_shared_flow_verdict_is_keyed_by_every_number_its_premise_reads():
     """``shared_flow_decisions`` (the self-check's) hands a premise the verdict of one decided before only under the
-    same key: moving a piece's end (the interval its exit premise covers) or ``c₂`` gives another key, so a file
-    differing there is decided again (the self-check's false files alone did not catch an end left out)."""
+    same key: moving a piece's end (the interval its exit premise covers, in the key itself and in the premise's
+    name, which prints the interval exactly) or ``c₂`` gives another key, so a file differing there is decided
+    again."""
     import dataclasses
 
     cert = sup_flow.load_sup_flow(PROOFS / "case_a.json")

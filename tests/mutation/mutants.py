@@ -389,9 +389,6 @@ SUP_FLOW_TAIL = (
     # number decide_flow reads must be in it, or a false file inherits a true file's verdict
     Mutant("sf.key_drops_c2", "verifier", _SF, 'return common + (_exact_key(cert.constants["c2"]),)', "return common",
            "c₂ ≥ ‖e^{At}‖² shared among files with different c₂"),
-    Mutant("sf.key_drops_piece_end", "verifier", _SF, "piece.end is None or _exact_key(piece.end),", "piece.end is None,",
-           "an exit premise shared among pieces with different ends",
-           tests=("tests/certify/test_sup_flow.py::test_a_shared_flow_verdict_is_keyed_by_every_number_its_premise_reads",)),
     Mutant("sf.key_drops_forms", "verifier", _SF,
            "tuple((s, _exact_key(*(x for row in k for x in row))) for s, k in piece.signed_forms()))", "())",
            "an exit premise shared among pieces with different forms"),
