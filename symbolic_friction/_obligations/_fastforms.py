@@ -1,14 +1,16 @@
 """sympy constructions on expressions that the obligations repeat, done without sympy's general machinery.
 
-Each returns what the sympy call it names returns (the same expression tree: the printed LaTeX of
-``proofs/obligations.md`` and the SMT-LIB queries of ``proofs/smt/`` do not change), for the forms the
-obligations meet, and hands any other form to sympy itself:
+Each but :func:`simplify` returns what the sympy call it names returns (the same expression tree: the
+printed LaTeX of ``proofs/obligations.md`` and the SMT-LIB queries of ``proofs/smt/`` do not change), for the
+forms the obligations meet, and hands any other form to sympy itself (``tests/obligations/test_fastpoly.py``
+compares them); :func:`simplify` only promises an equal expression, 0 for a rational function that is 0:
 
 * :func:`poly_terms`, :func:`ex_coefficients`, :func:`degree_in`: the terms, the coefficients and the degree
   of a polynomial in chosen generators, read off its expanded terms instead of building a ``Poly``;
 * :func:`together` of a sum of monomials: ``gcd_terms``'s steps on exponent dictionaries; remembered;
 * :func:`solve` and :func:`simplify`: without the import of ``sympy.physics.units`` that sympy's own solution
-  check and ``simplify`` make (about 0.2 s), each solution checked exactly instead.
+  check and ``simplify`` make (about 0.2 s), each solution checked exactly instead (``check`` finds
+  ``proofs/obligations.md`` unchanged, so the obligations print what they printed with sympy's).
 
 Nothing is decided here: the obligations decide the results with :mod:`._decide`.
 """
