@@ -71,13 +71,45 @@ class Claims:
     it reaches the item this process is at, so every item is done exactly once.
     """
 
-    def __init__(self, ctx: Any, names: list[str], together: tuple[tuple[str, ...], ...] = ()) -> None:
-        self.names = tuple(names)
-        self.groups = [tuple(self.names.index(n) for n in group if n in self.names) for group in together]
+    CAPACITY = 1024
+    """Items a list named only after the fork (:meth:`publish`) may have; a longer one is all this process's."""
+
+    def __init__(self, ctx: Any, names: list[str] | None = None, together: tuple[tuple[str, ...], ...] = ()) -> None:
+        self.together = tuple(together)
+        self.names: tuple[str, ...] = ()
+        self.groups: list[tuple[int, ...]] = []
         self.lock = ctx.Lock()
-        self.owner = ctx.RawArray("b", len(names))  # 0 free, 1 this process, 2 the child
+        self.owner = ctx.RawArray("b", self.CAPACITY if names is None else len(names))  # 0 free, 1 this process, 2 the child
         self.front = ctx.RawValue("i", 0)  # this process has reached the items before it
-        self.back = ctx.RawValue("i", len(names))  # the child looks at the items before it, last first
+        self.back = ctx.RawValue("i", 0)  # the child looks at the items before it, last first
+        self.count = ctx.RawValue("i", 0)  # the items the child may claim (0 until published)
+        self.digest = ctx.RawValue("I", 0)  # of the published names: the child claims only from the same list
+        self.published = ctx.Event()
+        if names is not None:
+            self.publish(names)
+
+    def _name(self, names: tuple[str, ...]) -> None:
+        self.names = names
+        self.groups = [tuple(names.index(n) for n in group if n in names) for group in self.together]
+
+    def publish(self, names: list[str]) -> None:
+        """Name the items (this process, after the fork when the list is costly to build: ``check``'s obligations
+        import sympy, which the child's first sections do not need)."""
+        names = tuple(names)
+        self._name(names)
+        with self.lock:
+            self.count.value = self.back.value = len(names) if len(names) <= len(self.owner) else 0
+            self.digest.value = _digest(names)
+        self.published.set()
+
+    def adopt(self, names: list[str], *, timeout: float = 600.0) -> bool:
+        """In the child: whether it may claim from ``names``, its own copy of the list, once this process has
+        published it: only if it is the same list (same length and digest), else it claims nothing."""
+        names = tuple(names)
+        if not self.published.wait(timeout) or self.count.value != len(names) or self.digest.value != _digest(names):
+            return False
+        self._name(names)
+        return True
 
     def _members(self, k: int) -> tuple[int, ...]:
         return next((g for g in self.groups if k in g), (k,))
@@ -85,6 +117,8 @@ class Claims:
     def take_front(self, name: str) -> bool:
         """Whether this process is to do ``name`` (False: the child has claimed it; ask the inbox)."""
         k = self.names.index(name)
+        if k >= self.count.value:  # not shared (a list too long to share): this process's
+            return True
         with self.lock:
             self.front.value = max(self.front.value, k + 1)
             if self.owner[k] == 0:
@@ -108,6 +142,12 @@ class Claims:
             return None
 
 
+def _digest(names: tuple[str, ...]) -> int:
+    import zlib
+
+    return zlib.crc32("\0".join(names).encode())
+
+
 def _send_result(send: Any, key: str, work: Callable[[], Any]) -> None:
     try:
         send.send(("claimed", key, work()))
@@ -116,7 +156,7 @@ def _send_result(send: Any, key: str, work: Callable[[], Any]) -> None:
 
 
 def _child(makers: list[Maker], args: argparse.Namespace, send: Any,
-           tail: list[tuple[str, Callable[[], Any]]] = (), claims: Claims | None = None,  # type: ignore[assignment]
+           tail: Any = (), claims: Claims | None = None,
            context: Callable[[], Any] | None = None) -> None:
     import contextlib
 
@@ -127,6 +167,13 @@ def _child(makers: list[Maker], args: argparse.Namespace, send: Any,
     # the tail before the sections: a large section could fill the pipe, which the parent reads only when it needs
     # a value, and the child would then claim nothing while this process does every item itself
     with context() if context is not None else contextlib.nullcontext():
+        if callable(tail):  # built after the fork, in each process (:meth:`Claims.adopt`)
+            try:
+                tail = tail()
+            except Exception:  # this process then does every item (its own error is reported there)
+                tail = []
+            if claims is not None and not claims.adopt([name for name, _ in tail]):
+                claims = None
         while claims is not None and (taken := claims.take_back()) is not None:
             for k in taken:
                 _send_result(send, *tail[k])
@@ -170,7 +217,7 @@ class Inbox:
 
 
 def run_sections(makers: list[Maker], args: argparse.Namespace, *, parallel: bool | None = None,
-                 tail: list[tuple[str, Callable[[], Any]]] | None = None, together: tuple[tuple[str, ...], ...] = (),
+                 tail: Any = None, together: tuple[tuple[str, ...], ...] = (),
                  context: Callable[[], Any] | None = None) -> Iterator[Section]:
     """Each section of ``makers``, in order (module docstring).
 
@@ -179,6 +226,10 @@ def run_sections(makers: list[Maker], args: argparse.Namespace, *, parallel: boo
     the :class:`Claims` of ``tail`` (both ``None`` when everything runs here: do
     the work yourself).  Items named in one tuple of ``together`` are claimed
     as one; the child works through the tail within ``context()`` if given.
+    ``tail`` is a list ``[(name, work)]``, or a function that returns it: each
+    process then calls it after the fork (this one before its first section),
+    so what building it imports is not waited for before the child starts,
+    and is never imported when everything runs here.
     """
     if parallel is None:
         parallel = parallel_allowed()
@@ -194,12 +245,20 @@ def run_sections(makers: list[Maker], args: argparse.Namespace, *, parallel: boo
     recv, send = ctx.Pipe(duplex=False)
     quiet = copy.copy(args)
     quiet.json = True  # the child streams nothing: this process prints its tables, in order
-    tail = list(tail or [])
-    claims = Claims(ctx, [name for name, _ in tail], together) if tail else None
+    lazy = callable(tail)
+    tail = tail if lazy else list(tail or [])
+    claims = (Claims(ctx, together=together) if lazy else Claims(ctx, [name for name, _ in tail], together) if tail
+              else None)
     proc = ctx.Process(target=_child, args=(makers[1:], quiet, send, tail, claims, context),
                        daemon=True)
     proc.start()
     send.close()
+    if lazy:
+        try:
+            names = [name for name, _ in tail()]
+        except Exception:  # the first section meets the same error and reports it; the child claims nothing
+            names = []
+        claims.publish(names)
     inbox = Inbox(recv, proc)
     args.inbox = inbox
     args.claims = claims

@@ -213,16 +213,25 @@ def _decide_tail() -> list[tuple[str, Callable[[], Any]]]:
     process from the front (:class:`._parallel.Claims`, each group of :data:`TOGETHER` as one), so the cores finish
     together however fast each one is (measured: the sections alone are about as long as the obligations, so a fixed
     split leaves one core idle whichever way it errs)."""
+    import sympy.tensor.tensor  # noqa: F401 - sympy loads it on the first sum it builds: here, not mid-obligation
+
     from .._obligations import all_obligations, run_checked
 
     return [(ob.id, (lambda ob=ob: run_checked([ob])[0])) for ob in all_obligations()]
 
 
-def _import_shared() -> None:
-    """Import before the fork what both processes would each import after it (about 0.05 s each): sympy's
-    tensor module, which sympy loads on the first sum it builds, and ``xml.etree`` for every section's JUnit cases."""
-    import sympy.tensor.tensor  # noqa: F401
+def _shared_derivations() -> Any:
+    """:func:`~.._obligations._derived_k.shared_derivations`, imported when entered (after the fork: it imports sympy)."""
+    from .._obligations._derived_k import shared_derivations
 
+    return shared_derivations()
+
+
+def _import_shared() -> None:
+    """Import before the fork what both processes would each import after it: ``xml.etree`` for every section's
+    JUnit cases.  Not sympy (about 0.4 s with the obligations' modules): the child's first sections do not
+    need it, so each process imports it after the fork (:func:`._parallel.run_sections` takes the tail as
+    :func:`_decide_tail`, which each process calls there), and this process's import overlaps the child's work."""
     from .._infra import junit  # noqa: F401
 
 
@@ -416,11 +425,9 @@ def run(args: argparse.Namespace) -> int:
     makers = ([obligations_section] if only else SECTIONS) + ([smt_section] if wants_smt(args) else [])
     from ._parallel import run_sections
 
-    tail = _decide_tail() if not only else []
     _import_shared()
-    from .._obligations._derived_k import shared_derivations as shared
-
-    for section in run_sections(list(makers), args, tail=tail, together=TOGETHER, context=shared):
+    for section in run_sections(list(makers), args, tail=_decide_tail if not only else [], together=TOGETHER,
+                                context=_shared_derivations):
         sections.append(gate(section))
         if not as_json:
             if not section.streamed:

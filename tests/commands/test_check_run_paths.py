@@ -250,20 +250,30 @@ def test_every_obligation_may_go_to_the_other_core_unless_only_is_given(monkeypa
     from symbolic_friction._obligations import all_obligations
 
     seen = _run_sections_calls(monkeypatch, tmp_path)
-    assert [[name for name, _ in kw.get("tail") or []] for kw in seen] == [[ob.id for ob in all_obligations()], []]
+    assert [[name for name, _ in _items(kw.get("tail"))] for kw in seen] == [[ob.id for ob in all_obligations()], []]
+
+
+def _items(tail):
+    """The tail's items: run_sections takes a list, or a function each process calls after the fork."""
+    return (tail() if callable(tail) else tail) or []
 
 
 def test_the_tail_is_shared_in_its_groups_within_the_shared_derivations_unless_only_is_given(monkeypatch, tmp_path):
     """Without --only, run_sections gets the obligations (the tail both processes claim, from either end), the groups of TOGETHER (claimed as one) and the shared derivations the worker decides them within;
     with --only, an empty tail."""
-    from symbolic_friction._obligations._derived_k import shared_derivations
+    from symbolic_friction._obligations import _derived_k
 
     seen = _run_sections_calls(monkeypatch, tmp_path)
     tail = [name for name, _ in check._decide_tail()]
     assert tail
-    got = [(None if kw.get("tail") is None else [name for name, _ in kw["tail"]], kw.get("together"), kw.get("context"))
-           for kw in seen]
-    assert got == [(tail, check.TOGETHER, shared_derivations), ([], check.TOGETHER, shared_derivations)]
+    got = [(None if kw.get("tail") is None else [name for name, _ in _items(kw["tail"])], kw.get("together")) for kw in seen]
+    assert got == [(tail, check.TOGETHER), ([], check.TOGETHER)]
+    # the context is made after the fork (it imports sympy there): entering it opens one block of shared derivations
+    for kw in seen:
+        depth = len(_derived_k._SHARED)
+        with kw["context"]():
+            assert len(_derived_k._SHARED) == depth + 1
+        assert len(_derived_k._SHARED) == depth
 
 
 class _Pipe:
