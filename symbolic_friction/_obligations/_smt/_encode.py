@@ -95,9 +95,14 @@ def _sanitize(name: str) -> str:
 
 
 def _number(q: sp.Rational) -> str:
-    p, d = abs(int(q.p)), int(q.q)
-    text = str(p) if d == 1 else f"(/ {p} {d})"
-    return f"(- {text})" if q < 0 else text
+    return _ratio(int(q.p), int(q.q))
+
+
+def _ratio(p: int, d: int) -> str:
+    """``p/d`` (``d > 0``, in lowest terms) as SMT-LIB text; on Python ints (sympy's comparisons cost more than
+    the text: an export writes about 10⁵ numbers)."""
+    text = str(abs(p)) if d == 1 else f"(/ {abs(p)} {d})"
+    return f"(- {text})" if p < 0 else text
 
 
 def _app(op: str, parts: list[str]) -> str:
@@ -163,7 +168,7 @@ class _Encoder:
                 self.hypothesis(f"(not (= {self.term(a.base)} 0))")
             elif a.is_Rational and a.q != 1:
                 if a.p != 1:
-                    num.append(_number(sp.Integer(a.p)))
+                    num.append(_ratio(int(a.p), 1))
                 den.append(str(a.q))
             else:
                 num.append(self.term(a))
@@ -268,10 +273,12 @@ def _horner(terms: list[tuple[tuple[int, ...], int]], names: list[str], var: int
     """
     if not terms:
         return "0"
+    if len(terms) == 1:  # most calls: the text the steps below give one monomial, built without them
+        return _monomial(terms[0], names, var)
     while var < len(names) and all(m[var] == 0 for m, _ in terms):
         var += 1
     if var == len(names):  # monomials are distinct, so one constant term is left
-        return _number(sp.Integer(sum(c for _, c in terms)))
+        return _ratio(int(sum(c for _, c in terms)), 1)
     groups: dict[int, list[tuple[tuple[int, ...], int]]] = {}
     for m, c in terms:
         groups.setdefault(m[var], []).append((m, c))
@@ -282,6 +289,16 @@ def _horner(terms: list[tuple[tuple[int, ...], int]], names: list[str], var: int
         out = coeff if not out else f"(+ {coeff} {_app('*', [x] * (prev - d) + [out])})"
         prev = d
     return _app("*", [x] * prev + [out]) if prev else out
+
+
+def _monomial(term: tuple[tuple[int, ...], int], names: list[str], var: int) -> str:
+    """:func:`_horner` of the one term ``c·x^m`` from variable ``var`` on: ``(* x x (* y c))``, innermost last."""
+    m, c = term
+    text = _ratio(int(c), 1)
+    for i in range(len(names) - 1, var - 1, -1):
+        if m[i]:
+            text = f"(* {' '.join([names[i]] * m[i])} {text})"
+    return text
 
 
 _NEGATION = {("sign", 1): ("(not (> {} 0))", "> 0"), ("sign", 0): ("(not (= {} 0))", "= 0"),
