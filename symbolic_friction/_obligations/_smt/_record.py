@@ -105,7 +105,7 @@ def _entries(expr: Any) -> list[Any]:
 def _raw(poly: Any) -> tuple[RawPolynomial, int | None]:
     """``poly`` (python-flint ``fmpz_mpoly``) as a :class:`RawPolynomial`, and the sign all its coefficients share."""
     gens = tuple(str(n) for n in poly.context().names())
-    terms = tuple((tuple(int(e) for e in m), int(c)) for m, c in zip(poly.monoms(), poly.coeffs()))
+    terms = tuple((tuple(map(int, m)), int(c)) for m, c in zip(poly.monoms(), poly.coeffs()))
     signs = {(c > 0) - (c < 0) for _, c in terms}
     return RawPolynomial(gens, terms), (0 if not terms else signs.pop() if len(signs) == 1 else None)
 
