@@ -63,18 +63,38 @@ def test_one_job_runs_everything_here(monkeypatch):
     assert {s.rows[0][0] for s in got} == {str(os.getpid())}
 
 
-def _small_check(monkeypatch, tmp_path, later, *, tail=None):
-    """``check.run`` on two obligations (coordinates slowed, so that the worker, done with its cheap later section,
-    claims claim1.cases from the back of the tail) and one cheap later section."""
+def _held_until_claimed(monkeypatch, args, name, limit=3.0):
+    """Make this process's coordinates obligation wait until the worker has claimed ``name`` from the back of the
+    tail (at most ``limit`` s, the fixed sleep this replaces: a claim is a flag set under the lock, read here)."""
     import time
 
+    from symbolic_friction._obligations.coordinates import Coordinates
+
+    real = Coordinates.verify
+
+    def held(self, subject):
+        deadline = time.monotonic() + limit
+        while time.monotonic() < deadline:
+            claims = args.claims
+            if claims is not None and claims.owner[claims.names.index(name)] == 2:  # 2: the child's
+                break
+            time.sleep(0.005)
+        return real(self, subject)
+
+    monkeypatch.setattr(Coordinates, "verify", held)
+
+
+def _small_check(monkeypatch, tmp_path, later, *, tail=None):
+    """``check.run`` on two obligations (coordinates held until the worker, done with its cheap later section,
+    has claimed claim1.cases from the back of the tail) and one cheap later section."""
     from symbolic_friction import _obligations
     from symbolic_friction._cli import check
     from symbolic_friction._obligations.claim1 import Claim1Cases
     from symbolic_friction._obligations.coordinates import Coordinates
 
-    real = Coordinates.verify
-    monkeypatch.setattr(Coordinates, "verify", lambda self, s: (time.sleep(3), real(self, s))[1])
+    args = argparse.Namespace(json=True, write=False, proofs=str(tmp_path), config=None, no_certificates=True,
+                              only=None, junit_xml=None)
+    _held_until_claimed(monkeypatch, args, "claim1.cases")
     monkeypatch.delenv(_parallel.ENV, raising=False)
     monkeypatch.setattr(_parallel, "parallel_allowed", lambda: True)  # also under pytest-xdist's threads
     monkeypatch.setattr(_obligations, "all_obligations", lambda: [Coordinates(), Claim1Cases()])
@@ -82,8 +102,6 @@ def _small_check(monkeypatch, tmp_path, later, *, tail=None):
     if tail is not None:
         monkeypatch.setattr(check, "_decide_tail", tail)
     monkeypatch.chdir(tmp_path)
-    args = argparse.Namespace(json=True, write=False, proofs=str(tmp_path), config=None, no_certificates=True,
-                              only=None, junit_xml=None)
     return check.run(args)
 
 
@@ -222,7 +240,6 @@ def test_a_worker_that_dies_on_a_claimed_item_leaves_it_to_this_process(monkeypa
 
 def test_a_tail_obligation_claimed_by_the_worker_is_reported_from_there(monkeypatch, tmp_path, capsys):
     import json
-    import time
 
     from symbolic_friction import _obligations
     from symbolic_friction._cli import check
@@ -232,8 +249,9 @@ def test_a_tail_obligation_claimed_by_the_worker_is_reported_from_there(monkeypa
     from symbolic_friction._obligations.table1 import TableI
 
     parent = os.getpid()
-    real = Coordinates.verify
-    monkeypatch.setattr(Coordinates, "verify", lambda self, s: (time.sleep(3), real(self, s))[1])  # the worker gets there first
+    args = argparse.Namespace(json=True, write=False, proofs=str(tmp_path), config=None, no_certificates=True,
+                              only=None, junit_xml=None)
+    _held_until_claimed(monkeypatch, args, "table1")  # the worker gets there first
     monkeypatch.setattr(TableI, "verify", lambda self, s: Outcome.fail(f"decided in {os.getpid()}"))
     monkeypatch.setattr(Claim1Cases, "verify", lambda self, s: Outcome(True, "stub"))
     monkeypatch.delenv(_parallel.ENV, raising=False)
@@ -242,8 +260,6 @@ def test_a_tail_obligation_claimed_by_the_worker_is_reported_from_there(monkeypa
     monkeypatch.setattr(check, "SECTIONS", [check.obligations_section, _maker("later")])
     monkeypatch.chdir(tmp_path)
     assert [name for name, _ in check._decide_tail()] == ["coordinates", "claim1.cases", "table1"]
-    args = argparse.Namespace(json=True, write=False, proofs=str(tmp_path), config=None, no_certificates=True,
-                              only=None, junit_xml=None)
     assert check.run(args) == 1
     rows = {o["id"]: o for o in json.loads(capsys.readouterr().out)["obligations"]}
     assert list(rows) == ["coordinates", "claim1.cases", "table1"]  # the paper's order, whoever decided them
