@@ -8,10 +8,13 @@ added as a project's ``args:`` would add it: everything passes, the JUnit XML
 has one test case per obligation and certificate.  Editing one constant makes
 the hook (``check``) fail, naming the inequality in its output and its JUnit
 XML.  (``pre-commit try-repo`` would build a fresh environment with cvxpy and
-numba from the network; the hook's entry command is run directly instead, in a
-subprocess with this checkout on ``PYTHONPATH``, and once more, exactly as
-declared, as the console script of a copy installed into a fresh virtual
-environment.)
+numba from the network; the hook's entry command is run directly instead, with
+this checkout on ``PYTHONPATH``, and once more, exactly as declared, as the
+console script of a copy installed into a fresh virtual environment.)  The
+command lines run in a child of one warm interpreter (``tests/forkserver.py``:
+its own working directory, the exit status as the interpreter maps it), not
+each in a fresh interpreter that imports numpy, sympy and python-flint again;
+the failing hook and the installed console script run as real processes.
 """
 
 from __future__ import annotations
@@ -19,6 +22,7 @@ from __future__ import annotations
 import json
 import os
 import re
+import resource
 import shlex
 import subprocess
 import sys
@@ -52,13 +56,31 @@ def _cli(*args: str) -> list[str]:
 
 
 @pytest.fixture(scope="module")
-def project(tmp_path_factory):
+def forks():
+    """The warm interpreter of this module's command lines (one start instead of one per command line)."""
+    from tests.forkserver import ForkServer
+
+    server = ForkServer()
+    yield server
+    server.close()
+
+
+def _forked(forks, argv: list[str], cwd: Path) -> subprocess.CompletedProcess:
+    """``symbolic-friction ARGV`` (``argv`` as :func:`_cli` or :func:`_hook_entry` give it) in a forked child, as
+    :func:`_run` runs it in a fresh interpreter: working directory ``cwd``, no address-space limit, text output."""
+    assert argv[:3] == [sys.executable, "-m", "symbolic_friction"]
+    run = forks.run(argv[3:], cwd=str(cwd), timeout=600, memory=resource.RLIM_INFINITY)
+    return subprocess.CompletedProcess(argv, run.returncode, run.stdout.decode(), run.stderr.decode())
+
+
+@pytest.fixture(scope="module")
+def project(tmp_path_factory, forks):
     root = tmp_path_factory.mktemp("user-project")
     subprocess.run(["git", "init", "-q", str(root)], check=True)
-    one = _run(_cli("certify", "--k-p", "3", "--k-i", "4", "--k-v", "6.4", "--f-c", "1", "--mode", "feasible",
+    one = _forked(forks, _cli("certify", "--k-p", "3", "--k-i", "4", "--k-v", "6.4", "--f-c", "1", "--mode", "feasible",
                     "--out", "proofs", "--name", "slow_axis", "--label", "slow axis"), root)
     assert one.returncode == 0, one.stderr
-    two = _run(_cli("certify", "--m", "2", "--k-p-bar", "1.32", "--k-i-bar", "0.16", "--k-d-bar", "2.5",
+    two = _forked(forks, _cli("certify", "--m", "2", "--k-p-bar", "1.32", "--k-i-bar", "0.16", "--k-d-bar", "2.5",
                     "--alpha-v", "0.5", "--f-c-bar", "2", "--mode", "feasible", "--out", "proofs",
                     "--name", "fast_axis", "--label", "fast axis, 2 kg"), root)
     assert two.returncode == 0, two.stderr
@@ -81,11 +103,11 @@ def test_certificates_keep_physical_gains_and_label(project):
     assert data["provenance"]["label"] == "fast axis, 2 kg"
 
 
-def test_hook_and_check_pass_then_fail_on_an_edited_constant(project, tmp_path):
+def test_hook_and_check_pass_then_fail_on_an_edited_constant(project, forks, tmp_path):
     # One run serves as the hook and as `check --junit-xml`: the hook's entry with the arguments a project's
     # `args: [--junit-xml, FILE]` appends (the hook's entry alone, as declared, runs in the fresh-environment test)
     report = tmp_path / "check.xml"
-    hook = _run(_hook_entry("symbolic-friction-check") + ["--junit-xml", str(report)], project)
+    hook = _forked(forks, _hook_entry("symbolic-friction-check") + ["--junit-xml", str(report)], project)
     assert hook.returncode == 0, hook.stdout + hook.stderr
     assert hook.stdout.strip().splitlines()[-1].startswith("check: PASSED")
     assert "2 of 2 certificates proved exactly, 2 of 2 up to date" in hook.stdout
@@ -100,7 +122,8 @@ def test_hook_and_check_pass_then_fail_on_an_edited_constant(project, tmp_path):
     assert "lemma3.hatV_derivative" in by_class["check.obligations"] and len(by_class["check.obligations"]) >= 30
     assert "check.report" not in by_class  # the user's project keeps no obligations.md
 
-    verify_hook = _run(_hook_entry("symbolic-friction-verify") + ["proofs/slow_axis.json", "proofs/fast_axis.json"], project)
+    verify_hook = _forked(forks, _hook_entry("symbolic-friction-verify") + ["proofs/slow_axis.json", "proofs/fast_axis.json"],
+                          project)
     assert verify_hook.returncode == 0, verify_hook.stderr
 
     # edit one constant: k3 = k2 breaks Lemma 3's condition k3 > k2
@@ -111,6 +134,7 @@ def test_hook_and_check_pass_then_fail_on_an_edited_constant(project, tmp_path):
     path.write_text(json.dumps(data, indent=2, sort_keys=True) + "\n", encoding="utf-8")
     try:
         report.unlink()  # the failing run must write its own
+        # a real process: the exit status pre-commit sees from a failing hook is the interpreter's own
         hook = _run(_hook_entry("symbolic-friction-check") + ["--junit-xml", str(report)], project)
         assert hook.returncode == 1
         assert "k3 > k2" in hook.stdout and "slow_axis.json" in hook.stdout
@@ -120,16 +144,16 @@ def test_hook_and_check_pass_then_fail_on_an_edited_constant(project, tmp_path):
         assert [(c.get("classname"), c.get("name")) for c in failed] == [
             ("check.certificates", str(Path("proofs") / "slow_axis.json")), ("check.independent", str(Path("proofs") / "slow_axis.json"))]
         assert "k3 > k2" in failed[0].find("failure").text and "k3 > k2" in failed[1].find("failure").text
-        verify_hook = _run(_hook_entry("symbolic-friction-verify") + ["proofs/slow_axis.json"], project)
+        verify_hook = _forked(forks, _hook_entry("symbolic-friction-verify") + ["proofs/slow_axis.json"], project)
         assert verify_hook.returncode == 1 and "k3 > k2" in verify_hook.stdout
     finally:
         path.write_text(original, encoding="utf-8")
 
 
-def test_a_listed_certificate_that_is_missing_fails(project, tmp_path):
+def test_a_listed_certificate_that_is_missing_fails(project, forks, tmp_path):
     (project / "symbolic-friction.toml").write_text('certificates = ["slow_axis.json", "gone.json"]\n', encoding="utf-8")
     try:
-        check = _run(_cli("check", "--json"), project)
+        check = _forked(forks, _cli("check", "--json"), project)
         assert check.returncode == 1
         payload = json.loads(check.stdout)
         assert [(Path(c["file"]).name, c["proved"]) for c in payload["certificates"]] == [("slow_axis.json", True), ("gone.json", False)]
