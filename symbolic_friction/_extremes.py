@@ -378,7 +378,7 @@ def run_extremes(methods: Sequence[Any] | None = None, *, only: Sequence[str] | 
     []
     >>> print(result.report())  # doctest: +SKIP
     """
-    from ._simulation import SimulationMethod, configure
+    from ._simulation import SimulationMethod, configure, event
 
     t0 = time.perf_counter()
     limit = check_real(limit, name="limit", high=MAX_LIMIT, error=SimulationError, why="seconds per run, a bound on time")
@@ -391,10 +391,10 @@ def run_extremes(methods: Sequence[Any] | None = None, *, only: Sequence[str] | 
     chosen = [c for c in matrix if only is None or c.group in only or c.label in only]
     if not chosen:
         raise SimulationError(f"no extreme cell matches {list(only or [])}; groups: {sorted({c.group for c in matrix})}")
-    outcomes = []
-    refs = {}
+    outcomes, refs = [], {}
     cache: dict = {}
     ref_seconds = 0.0
+    event.preload_compiled()  # the compiled kernel, if the runs use it: loaded here once, not in each forked child
     for cell in chosen:
         ref = refs[cell.label] = _reference(cell)
         ref_seconds += ref.seconds

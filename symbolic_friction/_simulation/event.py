@@ -66,7 +66,7 @@ from ._kernel_layout import BUFFER_FULL, I_DWELL, I_STICK_SLIP_H, I_STICK_SLIP_T
 from ._trajectories import Status, Trajectories
 from .search import slip_model
 
-__all__ = ["EventDriven", "run"]
+__all__ = ["EventDriven", "run", "preload_compiled"]
 
 # Room for this many events per trajectory on the first pass (reset PID: _first_room).  A trajectory
 # with more stops (BUFFER_FULL) with its loop's state saved and goes on from there in a larger buffer
@@ -347,6 +347,26 @@ class EventDriven(SimulationMethod):
 # and its tolerances (relative; absolute ones scaled by the state's size).
 FALLBACK_INTEGRATOR = "Radau"
 FALLBACK_RTOL = 1e-12
+
+
+_preloaded = False
+
+
+def preload_compiled() -> None:
+    """Make the compiled kernel's first call in this process, if a small call here would run it (:mod:`._jit`).
+
+    numba loads a compiled function's machine code from its on-disk cache at the function's first call, in the
+    process that makes it.  A process that simulates only in forked children (the extremes matrix: each run in a
+    child, for its time limit) has every child load it again and throw it away: about 0.4 s a child (measured;
+    0.02 s once the parent holds it).  One short run of Table I's case (a) makes the first call of the kernel's
+    entry point, with the types every run passes; nothing is loaded while small calls get the plain kernel.
+    """
+    global _preloaded
+    if _preloaded or kernel(0.0) is plain():
+        return
+    method = EventDriven()
+    method._solve(Parameters.table_i("a"), np.array([0.0, 1.0, 0.0]), 1.0, np.linspace(0.0, 1.0, 3), method.options)
+    _preloaded = True
 
 
 def _fallback(
