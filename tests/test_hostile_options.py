@@ -29,7 +29,10 @@ import stat
 
 import pytest
 
+from tests import test_hostile_inputs
 from tests.test_hostile_inputs import BOUND, CERT, _cert_with, _scene, run_case
+
+_case_root, case_dir = test_hostile_inputs._case_root, test_hostile_inputs.case_dir  # fixtures: a directory per case
 
 BIG = "7" * 100_000
 CERTS = str(CERT)
@@ -447,14 +450,14 @@ def test_case_ids_are_unique_and_many():
 
 
 @pytest.mark.parametrize("case", OPTION_CASES, ids=[c[0] for c in OPTION_CASES])
-def test_hostile_option_value(case, tmp_path, server):
+def test_hostile_option_value(case, case_dir, server):
     name, argv, files = case
     if NOPERM in files.values() and ROOT:
         pytest.skip("running as root: permissions do not apply")
     try:
-        result, _ = run_case(argv, _materialise_links(tmp_path, files), {}, tmp_path, server)
+        result, _ = run_case(argv, _materialise_links(case_dir, files), {}, case_dir, server)
     finally:
-        for path in tmp_path.iterdir():
+        for path in case_dir.iterdir():
             if not path.is_symlink() and path.is_dir():
                 path.chmod(0o755)
     _check(result, name)
@@ -566,9 +569,9 @@ FILE_CASES = list(_file_cases())
 
 
 @pytest.mark.parametrize("case", FILE_CASES, ids=[c[0] for c in FILE_CASES])
-def test_hostile_file_content(case, tmp_path, server):
+def test_hostile_file_content(case, case_dir, server):
     name, argv, files = case
-    result, _ = run_case(argv, files, {}, tmp_path, server)
+    result, _ = run_case(argv, files, {}, case_dir, server)
     _check(result, name)
 
 
@@ -577,9 +580,9 @@ SIGN_CASES = [(f"sign-certificate-{field.replace('__', '.')}-{label}", field, va
 
 
 @pytest.mark.parametrize("case", SIGN_CASES, ids=[c[0] for c in SIGN_CASES])
-def test_a_number_of_the_wrong_sign_in_a_certificate_is_refused_by_the_verifier(case, tmp_path, server):
+def test_a_number_of_the_wrong_sign_in_a_certificate_is_refused_by_the_verifier(case, case_dir, server):
     name, field, value, premise = case
-    result, _ = run_case(["verify", "{d}/c.json"], {"c.json": _cert_with(**{field: value})}, {}, tmp_path, server)
+    result, _ = run_case(["verify", "{d}/c.json"], {"c.json": _cert_with(**{field: value})}, {}, case_dir, server)
     out, err = result.stdout.decode("utf-8", errors="replace"), result.stderr.decode("utf-8", errors="replace")
     assert not result.timed_out and "Traceback" not in err and err == "", err[-2000:]
     assert result.returncode == 1 and out.startswith("FAILED ") and f"{premise}: {value} > 0 is false" in out, out[-2000:]
@@ -599,10 +602,10 @@ ENCODING_CASES = [
 
 
 @pytest.mark.parametrize("case", ENCODING_CASES, ids=[c[0] for c in ENCODING_CASES])
-def test_hostile_encoding(case, tmp_path, server):
+def test_hostile_encoding(case, case_dir, server):
     name, argv, env = case
     files = {"κ": "text"} if "{d}/κ" in argv else {}
-    result, _ = run_case(argv, files, env, tmp_path, server)
+    result, _ = run_case(argv, files, env, case_dir, server)
     _check(result, name)
 
 
@@ -617,17 +620,17 @@ WRITTEN_THROUGH = [
 
 
 @pytest.mark.parametrize("case", WRITTEN_THROUGH, ids=[c[0] for c in WRITTEN_THROUGH])
-def test_special_output_is_written_through(case, tmp_path, server):
+def test_special_output_is_written_through(case, case_dir, server):
     name, argv = case
     fd = None
     if "{d}/fifo" in argv:
-        os.mkfifo(tmp_path / "fifo")
-        fd = os.open(tmp_path / "fifo", os.O_RDONLY | os.O_NONBLOCK)  # the reader a pipe output needs, there first
+        os.mkfifo(case_dir / "fifo")
+        fd = os.open(case_dir / "fifo", os.O_RDONLY | os.O_NONBLOCK)  # the reader a pipe output needs, there first
     try:
-        result, _ = run_case(argv, {}, {}, tmp_path, server)
+        result, _ = run_case(argv, {}, {}, case_dir, server)
         if fd is not None:
             assert b"<testsuite" in os.read(fd, 1 << 20)
-            assert stat.S_ISFIFO(os.lstat(tmp_path / "fifo").st_mode)
+            assert stat.S_ISFIFO(os.lstat(case_dir / "fifo").st_mode)
     finally:
         if fd is not None:
             os.close(fd)
