@@ -562,6 +562,13 @@ def all_edits(kind: str, path: Path, seed: int = 0) -> list[Edit]:
     Each edit's ``family`` names the kind of edit and the member it touches (``nudge +1e-6 @ constants``):
     :func:`corpus` draws across families, so a sample of a few hundred holds every kind of edit.
     """
+    return [copy.copy(edit) for edit in _listed_edits(kind, path, seed)]  # made() fills in the copy, not the list
+
+
+@functools.cache
+def _listed_edits(kind: str, path: Path, seed: int) -> tuple[Edit, ...]:
+    """:func:`all_edits`, listed once per process: a sup-flow file's tens of thousands of edits take about half a
+    second, and the tests list each file for the sample (:func:`corpus`) and again for its types (:func:`edit_types`)."""
     data = json.loads(path.read_text(encoding="utf-8"))
     rng = random.Random(f"{seed}:{path.name}:{kind}")
     source = path.relative_to(ROOT).as_posix()
@@ -577,7 +584,7 @@ def all_edits(kind: str, path: Path, seed: int = 0) -> list[Edit]:
         out.append(Edit(kind, source, what, f"{family} @ {member}" if member else family, edited, claim, note, original=data))
     for what, family, edited, text in text_edits(data, path.read_text(encoding="utf-8")):
         out.append(Edit(kind, source, what, family, edited, "", "", text, original=data))
-    return out
+    return tuple(out)
 
 
 def made(edit: Edit) -> Edit:
