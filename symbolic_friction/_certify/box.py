@@ -180,8 +180,10 @@ def _validator() -> Any:
     import jsonschema
     from importlib.resources import files
 
+    from ._schema import inline_local_refs
+
     schema = json.loads(files("symbolic_friction").joinpath("schemas", "box-certificate-v1.schema.json").read_text(encoding="utf-8"))
-    return jsonschema.Draft202012Validator(schema)
+    return jsonschema.Draft202012Validator(inline_local_refs(schema))
 
 
 def box_from_data(data: object, *, source: str = "<string>") -> BoxCertificate:

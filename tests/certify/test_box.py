@@ -170,3 +170,32 @@ def test_a_changed_file_is_stale(committed, tmp_path):
     assert entry.ok and "differs from what `symbolic-friction certify` writes now" in entry.drift
     (entry,) = check_listed_certificates(tmp_path, ["box.json"], strict=True)
     assert entry.proved and entry.stale and "differs from what `symbolic-friction certify` writes now" in entry.reason
+
+
+@pytest.mark.parametrize("schema", ["box-certificate-v1.schema.json", "certificate-v1.schema.json"])
+def test_the_validators_inlined_refs_report_what_the_shipped_schema_does(schema):
+    """The validators use the schemas with their ``$defs`` refs inlined (faster): the same verdicts, the same errors."""
+    import jsonschema
+
+    from symbolic_friction._certify import _schema, box
+
+    raw = json.loads((Path(_schema.__file__).parents[1] / "schemas" / schema).read_text(encoding="utf-8"))
+    fast = box._validator() if schema.startswith("box") else _schema._validator()
+    assert "$ref" not in json.dumps(fast.schema) and "$ref" in json.dumps(raw)
+    valid = json.loads((PROOFS / ("box_case_a_10pct.json" if schema.startswith("box") else "case_a_tightest.json")).read_text())
+    documents = [valid, [], {**valid, "extra": 1}, {k: v for k, v in valid.items() if k != "overshoot_bound"}]
+    for key, value in valid.items():
+        for wrong in (1.5, ["1", "2", "3"], {"a": "1"}):
+            documents.append({**valid, key: wrong})
+        if isinstance(value, dict):
+            for inner in value:
+                documents.append({**valid, key: {**value, inner: [1, "1/0x"]}})
+
+    def best(validator, data):
+        error = jsonschema.exceptions.best_match(validator.iter_errors(data))
+        return None if error is None else (error.message, list(error.absolute_path), error.validator)
+
+    slow = jsonschema.Draft202012Validator(raw)
+    assert best(fast, valid) is None
+    for data in documents:
+        assert best(fast, data) == best(slow, data), data
