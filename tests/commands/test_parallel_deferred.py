@@ -114,3 +114,56 @@ def test_adopt_waits_for_the_published_list_and_checks_it():
     assert claims.adopt(["a", "b", "c"], timeout=0.01)
     assert claims.take_back() == (1, 2)  # the group of b and c, claimed as one
     assert claims.take_front("a") and not claims.take_front("b")
+
+
+# -- late sections: a second child, forked once the tail is built ---------------------------------------------------
+
+_BUILT = {"tail": False}
+
+
+def _by_pid(name):
+    def make(args):
+        return Section(name, ("pid", "tail built"), [(str(os.getpid()), str(_BUILT["tail"]))], {}, True, [], summary=name)
+
+    make.__name__ = name
+    return make
+
+
+def _built_tail(names):
+    def tail():
+        _BUILT["tail"] = True  # what building it imports: the second child inherits it, the first does not
+        return [(name, os.getpid) for name in names]
+
+    return tail
+
+
+def test_late_sections_run_in_a_second_child_forked_after_the_tail_and_it_claims(monkeypatch):
+    monkeypatch.delenv(_parallel.ENV, raising=False)
+    monkeypatch.setitem(_BUILT, "tail", False)
+    makers = [_first(["x", "y", "z"]), _by_pid("early"), _by_pid("late"), _by_pid("early2")]
+    got = list(_parallel.run_sections(makers, argparse.Namespace(json=False), parallel=True,
+                                      tail=_built_tail(["x", "y", "z"]), late=("late",)))
+    assert [s.title for s in got] == ["first", "early", "late", "early2"]  # the order of makers, whoever ran them
+    (early_pid, early_built), (late_pid, late_built) = got[1].rows[0], got[2].rows[0]
+    assert got[3].rows[0] == (early_pid, "False")  # the first child runs every other section, the tail unbuilt there
+    assert early_built == "False" and late_built == "True" and len({early_pid, late_pid, str(os.getpid())}) == 3
+    by = dict(got[0].rows)
+    assert set(by.values()) == {late_pid}  # the second child claimed every item (the first section waited for it)
+
+
+def test_a_second_child_that_dies_leaves_its_section_and_items_to_this_process(monkeypatch):
+    monkeypatch.delenv(_parallel.ENV, raising=False)
+    parent = os.getpid()
+
+    def late(args):
+        if os.getpid() != parent:
+            os._exit(3)  # the second child dies before it claims anything
+        return Section("late", ("pid",), [(str(os.getpid()),)], {}, True, [], summary="late")
+
+    got = list(_parallel.run_sections([_first(["x", "y"], until_child_ends=True), _by_pid("early"), late],
+                                      argparse.Namespace(json=False), parallel=True,
+                                      tail=lambda: [(name, os.getpid) for name in ("x", "y")], late=("late",)))
+    assert dict(got[0].rows) == {"x": str(parent), "y": str(parent)}  # the items, decided here
+    assert got[1].rows[0][0] != str(parent)  # the first child's section, from there
+    assert got[2].rows == [(str(parent),)] and "decided in the main process" in got[2].notes[-1]
+    assert "exit code 3" in got[2].notes[-1]
