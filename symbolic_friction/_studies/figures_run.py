@@ -64,12 +64,15 @@ def _warm_up() -> None:
     """Import in the parent what every child needs, so that each forked child does not import it again."""
     import matplotlib
 
-    from .._simulation import _jit
+    from .._simulation import _jit, event
 
     matplotlib.use("Agg")
     import matplotlib.pyplot  # noqa: F401
     if _jit.jit_enabled():
-        _jit.compiled()  # the event kernel's machine code, loaded once and inherited
+        _jit.compiled()  # numba and the kernel's modules, imported once and inherited
+        # numba loads the machine code at a function's first call, in the process that makes it: made here, not
+        # again in each forked child (0.4 s a child)
+        event.preload_compiled()
 
 
 def run_parallel(
