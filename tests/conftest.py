@@ -36,15 +36,20 @@ import pytest
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 EARLY = (
-    "tests/test_extremes.py",  # ≈ 75 s alone (the matrix fixture)
-    "tests/independent/test_tampered_sup_flow.py",  # ≈ 45 s
-    "tests/test_notebooks.py",  # ≈ 45 s
-    "tests/test_hostile_options.py",  # ≈ 40 s (933 command lines, none slow); test_hostile_inputs.py with it (SHARED)
-    "tests/test_project_ci.py",  # ≈ 35 s
+    "tests/test_extremes.py",  # ≈ 40 s (the matrix fixture ≈ 33 s)
+    "tests/test_hostile_options.py",  # ≈ 33 s with test_hostile_inputs.py (SHARED); 933 command lines, none slow
+    "tests/test_notebooks.py",  # ≈ 30 s
+    "tests/test_project_ci.py",  # ≈ 27 s
+    "tests/commands/test_check.py",  # ≈ 23 s
+    "tests/independent/test_tampered_sup_flow.py",  # ≈ 20 s
+    "tests/simulation/test_reset.py",  # ≈ 17 s, no test marked slow
+    "tests/test_docs.py",  # ≈ 14 s (the Sphinx build), no test marked slow, collected near the end
 )
-"""The longest modules, longest first: handed out before the other slow ones, which are handed out before the rest.
-(A long module handed out last leaves the other worker idle; ``tests/test_hostile_options.py`` and
-``tests/test_extremes.py`` are collected near the end.)"""
+"""The longest modules, longest first (``-n 0`` on a loaded 2-core machine, ``--junitxml``, per module; the SHARED
+group's together): handed out before the other slow ones, which are handed out before the rest.  (A long module
+handed out last leaves the other worker idle; ``tests/test_hostile_options.py``, ``tests/test_extremes.py`` and
+``tests/test_docs.py`` are collected near the end.)  The next longest, about 10 to 13 s each (``test_mutation``,
+``test_box``, ``test_figures``, ``test_hostile_api``, the crosscheck reports), come after these."""
 
 SHARED = {
     "crosscheck reports": ("paper_report", "wrong_report"),  # tests/crosscheck/conftest.py: seeded runs, ≈ 15 s
@@ -54,8 +59,8 @@ SHARED = {
 is handed out with the others of its group (one xdist unit), so the fixture is computed on one worker only."""
 
 TIMED = "tests/test_extremes.py"
-"""The module whose fixture is held to a wall-clock budget (the extremes matrix: under 120 s, about 65 s on a core
-of its own).  It is handed out first (:data:`EARLY`), and while it runs the other workers get no :data:`BUSY`
+"""The module whose fixture is held to a wall-clock budget (the extremes matrix: under 120 s, about 33 s beside one
+other busy process).  It is handed out first (:data:`EARLY`), and while it runs the other workers get no :data:`BUSY`
 module, so that on two cores it shares them with one other busy process, never with two."""
 
 BUSY = (
