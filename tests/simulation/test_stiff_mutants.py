@@ -139,10 +139,22 @@ def undecided(monkeypatch):
     slip_model.cache_clear()
 
 
+_ON_41: dict = {}
+
+
+def fallback_on_41(undecided):
+    """``simulate(params, z0, 10.0, t_eval=np.linspace(0.0, 10.0, 41))`` under :func:`undecided`: computed once for
+    the tests that only read it (a Radau run of about half a second; the run is deterministic)."""
+    params, z0, _, _ = undecided
+    if "sol" not in _ON_41:
+        _ON_41["sol"] = simulate(params, z0, 10.0, t_eval=np.linspace(0.0, 10.0, 41))
+    return _ON_41["sol"]
+
+
 def test_the_fallback_keeps_the_requested_samples_and_the_event_times(undecided):
     params, z0, exact, exact_events = undecided
     t = np.linspace(0.0, 10.0, 41)
-    sol = simulate(params, z0, 10.0, t_eval=t)
+    sol = fallback_on_41(undecided)
     assert sol.status == Status.FALLBACK
     assert np.array_equal(sol.t, t)  # the samples asked for, once each (t_end not repeated)
     assert np.abs(sol.z - exact.z).max() <= 1e-9 * 3.0
@@ -456,7 +468,7 @@ def test_the_slip_after_a_stick_is_cached_on_stiff_gains(params):
 def test_a_sample_at_the_switch_is_the_kernels(undecided):
     """A requested sample at exactly the time the kernel stopped is the kernel's (exact) one, once."""
     params, z0, _, _ = undecided
-    t_from = simulate(params, z0, 10.0, t_eval=np.linspace(0.0, 10.0, 41)).options["fallback"]["from"]
+    t_from = fallback_on_41(undecided).options["fallback"]["from"]
     t = np.sort(np.concatenate([np.linspace(0.0, 10.0, 41), [t_from]]))
     sol = simulate(params, z0, 10.0, t_eval=t)
     assert np.array_equal(sol.t, t)
