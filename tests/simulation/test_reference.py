@@ -9,6 +9,7 @@ with a step longer than its rule allows.
 
 from __future__ import annotations
 
+import functools
 import math
 import time
 from fractions import Fraction
@@ -132,10 +133,18 @@ def _check_against_expm(ref, params, interior=4, max_slips=None):
                 assert abs(y[2]) <= 1e-32 * size  # the slip ends at a zero of v
 
 
+@functools.cache
+def recorded(name: str) -> Reference:
+    """The reference of the regression case ``name`` at 40 digits: computed once for the tests that only read it (a
+    solution is fixed at construction; reading it samples, never changes it)."""
+    params, z0, t_end = CASES[name]
+    return Reference(params, z0, t_end, dps=40)
+
+
 @pytest.mark.parametrize("name", CASES)
 def test_the_regression_cases_agree_with_expm_from_each_event(name):
     params, z0, t_end = CASES[name]
-    ref = Reference(params, z0, t_end, dps=40)
+    ref = recorded(name)
     _check_against_expm(ref, params)
     assert ref.guard_v_hits == 0
 
@@ -143,7 +152,7 @@ def test_the_regression_cases_agree_with_expm_from_each_event(name):
 @pytest.mark.parametrize("name", CASES)
 def test_the_regression_cases_reproduce_their_recorded_data(name):
     params, z0, t_end = CASES[name]
-    ref = Reference(params, z0, t_end, dps=40)
+    ref = recorded(name)
     want = EXPECTED[name]
     assert ref.status == want["status"]
     assert [(a, b) for _, a, b in ref.events] == [(a, b) for _, a, b in want["events"]]
@@ -160,7 +169,7 @@ def test_the_recorded_cases_are_what_their_names_say():
     creep = EXPECTED["creep"]["events"]
     assert [(a, b) for _, a, b in creep] == [(-1, 0), (0, -1)]
     assert abs(float(creep[0][0]) - 0.20893) < 1e-5 and abs(float(creep[1][0]) - 6.50758) < 1e-5
-    ref = Reference(*CASES["creep"], dps=40)
+    ref = recorded("creep")
     assert abs(float(ref.x_at(4.0)[0][0]) + 0.1185) < 1e-3
     # stiff_stall: slip, slip, a stick, one slip(-1) to the horizon
     assert [(a, b) for _, a, b in EXPECTED["stiff_stall"]["events"]] == [(-1, 1), (1, 0), (0, -1)]
@@ -182,7 +191,7 @@ def test_a_stiff_trajectory_costs_what_a_mild_one_does():
 
 def test_the_step_follows_the_slow_pair():
     params, z0, t_end = CASES["kv1e8"]
-    ref = Reference(params, z0, t_end, dps=40)
+    ref = recorded("kv1e8")
     with mpmath.workdps(80):
         roots = mpmath.polyroots([1, params.k_v, mpmath.mpf(params.k_p.numerator) / params.k_p.denominator, params.k_i],
                                  maxsteps=200, extraprec=200)
@@ -207,7 +216,7 @@ def test_a_step_longer_than_the_slow_period_skips_a_zero_of_v():
 
 def test_a_creeping_slip_keeps_its_offset_exact():
     # the stick of "creep" ends at φ = -f_c exactly: the new slip starts at y = (σ, 0, 0)
-    ref = Reference(*CASES["creep"], dps=40)
+    ref = recorded("creep")
     slip = ref.pieces[-1]
     assert slip.mode == -1 and slip.grid[0][1] == 0 and slip.grid[0][2] == 0
     # v stays tiny and negative for the whole slip: one piece to the horizon
