@@ -125,7 +125,8 @@ def test_static_friction_and_float_range_are_refused():
 _LOG = st.floats(min_value=-4, max_value=4)
 
 
-@settings(max_examples=25, deadline=None)
+# derandomized as the suite's other property tests: the same 25 examples on every run (and so the same time)
+@settings(max_examples=25, deadline=None, derandomize=True, database=None)
 @given(_LOG, _LOG, st.floats(min_value=-3, max_value=3))
 def test_no_proved_kappa_is_below_the_proven_lower_end_of_kappa_lin(log_kp, log_ki, log_margin):
     """Two independent facts about one number: a proved κ below a proven lower end of κ_lin would show one unsound."""
