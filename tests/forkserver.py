@@ -6,7 +6,7 @@ time (about a quarter of a second of CPU each).  :class:`ForkServer` starts
 one server process that imports the command line and the heavy libraries
 once, then forks a child per request.  The child is the command line as a
 user runs it: its own working directory and environment, stdin from
-``/dev/null``, stdout and stderr captured to files, an address-space limit
+``/dev/null``, stdout and stderr captured through pipes, an address-space limit
 (``RLIMIT_AS``), its own process group, killed (``SIGKILL``, the whole group)
 when it outlives the timeout.  Its exit status follows the interpreter's
 rules: ``SystemExit`` as Python maps it, an uncaught exception prints its
@@ -175,46 +175,81 @@ def serve() -> None:  # pragma: no cover - runs in the server process
 
 
 def _run_one(*, argv: list[str], cwd: str, env: dict[str, str], timeout: float, memory: int) -> Run:  # pragma: no cover
-    with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as err:
-        sys.stdout.flush()
-        sys.stderr.flush()
-        start = time.perf_counter()
-        pid = os.fork()
-        if pid == 0:
-            _child(argv, cwd, env, memory, out.fileno(), err.fileno())
-        timed_out = _wait(pid, timeout)
+    # pipes, not temporary files: two files created, written, rewound and closed per run cost more than the run
+    out_r, out_w = os.pipe()
+    err_r, err_w = os.pipe()
+    sys.stdout.flush()
+    sys.stderr.flush()
+    start = time.perf_counter()
+    pid = os.fork()
+    if pid == 0:
+        os.close(out_r)
+        os.close(err_r)
+        _child(argv, cwd, env, memory, out_w, err_w)
+    os.close(out_w)
+    os.close(err_w)
+    chunks: dict[int, list[bytes]] = {out_r: [], err_r: []}
+    try:
+        timed_out = _wait(pid, timeout, chunks)
         _, status = os.waitpid(pid, 0)
         seconds = time.perf_counter() - start
         try:
             os.killpg(pid, signal.SIGKILL)  # anything the child started goes with it
         except (ProcessLookupError, PermissionError):
             pass
-        code = os.waitstatus_to_exitcode(status)
-        out.seek(0)
-        err.seek(0)
-        return Run(code, out.read(), err.read(), seconds, timed_out)
+        for fd in chunks:  # what is left in the pipes: written before the child (and its group) ended
+            os.set_blocking(fd, False)
+            _read_into(fd, chunks[fd], until_empty=True)
+    finally:
+        os.close(out_r)
+        os.close(err_r)
+    code = os.waitstatus_to_exitcode(status)
+    return Run(code, b"".join(chunks[out_r]), b"".join(chunks[err_r]), seconds, timed_out)
 
 
-def _wait(pid: int, timeout: float) -> bool:  # pragma: no cover
-    """Wait for the child at most ``timeout`` seconds; kill its process group after that.  True if killed.
+def _read_into(fd: int, into: list[bytes], *, until_empty: bool = False) -> bool:  # pragma: no cover
+    """Read what ``fd`` has (all of it with ``until_empty``, ``fd`` non-blocking); False at end of file."""
+    while True:
+        try:
+            data = os.read(fd, 1 << 16)
+        except BlockingIOError:
+            return True
+        if not data:
+            return False
+        into.append(data)
+        if not until_empty:
+            return True
+
+
+def _wait(pid: int, timeout: float, chunks: dict[int, list[bytes]]) -> bool:  # pragma: no cover
+    """Wait for the child at most ``timeout`` seconds, reading its output pipes meanwhile (a full pipe would stall
+    it); kill its process group after that.  True if killed.
 
     The child is not reaped here (the caller's ``waitpid`` does): a pidfd says when it exits, or, where there
     is none (macOS), ``waitid`` with ``WNOWAIT`` is polled.
     """
-    if hasattr(os, "pidfd_open"):
-        fd = os.pidfd_open(pid)
-        try:
-            ready, _, _ = select.select([fd], [], [], timeout)
-        finally:
-            os.close(fd)
-        if ready:
-            return False
-    else:  # pragma: no cover - platforms without pidfd
-        deadline = time.monotonic() + timeout
-        while time.monotonic() < deadline:
-            if os.waitid(os.P_PID, pid, os.WEXITED | os.WNOHANG | os.WNOWAIT) is not None:
+    deadline = time.monotonic() + timeout
+    pidfd = os.pidfd_open(pid) if hasattr(os, "pidfd_open") else None
+    reading = list(chunks)
+    try:
+        while True:
+            left = deadline - time.monotonic()
+            if left <= 0:
+                break
+            waiting = reading if pidfd is None else [*reading, pidfd]
+            ready, _, _ = select.select(waiting, [], [], left if pidfd is not None else min(left, 0.005))
+            for fd in ready:
+                if fd != pidfd and not _read_into(fd, chunks[fd]):
+                    reading.remove(fd)  # end of file: the child closed it (or exited)
+            if pidfd is not None:
+                exited = pidfd in ready
+            else:  # pragma: no cover - platforms without pidfd
+                exited = os.waitid(os.P_PID, pid, os.WEXITED | os.WNOHANG | os.WNOWAIT) is not None
+            if exited:
                 return False
-            time.sleep(0.005)
+    finally:
+        if pidfd is not None:
+            os.close(pidfd)
     try:
         os.killpg(pid, signal.SIGKILL)
     except ProcessLookupError:
