@@ -646,3 +646,14 @@ def test_fork_and_fresh_interpreter_agree(tmp_path, server):
         forked = server.run(argv, cwd=str(tmp_path), timeout=60, memory=3 * 1024**3)
         fresh = run_fresh(argv, cwd=str(tmp_path), timeout=60, memory=3 * 1024**3)
         assert (forked.returncode, forked.stdout, forked.stderr) == (fresh.returncode, fresh.stdout, fresh.stderr)
+
+
+def test_brackets_inside_strings_and_comments_do_not_count_as_states():
+    """The scene reader refuses too many states before parsing by counting ``[``: those of strings and comments don't."""
+    from symbolic_friction._studies._scene_parse import MAX_ARRAYS
+    from symbolic_friction._studies.scenes import Scene
+
+    many = "[" * (MAX_ARRAYS + 1)
+    for description in (f'"{many}"', f"'{many}'", f'"""\n{many}"""', f"'''{many}\n'''"):
+        scene = Scene.from_text(f"description = {description}\n# {many}\n" + _scene(""))
+        assert scene.description.strip() == many and len(scene.initial_states) == 1

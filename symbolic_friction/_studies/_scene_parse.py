@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from collections.abc import Mapping, Sequence
 from fractions import Fraction
 from typing import Any
@@ -15,6 +16,16 @@ FRICTION_LAWS = ("coulomb", "stribeck", "inflated")
 
 MAX_STATES = 100_000
 """Most initial states in one scene."""
+MAX_ARRAYS = MAX_STATES + 1_000
+"""Most ``[`` (arrays and table headers) a scene's TOML may open: one per initial state, and a few for the rest."""
+_TOML_NOT_SYNTAX = re.compile(
+    r'"""(?:[^"\\]|\\.|"(?!""))*"{3,5}'  # a multi-line basic string (it may end in up to two quotes of its own)
+    r"|'''.*?'{3,5}"  # a multi-line literal string
+    r'|"(?:[^"\\\n]|\\.)*"'  # a basic string
+    r"|'[^'\n]*'"  # a literal string
+    r"|#[^\n]*",  # a comment
+    re.DOTALL,
+)
 
 
 MAX_INTEGER_KNOB = 10_000_000
@@ -23,6 +34,20 @@ MAX_SAMPLES = 1_000_000
 """Most sample times a scene may ask for per trajectory (a bound on memory, said in the error)."""
 MAX_TOTAL_SAMPLES = 20_000_000
 """Most sample times over all trajectories of a scene (states × samples), a bound on memory."""
+
+
+def _check_array_count(text: str) -> None:
+    """Refuse a scene that opens more arrays than :data:`MAX_STATES` states need, before the TOML parser allocates them.
+
+    Parsing a 2 MB list of states takes seconds and a million objects before :func:`_parse_states` can count them;
+    the ``[`` outside strings and comments bound the arrays from above, so no scene the reader would accept is refused.
+    """
+    if text.count("[") <= MAX_ARRAYS:  # every scene file there is: no need to look at its strings
+        return
+    arrays = _TOML_NOT_SYNTAX.sub("", text).count("[")
+    if arrays > MAX_ARRAYS:
+        raise SceneError(f"initial_states: at most {MAX_STATES} initial states per scene are supported; the file opens "
+                         f"{arrays} arrays (at most {MAX_ARRAYS})")
 
 
 # ---------------------------------------------------------------- parsing helpers

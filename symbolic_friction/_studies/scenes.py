@@ -65,6 +65,7 @@ from ._scene_parse import (
     MAX_SAMPLES,
     MAX_STATES,
     MAX_TOTAL_SAMPLES,
+    _check_array_count,
     _check_keys,
     _check_samples,
     _float_range,
@@ -269,6 +270,7 @@ class Scene:
     @classmethod
     def from_text(cls, text: str, *, source: str = "<text>", default_name: str = "scene") -> "Scene":
         """Parse TOML text (see the module docstring)."""
+        _check_array_count(text)
         try:
             doc = tomllib.loads(text)
         except tomllib.TOMLDecodeError as exc:
