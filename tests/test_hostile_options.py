@@ -657,3 +657,13 @@ def test_brackets_inside_strings_and_comments_do_not_count_as_states():
     for description in (f'"{many}"', f"'{many}'", f'"""\n{many}"""', f"'''{many}\n'''"):
         scene = Scene.from_text(f"description = {description}\n# {many}\n" + _scene(""))
         assert scene.description.strip() == many and len(scene.initial_states) == 1
+
+
+def test_the_configurations_comma_bound_admits_its_most_certificates_with_every_key():
+    """The configuration reader refuses a file by its commas before parsing it: never one of valid size."""
+    from symbolic_friction._infra.config import MAX_CERTIFICATES, MAX_CONFIG_COMMAS, toml_syntax_count
+
+    entry = '{file = "c{i}.json", label = "a, b", gains = {k_p = "3", k_i = "4", k_v = "32/5", f_c = "1"}},'
+    text = "# a, b\ncertificates = [\n" + "\n".join(entry.replace("{i}", str(i)) for i in range(MAX_CERTIFICATES)) + "]\n"
+    assert toml_syntax_count(text, ",", above=0) == 6 * MAX_CERTIFICATES  # the string's and the comment's: not counted
+    assert toml_syntax_count(text, ",", above=MAX_CONFIG_COMMAS) <= MAX_CONFIG_COMMAS

@@ -35,6 +35,7 @@ imported (fast start).
 from __future__ import annotations
 
 import os
+import re
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath
@@ -53,6 +54,29 @@ _KEYS = ("proofs", "certificates", "report", "strict")
 _ENTRY_KEYS = ("file", "label", "gains")
 GAIN_NAMES = ("k_p", "k_i", "k_v", "f_c")
 MAX_CERTIFICATES = 10_000
+MAX_CONFIG_COMMAS = 8 * MAX_CERTIFICATES
+"""Most ``,`` a configuration file may have outside strings: 6 per certificate entry (``{file, label, gains = {k_p, k_i,
+k_v, f_c}}`` and the comma after it), with room to spare; counted before parsing (see :func:`toml_syntax_count`)."""
+
+_TOML_NOT_SYNTAX = re.compile(
+    r'"""(?:[^"\\]|\\.|"(?!""))*"{3,5}'  # a multi-line basic string (it may end in up to two quotes of its own)
+    r"|'''.*?'{3,5}"  # a multi-line literal string
+    r'|"(?:[^"\\\n]|\\.)*"'  # a basic string
+    r"|'[^'\n]*'"  # a literal string
+    r"|#[^\n]*",  # a comment
+    re.DOTALL,
+)
+
+
+def toml_syntax_count(text: str, char: str, *, above: int) -> int:
+    """How many ``char`` (``[``, ``,``) a TOML text has outside its strings and comments, when more than ``above``.
+
+    An upper bound on the arrays or values ``tomllib`` would build, found without building them: a huge file is
+    refused in milliseconds, not after seconds of parsing and a million objects.  At most ``above`` plain
+    occurrences (every ordinary file) are returned as they are, without looking for strings.
+    """
+    count = text.count(char)
+    return count if count <= above else _TOML_NOT_SYNTAX.sub("", text).count(char)
 
 
 @dataclass(frozen=True)
@@ -183,6 +207,11 @@ def _parse_entry(entry: dict, source: Path) -> tuple[object, dict]:
 
 def _read_toml(path: Path) -> dict[str, Any]:
     text = read_limited(path, limit=MAX_CONFIG_BYTES, what="configuration file").decode("utf-8", errors="strict")
+    if path.name != "pyproject.toml":  # other tools' tables in a pyproject.toml are not bounded by this package
+        commas = toml_syntax_count(text, ",", above=MAX_CONFIG_COMMAS)
+        if commas > MAX_CONFIG_COMMAS:
+            raise ConfigError(f"{path}: {commas} commas outside strings (values in lists and tables); a configuration of "
+                              f"at most {MAX_CERTIFICATES} certificates needs at most {MAX_CONFIG_COMMAS}")
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:

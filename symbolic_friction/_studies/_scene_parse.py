@@ -2,11 +2,11 @@
 
 from __future__ import annotations
 
-import re
 from collections.abc import Mapping, Sequence
 from fractions import Fraction
 from typing import Any
 
+from .._infra.config import toml_syntax_count
 from .._infra.errors import SceneError, SymbolicFrictionError
 from .._model.parameters import Parameters
 from .._infra.rational import format_rational, short_rational, shown, to_rational
@@ -18,14 +18,6 @@ MAX_STATES = 100_000
 """Most initial states in one scene."""
 MAX_ARRAYS = MAX_STATES + 1_000
 """Most ``[`` (arrays and table headers) a scene's TOML may open: one per initial state, and a few for the rest."""
-_TOML_NOT_SYNTAX = re.compile(
-    r'"""(?:[^"\\]|\\.|"(?!""))*"{3,5}'  # a multi-line basic string (it may end in up to two quotes of its own)
-    r"|'''.*?'{3,5}"  # a multi-line literal string
-    r'|"(?:[^"\\\n]|\\.)*"'  # a basic string
-    r"|'[^'\n]*'"  # a literal string
-    r"|#[^\n]*",  # a comment
-    re.DOTALL,
-)
 
 
 MAX_INTEGER_KNOB = 10_000_000
@@ -42,9 +34,7 @@ def _check_array_count(text: str) -> None:
     Parsing a 2 MB list of states takes seconds and a million objects before :func:`_parse_states` can count them;
     the ``[`` outside strings and comments bound the arrays from above, so no scene the reader would accept is refused.
     """
-    if text.count("[") <= MAX_ARRAYS:  # every scene file there is: no need to look at its strings
-        return
-    arrays = _TOML_NOT_SYNTAX.sub("", text).count("[")
+    arrays = toml_syntax_count(text, "[", above=MAX_ARRAYS)
     if arrays > MAX_ARRAYS:
         raise SceneError(f"initial_states: at most {MAX_STATES} initial states per scene are supported; the file opens "
                          f"{arrays} arrays (at most {MAX_ARRAYS})")
