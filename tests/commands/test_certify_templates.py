@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 from fractions import Fraction
 import re
+import time
 from pathlib import Path
 
 import pytest
@@ -46,11 +47,39 @@ def test_every_searchable_template_instantiates_only_obligations_check_proves():
     assert set(searchable_templates()) == {"paper", "quadratic", "sup-flow"}  # a new template must be added to this test
 
 
+@pytest.fixture(scope="module")
+def shared_sup_flow_searches():
+    """Each sup-flow (pieces) search of this module run once: Table I (a)'s is asked for by two tests (about 2 s each).
+
+    The search is deterministic (its file is Table I's committed one), and a deadline far away changes nothing: the
+    verifier's parts are capped at ``MAX_TOTAL_PARTS`` (about 6 s of a deadline's time).  So a call with no deadline,
+    or one more than ten minutes away, is answered by the first such call with the same arguments; any other call,
+    and a search that raises, runs as it is.
+    """
+    from symbolic_friction._certify import sup_flow_search
+
+    search = sup_flow_search.certify_sup_flow
+    done: dict = {}
+
+    def shared(params, **options):
+        deadline = options.get("deadline")
+        if deadline is not None and deadline - time.monotonic() < 600:
+            return search(params, **options)
+        key = (params, tuple(sorted((k, v) for k, v in options.items() if k != "deadline")))
+        if key not in done:
+            done[key] = search(params, **options)
+        return done[key]
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(sup_flow_search, "certify_sup_flow", shared)
+        yield
+
+
 def _untimed(line: str) -> str:
     return re.sub(r" in [0-9]+\.[0-9]{2} s", "", line)
 
 
-def test_auto_keeps_the_sup_flow_certificate_for_table_i_and_names_the_others(tmp_path, capsys):
+def test_auto_keeps_the_sup_flow_certificate_for_table_i_and_names_the_others(tmp_path, capsys, shared_sup_flow_searches):
     # a budget no machine exhausts: the time pieces are halved to their end, so the file is Table I's committed one
     assert main(["certify", *CASE_A, "--out", str(tmp_path), "--budget", "3600"]) == 0
     first, against, wrote = capsys.readouterr().out.splitlines()
@@ -110,7 +139,7 @@ def test_gains_at_the_edge_of_float_range_are_reasons_never_a_traceback(tmp_path
         assert len(err.strip().splitlines()) == 1 and "Traceback" not in err
 
 
-def test_a_solver_raising_anything_is_a_reason_in_auto_and_a_solver_error_alone(monkeypatch):
+def test_a_solver_raising_anything_is_a_reason_in_auto_and_a_solver_error_alone(monkeypatch, shared_sup_flow_searches):
     from symbolic_friction._certify import quadratic_search
     from symbolic_friction._infra.errors import SolverError
 
