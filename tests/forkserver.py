@@ -51,9 +51,10 @@ PRELOAD = (
     "symbolic_friction.independent.paper", "symbolic_friction._simulation.friction", "symbolic_friction._simulation.event",
     "symbolic_friction._simulation.moreau", "symbolic_friction._simulation.regularized",
     "symbolic_friction._studies.figures_run", "symbolic_friction._studies.crosscheck_figures",
-    "symbolic_friction._studies.gainmap_plot", "numpy.random", "numpy.ma", "scipy.linalg", "scipy.optimize",
-    # a few runs draw (about half a second of imports each); pyplot's import chooses no backend, the command does
-    "matplotlib", "matplotlib.pyplot",
+    "symbolic_friction._studies.gainmap_plot", "numpy.random", "numpy.ma",
+    # not scipy.linalg, scipy.optimize, matplotlib.pyplot: of the ~1,050 hostile runs only two import them (the
+    # kernel's warm-up and one drawing hunting run), while their 47 MB of the server's 115 cost every fork and exit
+    # (about 2 ms a run: 25 -> 23 s for the two hostile modules)
 )
 """Imported once by the server; everything else a command needs is imported by the child, as in a real run.
 
