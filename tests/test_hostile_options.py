@@ -411,6 +411,10 @@ SAYS = {
     "number-tradeoff-t-end-ceiling": "--t-end must lie in (0, 1000]",
     "number-tradeoff-gains-stiff": "spectral radius × t_end = 1e+06, at most 100000",
     "number-crosscheck-trajectories-times-samples": "at most 20000000 are supported",
+    "structure-scene-too-many-states": "initial_states: at most 100000 initial states per scene are supported; the file "
+                                       "opens 200002 arrays (at most 101000)",
+    "structure-config-huge-array": "300000 commas outside strings (values in lists and tables); a configuration of at "
+                                   "most 10000 certificates needs at most 80000",
 }
 """What the one line must say, where the wording matters most (the rest: exit 2, one line)."""
 
