@@ -1,4 +1,4 @@
-"""``check``'s sections on both cores: the first in this process, the others meanwhile in forked ones.
+"""``check``'s sections on both cores: the first in this process, the others meanwhile in a forked one.
 
 The obligations (sympy) and the certificates and cross-check self-test
 (cvxpy, numpy) share nothing but their inputs, so on a machine with two
@@ -18,12 +18,6 @@ the child took by name when it reaches it (:class:`Inbox`);
 each item is claimed under a lock (:class:`Claims`) by whichever process gets
 there first, so the split adapts to how fast each core really is (a busy
 machine, a slower section) and no item is done twice or left out.
-
-The tail's list may be built after the fork (``check``'s imports sympy,
-which the certificates, the cross-check and the independent checker do not
-need): the child then starts at once, and the sections that do need it run in
-a second child, forked once this process has built the list, which claims
-the tail's items in the first child's stead (:func:`run_sections`).
 
 ``SYMBOLIC_FRICTION_JOBS=1`` (or one core, or a platform other than Linux,
 where ``fork`` is unavailable or unsafe with system libraries, or a process
@@ -222,30 +216,9 @@ class Inbox:
         return value
 
 
-def _start(ctx: Any, makers: list[Maker], quiet: argparse.Namespace, tail: Any, claims: Claims | None,
-           context: Callable[[], Any] | None) -> Inbox:
-    """Fork a child running ``makers`` (then its share of ``tail``): the inbox of its messages."""
-    recv, send = ctx.Pipe(duplex=False)
-    proc = ctx.Process(target=_child, args=(makers, quiet, send, tail, claims, context), daemon=True)
-    proc.start()
-    send.close()
-    return Inbox(recv, proc)
-
-
-class _Inboxes:
-    """The inboxes of both children, read as one: a section from the child that runs it, a claimed item from the
-    child that claims (``proc`` is that child, as for one :class:`Inbox`)."""
-
-    def __init__(self, sections: dict[str, Inbox], claiming: Inbox) -> None:
-        self.sections, self.claiming, self.proc = sections, claiming, claiming.proc
-
-    def get(self, kind: str, name: str) -> Any:
-        return (self.sections[name] if kind == "section" else self.claiming).get(kind, name)
-
-
 def run_sections(makers: list[Maker], args: argparse.Namespace, *, parallel: bool | None = None,
                  tail: Any = None, together: tuple[tuple[str, ...], ...] = (),
-                 context: Callable[[], Any] | None = None, late: tuple[str, ...] = ()) -> Iterator[Section]:
+                 context: Callable[[], Any] | None = None) -> Iterator[Section]:
     """Each section of ``makers``, in order (module docstring).
 
     With the child, ``args.inbox`` is an :class:`Inbox` holding the results of
@@ -257,13 +230,6 @@ def run_sections(makers: list[Maker], args: argparse.Namespace, *, parallel: boo
     process then calls it after the fork (this one before its first section),
     so what building it imports is not waited for before the child starts,
     and is never imported when everything runs here.
-
-    With a function for ``tail``, the sections named in ``late`` (those that
-    need what building the tail imports) run in a second child, forked from
-    this process once it has built the tail, which then claims the tail's
-    items from the back: it inherits the imports, so no process makes them
-    twice, and the first child, which starts at once, runs the other sections
-    only.  Three processes then share the cores until the first child is done.
     """
     if parallel is None:
         parallel = parallel_allowed()
@@ -276,24 +242,24 @@ def run_sections(makers: list[Maker], args: argparse.Namespace, *, parallel: boo
     import multiprocessing
 
     ctx = multiprocessing.get_context("fork")
+    recv, send = ctx.Pipe(duplex=False)
     quiet = copy.copy(args)
-    quiet.json = True  # the children stream nothing: this process prints their tables, in order
+    quiet.json = True  # the child streams nothing: this process prints its tables, in order
     lazy = callable(tail)
     tail = tail if lazy else list(tail or [])
-    second = [make for make in makers[1:] if lazy and make.__name__ in late]
-    first = [make for make in makers[1:] if make not in second]
     claims = (Claims(ctx, together=together) if lazy else Claims(ctx, [name for name, _ in tail], together) if tail
               else None)
-    inboxes = [_start(ctx, first, quiet, [] if second else tail, None if second else claims, context)]
+    proc = ctx.Process(target=_child, args=(makers[1:], quiet, send, tail, claims, context),
+                       daemon=True)
+    proc.start()
+    send.close()
     if lazy:
         try:
-            items = tail()
-        except Exception:  # the first section meets the same error and reports it; no child claims
-            items = []
-        claims.publish([name for name, _ in items])
-        if second:  # forked now: it has the tail, and every import building it made
-            inboxes.append(_start(ctx, second, quiet, items, claims, context))
-    inbox = _Inboxes({m.__name__: inboxes[m in second] for m in makers[1:]}, inboxes[-1]) if second else inboxes[0]
+            names = [name for name, _ in tail()]
+        except Exception:  # the first section meets the same error and reports it; the child claims nothing
+            names = []
+        claims.publish(names)
+    inbox = Inbox(recv, proc)
     args.inbox = inbox
     args.claims = claims
     try:
@@ -308,8 +274,7 @@ def run_sections(makers: list[Maker], args: argparse.Namespace, *, parallel: boo
     finally:
         args.inbox = None
         args.claims = None
-        for each in inboxes:
-            each.recv.close()
-            each.proc.join(timeout=5)
-            if each.proc.is_alive():
-                each.proc.terminate()
+        recv.close()
+        proc.join(timeout=5)
+        if proc.is_alive():
+            proc.terminate()

@@ -220,11 +220,6 @@ def _decide_tail() -> list[tuple[str, Callable[[], Any]]]:
     return [(ob.id, (lambda ob=ob: run_checked([ob])[0])) for ob in all_obligations()]
 
 
-LATE = ("self_check_section",)
-"""The sections that need sympy (the self-check's decision procedures): they run in the child forked once this
-process has imported it for the obligations (:func:`._parallel.run_sections`), the others from the start."""
-
-
 def _shared_derivations() -> Any:
     """:func:`~.._obligations._derived_k.shared_derivations`, imported when entered (after the fork: it imports sympy)."""
     from .._obligations._derived_k import shared_derivations
@@ -432,7 +427,7 @@ def run(args: argparse.Namespace) -> int:
 
     _import_shared()
     for section in run_sections(list(makers), args, tail=_decide_tail if not only else [], together=TOGETHER,
-                                context=_shared_derivations, late=LATE):
+                                context=_shared_derivations):
         sections.append(gate(section))
         if not as_json:
             if not section.streamed:

@@ -8,7 +8,6 @@ satisfied, one failing (first, middle, last), one crashing, ``--json``.
 from __future__ import annotations
 
 import json
-from pathlib import Path
 
 import pytest
 
@@ -304,21 +303,3 @@ def test_json_reaches_a_merged_log_before_the_notes(monkeypatch, tmp_path):
     sys.stdout.flush()
     text = "".join(log)
     assert rc == 0 and text.index('"passed": true') < text.index("note: n") < text.index("check: PASSED")
-
-
-def test_the_sections_outside_late_import_no_sympy_and_late_names_sections():
-    """The first child starts before sympy is imported and runs every section not in LATE: if one of them imported
-    sympy, that child would import it a second time (about 0.4 s of check's 3.5)."""
-    import subprocess
-    import sys
-
-    assert set(check.LATE) <= {make.__name__ for make in check.SECTIONS}
-    early = [make.__name__ for make in check.SECTIONS[1:] if make.__name__ not in check.LATE]
-    code = ("import sys\nfrom symbolic_friction._cli.main import shared_parser\nfrom symbolic_friction._cli import check\n"
-            "args = shared_parser().parse_args(['check', '--json']); args.inbox = args.claims = None\n"
-            f"for name in {early!r}:\n    section = getattr(check, name)(args)\n    assert section.ok, name\n"
-            "print(sorted(m for m in ('sympy', 'cvxpy') if m in sys.modules))\n")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300,
-                         cwd=str(Path(__file__).resolve().parents[2]))
-    assert out.returncode == 0, out.stderr[-2000:]
-    assert out.stdout.strip() == "[]"
