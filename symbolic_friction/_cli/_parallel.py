@@ -246,9 +246,11 @@ def run_sections(makers: list[Maker], args: argparse.Namespace, *, parallel: boo
     quiet = copy.copy(args)
     quiet.json = True  # the child streams nothing: this process prints its tables, in order
     lazy = callable(tail)
-    tail = tail if lazy else list(tail or [])
-    claims = (Claims(ctx, together=together) if lazy else Claims(ctx, [name for name, _ in tail], together) if tail
-              else None)
+    if lazy:
+        claims: Claims | None = Claims(ctx, together=together)  # named below, once this process has built the list
+    else:
+        tail = list(tail or [])
+        claims = Claims(ctx, [name for name, _ in tail], together) if tail else None
     proc = ctx.Process(target=_child, args=(makers[1:], quiet, send, tail, claims, context),
                        daemon=True)
     proc.start()
@@ -258,7 +260,7 @@ def run_sections(makers: list[Maker], args: argparse.Namespace, *, parallel: boo
             names = [name for name, _ in tail()]
         except Exception:  # the first section meets the same error and reports it; the child claims nothing
             names = []
-        claims.publish(names)
+        claims.publish(names)  # type: ignore[union-attr]
     inbox = Inbox(recv, proc)
     args.inbox = inbox
     args.claims = claims

@@ -163,7 +163,6 @@ def exit_without_teardown(code: int) -> "NoReturn":
     it: other threads are joined, the ``atexit`` handlers run (coverage,
     multiprocessing's), the standard streams are flushed.  If flushing fails
     (a reader that went away), the ordinary exit reports it as Python does.
-    mypy ends its runs the same way.
     """
     import atexit
     import os
