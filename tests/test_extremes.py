@@ -1,18 +1,24 @@
 """The extremes matrix (``_extremes.py``, ``symbolic-friction extremes``).
 
 Every cell is classified against the 50-digit reference, and here each
-classification is checked again, independently: an ``ok`` cell's run is
-repeated and compared with the reference samples; a ``refused`` cell's
-method is run again and must raise or stop early; no cell is ``wrong``.
+classification is checked again, independently: every ``ok`` cell's
+trajectory (kept by the forked child that made it) is compared with the
+reference samples here, and each method's run is repeated on one cell and
+must give that trajectory bit for bit; a ``refused`` cell's method is run
+again and must raise or stop early; no cell is ``wrong``.
 """
 
 from __future__ import annotations
 
+import hashlib
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
 
+import symbolic_friction._extremes as extremes_module
+import symbolic_friction._simulation as simulation_module
 from symbolic_friction._infra.errors import SimulationError
 from symbolic_friction._extremes import (
     HUNG,
@@ -29,12 +35,62 @@ from symbolic_friction._extremes import (
 from symbolic_friction._simulation import Moreau, Status, simulate
 
 
+@pytest.fixture(scope="module", autouse=True)
+def references():
+    """Each cell's 50-digit reference computed once for the module (a pure function of the cell; about 0.3 s each):
+    the matrix computes them all, and the later runs of a few cells (``only=``) reuse them."""
+    real, known = extremes_module._reference, {}
+
+    def once(cell):
+        if cell not in known:
+            known[cell] = real(cell)
+        return known[cell]
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(extremes_module, "_reference", once)
+        yield known
+
+
+def _kept(runs: Path, cell: str, method: str) -> Path:
+    """The file of the kept trajectory of ``method`` on the cell labelled ``cell`` (labels hold ``/`` and ``|``)."""
+    key = hashlib.sha256("\0".join((cell, method)).encode()).hexdigest()[:24]
+    return runs / f"{key}.npy"
+
+
 @pytest.fixture(scope="module")
-def result():
+def runs(tmp_path_factory) -> Path:
+    """Where the matrix's forked children leave each ``ok`` run's sampled trajectory (``result``)."""
+    return tmp_path_factory.mktemp("extremes_runs")
+
+
+@pytest.fixture(scope="module")
+def result(runs):
     """The whole matrix, once for the module: about a minute alone (each run in a forked child), so the tests that
     use it are marked slow, which also hands this module out first (tests/conftest.py): started last, it was the
-    suite's tail."""
-    return run_extremes()
+    suite's tail.
+
+    Each child also saves its ``ok`` run's trajectory (the very array it classified) in ``runs``, so that
+    test_each_classification_agrees_with_the_reference checks every ``ok`` run against the reference without
+    making it a second time (the runs were a fifth of this module's CPU)."""
+    real = extremes_module.classify_run
+
+    def keeping(method, cell, ref):
+        made = []
+
+        def recording(*args, **kw):
+            made.append(simulate(*args, **kw))
+            return made[-1]
+
+        with pytest.MonkeyPatch.context() as patch:  # in the forked child: its own copy of the module
+            patch.setattr(simulation_module, "simulate", recording)
+            outcome = real(method, cell, ref)
+        if outcome.outcome == OK:
+            np.save(_kept(runs, cell.label, outcome.method), made[-1].z)
+        return outcome
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(extremes_module, "classify_run", keeping)
+        return run_extremes()
 
 
 def test_matrix_covers_the_hard_cases():
@@ -66,18 +122,25 @@ def test_every_cell_classified_and_none_silently_wrong(result):
 
 
 @pytest.mark.slow
-def test_each_classification_agrees_with_the_reference(result):
+def test_each_classification_agrees_with_the_reference(result, runs):
     methods = {m: m for m in default_methods()}
     names = {o.method: m for m in methods for o in result.outcomes if o.method.startswith(type(m).name)}
+    # the runs are repeatable: each method again, here, on a cell every method simulates, bit for bit the
+    # trajectory its forked child kept (so checking the kept ones below is checking the method's runs)
+    again = next(c for c in cells() if c.label == "case (a), f_c = 1e3")
+    for name, method in names.items():
+        assert result.get(again.label, name).outcome == OK, name
+        sol = simulate(again.params, again.z0, again.t_end, method=method, t_eval=result.references[again.label].times)
+        assert np.array_equal(sol.z, np.load(_kept(runs, again.label, name))), name
     for cell in cells():
         ref = result.references[cell.label]
         for name, method in names.items():
             o = result.get(cell.label, name)
             if o.outcome == OK:
-                if (type(method).name == "regularized" and cell.t_end > 30) or o.seconds > 1.0:
-                    continue  # slow to repeat (the stiff cells' regularized and ivp-events runs); the run checked it
-                sol = simulate(cell.params, cell.z0, cell.t_end, method=method, t_eval=ref.times)
-                err = np.max(np.abs(sol.z - ref.z)) / ref.scale
+                # every ok run, the stiff cells' slow ones too (a repeat skipped them)
+                z = np.load(_kept(runs, cell.label, name))
+                assert z.shape == ref.z.shape, (cell.label, name)
+                err = np.max(np.abs(z - ref.z)) / ref.scale
                 assert err <= claimed_error(method), (cell.label, name, err)
                 assert err == pytest.approx(o.error, rel=1e-6, abs=1e-300)
             elif o.outcome == REFUSED:
