@@ -72,6 +72,7 @@ extensions = [
     "sphinx.ext.mathjax",
     "sf_cli",
     "sf_proof",
+    "sf_search",  # the search index's stems kept across pages (_ext/sf_search.py)
 ]
 
 source_suffix = {".md": "myst-nb", ".ipynb": "myst-nb"}
