@@ -4,6 +4,9 @@ Each notebook is stored *executed* (outputs and figures included) so that it
 reads top to bottom on a code host. The tests run every notebook with an
 IPython kernel (nbclient), within a time limit, and compare the fresh text
 outputs with the stored ones: a notebook whose stored outputs are stale fails.
+The kernels are forked from one warm interpreter (``tests/kernel_forks.py``:
+about 0.6 s of CPU less per notebook than a fresh ipykernel's start-up); one
+test holds a forked kernel to one started as its kernel spec says.
 Timings and memory addresses are ignored; images are not compared (they
 depend on the matplotlib version), but every stored figure must be there.
 
@@ -90,21 +93,43 @@ def differences(stored, fresh) -> list[str]:
     return found
 
 
-def execute(path: Path):
-    """Run ``path`` top to bottom in a fresh IPython kernel; returns the executed notebook and seconds."""
-    import nbformat
+def run_kernel(nb, cwd: Path, forks=None, **options) -> None:
+    """Execute ``nb`` in place in a new IPython kernel working in ``cwd``: started as its kernel spec says, or forked by
+    ``forks`` (a :class:`tests.kernel_forks.KernelForks`)."""
     from nbclient import NotebookClient
+
+    if forks is not None:
+        from tests.kernel_forks import ForkedKernelManager
+
+        options["kernel_manager_class"] = type("KernelManager", (ForkedKernelManager,), {"forks": forks})
+    # the kernel is killed once the last cell has answered ("immediate"): every output is in by then, and a graceful
+    # shutdown waited 0.5 to 3 s per notebook for the kernel to tidy up (measured), which nothing here looks at
+    NotebookClient(
+        nb, timeout=CELL_TIMEOUT, kernel_name="python3", resources={"metadata": {"path": str(cwd)}},
+        shutdown_kernel="immediate", **options,
+    ).execute()
+
+
+def execute(path: Path, forks=None):
+    """Run ``path`` top to bottom in a new IPython kernel (:func:`run_kernel`); returns the stored and the executed
+    notebook and the seconds taken."""
+    import nbformat
 
     nb = nbformat.read(path, as_version=4)
     fresh = copy.deepcopy(nb)
     start = time.perf_counter()
-    # the kernel is killed once the last cell has answered ("immediate"): every output is in by then, and a graceful
-    # shutdown waited 0.5 to 3 s per notebook for the kernel to tidy up (measured), which nothing here looks at
-    NotebookClient(
-        fresh, timeout=CELL_TIMEOUT, kernel_name="python3", resources={"metadata": {"path": str(path.parent)}},
-        shutdown_kernel="immediate",
-    ).execute()
+    run_kernel(fresh, path.parent, forks)
     return nb, fresh, time.perf_counter() - start
+
+
+@pytest.fixture(scope="module")
+def kernel_forks():
+    """The warm interpreter the notebooks' kernels are forked from (started on first use)."""
+    from tests.kernel_forks import KernelForks
+
+    forks = KernelForks()
+    yield forks
+    forks.close()
 
 
 def test_there_are_five_notebooks():
@@ -137,14 +162,45 @@ def test_notebook_uses_only_the_public_api(path):
 
 @pytest.mark.slow
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.name)
-def test_notebook_executes_and_its_stored_outputs_are_current(path):
-    stored, fresh, seconds = execute(path)
+def test_notebook_executes_and_its_stored_outputs_are_current(path, kernel_forks):
+    stored, fresh, seconds = execute(path, kernel_forks)
     assert seconds <= TIME_LIMIT, f"{path.name} took {seconds:.0f} s (limit {TIME_LIMIT:.0f} s)"
     stale = differences(stored, fresh)
     assert not stale, (
         f"{path.name}: the stored outputs are stale (regenerate with `python -m tests.test_notebooks --write`):\n"
         + "\n".join(stale)
     )
+
+
+# What a notebook could see of how its kernel was started: the process, its paths and environment (MPLBACKEND, the
+# inline back end ipykernel sets, among them), the display machinery, an error's report.
+_PROBE_CELLS = [
+    "import os, sys\nprint(os.getcwd(), sys.executable, sys.argv[0], len(sys.argv), sys.path, __name__)",
+    "print(sorted(os.environ.items()))",
+    (
+        "from ipykernel.kernelapp import IPKernelApp\n"
+        "print(os.getpgid(0) == os.getpid(), IPKernelApp.instance().parent_handle == int(os.environ['JPY_PARENT_PID']))\n"
+        "print(sys.flags, sys.stdin.__class__.__name__, sys.stdout.__class__.__name__)"
+    ),
+    "from IPython.display import Markdown, display\ndisplay(Markdown('*shown*'))\nget_ipython().__class__.__name__",
+    "1 / 0",
+]
+
+
+def test_a_forked_kernel_is_the_kernel_its_spec_starts(kernel_forks, tmp_path):
+    """The notebooks run in forked kernels: what a notebook sees is what a kernel started as a subprocess shows."""
+    import nbformat
+
+    outputs = []
+    for forks in (None, kernel_forks):
+        nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(code) for code in _PROBE_CELLS])
+        run_kernel(nb, tmp_path, forks, allow_errors=True)
+        outputs.append(text_outputs(nb))
+    started, forked = outputs
+    assert forked == started
+    assert started[-1] == ["error: ZeroDivisionError: division by zero"]
+    assert started[0][0].startswith(f"stdout: {tmp_path} {sys.executable} ")
+    assert "('MPLBACKEND', 'module://matplotlib_inline.backend_inline')" in started[1][0]
 
 
 def test_a_stale_output_is_detected():

@@ -1,0 +1,209 @@
+"""Start the notebooks' Jupyter kernels cheaply: one warm interpreter forks a kernel per notebook.
+
+A kernel started as its kernel spec says (``python -m ipykernel_launcher -f …``)
+spends about 0.7 s of CPU before it runs a cell, nearly all of it importing
+ipykernel, IPython, zmq, tornado and debugpy.  :class:`KernelForks` starts one
+server process that imports these once and forks a child per kernel; the
+child is the kernel as ``ipykernel_launcher`` runs it: the
+command's arguments, the environment and working directory jupyter_client
+gives it, stdin from ``/dev/null``, its own process group (the kernel
+manager signals the group), ``sys.path`` without the launch directory (which
+IPython adds back as ``''``).  :class:`ForkedKernelManager` is jupyter_client's
+kernel manager with this one launch step replaced; the connection file,
+the ports, the messages and the shutdown are jupyter_client's own.
+
+The server imports only the kernel's own start-up: what a notebook imports
+(numpy, matplotlib, sympy, the package) the notebook still imports in its
+kernel, as for a user.  The one setting ipykernel reads from the environment
+when imported (``JPY_PARENT_PID``, the kernels' parent) is in the server's
+environment already; the server never starts a thread and never runs a
+kernel itself, so every child starts from the state a fresh interpreter has
+after the same imports.  ``tests/test_notebooks.py`` holds a forked kernel to
+one started as a subprocess.
+"""
+
+from __future__ import annotations
+
+import os
+import pickle
+import signal
+import struct
+import subprocess
+import sys
+import tempfile
+import time
+
+from jupyter_client.manager import AsyncKernelManager
+
+PRELOAD = ("ipykernel_launcher", "ipykernel.kernelapp", "ipykernel.ipkernel", "ipykernel.zmqshell")
+"""What the server imports once: the kernel's own start-up (measured: 986 modules before the first cell, 0.6 s of CPU)."""
+
+
+def _send(stream, obj) -> None:
+    data = pickle.dumps(obj)
+    stream.write(struct.pack("!I", len(data)) + data)
+    stream.flush()
+
+
+def _receive(stream):
+    head = stream.read(4)
+    if len(head) < 4:
+        raise EOFError("kernel fork server closed its pipe")
+    (size,) = struct.unpack("!I", head)
+    return pickle.loads(stream.read(size))
+
+
+class KernelForks:
+    """The client side: a server started on first use, asked to fork a kernel or whether one has ended."""
+
+    def __init__(self) -> None:
+        self._proc: subprocess.Popen | None = None
+
+    def _call(self, request: dict):
+        if self._proc is not None and self._proc.poll() is not None:  # its kernels' state went with it: no restart
+            raise RuntimeError(f"the kernel fork server exited (status {self._proc.returncode})")
+        if self._proc is None:
+            # the kernels' parent (this process) already in the server's environment: ipykernel reads it when imported
+            env = {**os.environ, "JPY_PARENT_PID": str(os.getpid())}
+            self._proc = subprocess.Popen(
+                [sys.executable, "-c", "import sys; sys.path.insert(0, sys.argv[1]); import kernel_forks; kernel_forks.serve()",
+                 os.path.dirname(os.path.abspath(__file__))],
+                stdin=subprocess.PIPE, stdout=subprocess.PIPE, cwd=tempfile.gettempdir(), env=env,
+            )
+            assert _receive(self._proc.stdout) == "ready"
+        _send(self._proc.stdin, request)
+        return _receive(self._proc.stdout)
+
+    def launch(self, cmd: list[str], *, env: dict[str, str], cwd: str) -> ForkedKernel:
+        """Fork a kernel for ``cmd`` (``python -m ipykernel_launcher ARGS``)."""
+        if cmd[1:3] != ["-m", "ipykernel_launcher"]:
+            raise ValueError(f"not an ipykernel command: {cmd}")
+        return ForkedKernel(self, self._call({"op": "fork", "args": cmd[3:], "env": env, "cwd": cwd}))
+
+    def close(self) -> None:
+        if self._proc is not None and self._proc.poll() is None:
+            self._proc.stdin.close()
+            self._proc.wait(timeout=10)
+        self._proc = None
+
+
+class ForkedKernel:
+    """What jupyter_client's local provisioner uses of a ``Popen``, for a kernel forked by the server."""
+
+    stdin = stdout = stderr = None
+
+    def __init__(self, forks: KernelForks, pid: int) -> None:
+        self._forks, self.pid, self.returncode = forks, pid, None
+
+    def poll(self) -> int | None:
+        if self.returncode is None:
+            self.returncode = self._forks._call({"op": "poll", "pid": self.pid})
+        return self.returncode
+
+    def wait(self, timeout: float | None = None) -> int:
+        end = None if timeout is None else time.monotonic() + timeout
+        while self.poll() is None:
+            if end is not None and time.monotonic() > end:
+                raise subprocess.TimeoutExpired(f"kernel {self.pid}", timeout)
+            time.sleep(0.01)
+        return self.returncode
+
+    def send_signal(self, signum: int) -> None:
+        if self.poll() is None:
+            os.kill(self.pid, signum)
+
+    def kill(self) -> None:
+        self.send_signal(signal.SIGKILL)
+
+    def terminate(self) -> None:
+        self.send_signal(signal.SIGTERM)
+
+
+class ForkedKernelManager(AsyncKernelManager):
+    """jupyter_client's kernel manager, launching through :attr:`forks` (set before use) instead of ``Popen``."""
+
+    forks: KernelForks | None = None
+
+    async def _async_launch_kernel(self, kernel_cmd: list[str], **kw) -> None:
+        provisioner = self.provisioner
+        assert provisioner is not None and self.forks is not None
+        cwd = str(kw.get("cwd") or os.getcwd())
+        env = dict(kw.get("env") or os.environ)
+        env["JPY_PARENT_PID"] = str(os.getpid())  # as jupyter_client's launch_kernel sets it (the kernel's parent poller)
+        process = self.forks.launch(kernel_cmd, env=env, cwd=cwd)
+        # what LocalProvisioner.launch_kernel records of the process it starts (the child leads its own group)
+        provisioner.process, provisioner.pid, provisioner.pgid, provisioner.cwd = process, process.pid, process.pid, cwd
+        self._reconcile_connection_info(provisioner.connection_info)
+
+
+# --- the server side ---------------------------------------------------------------------------------------
+
+def serve() -> None:  # pragma: no cover - runs in the server process
+    """Import :data:`PRELOAD`, then answer requests on stdin/stdout until stdin closes."""
+    import importlib
+    import threading
+
+    wire_in = os.fdopen(os.dup(0), "rb")
+    wire_out = os.fdopen(os.dup(1), "wb")
+    os.dup2(2, 1)  # a stray print (of the server or a kernel) must not corrupt the wire
+    del sys.path[:2]  # '' (python -c) and this folder: a kernel's sys.path is the interpreter's, as the launcher leaves it
+    for name in PRELOAD:
+        importlib.import_module(name)
+    assert threading.active_count() == 1, "the kernel fork server must not start threads (they would not survive a fork)"
+    _send(wire_out, "ready")
+    children: dict[int, int | None] = {}
+    while True:
+        try:
+            request = _receive(wire_in)
+        except EOFError:
+            return
+        if request["op"] == "fork":
+            pid = os.fork()
+            if pid == 0:
+                wire_in.close()
+                wire_out.close()
+                _kernel(request["args"], request["env"], request["cwd"])
+            try:
+                os.setpgid(pid, pid)  # also done by the child: whichever runs first, the group exists before the reply
+            except OSError:
+                pass
+            children[pid] = None
+            _send(wire_out, pid)
+        else:
+            pid = request["pid"]
+            if children.get(pid) is None:
+                done, status = os.waitpid(pid, os.WNOHANG)
+                if done:
+                    children[pid] = os.waitstatus_to_exitcode(status)
+            _send(wire_out, children[pid])
+
+
+def _kernel(args: list[str], env: dict[str, str], cwd: str) -> None:  # pragma: no cover - runs in a forked child
+    """Become ``python -m ipykernel_launcher ARGS`` in ``cwd`` with ``env``; never returns."""
+    code = 1
+    try:
+        os.setpgid(0, 0)
+        null = os.open(os.devnull, os.O_RDONLY)
+        os.dup2(null, 0)
+        os.close(null)
+        os.chdir(cwd)
+        os.environ.clear()
+        os.environ.update(env)
+        import random
+
+        random.seed()  # not the server's state: each kernel draws its own, as a fresh interpreter does
+        import ipykernel_launcher
+
+        sys.argv = [ipykernel_launcher.__file__, *args]
+        from ipykernel import kernelapp
+
+        kernelapp.launch_new_instance()
+        code = 0
+    except SystemExit as exc:
+        code = exc.code if isinstance(exc.code, int) else 1
+    except Exception:  # reported as an uncaught exception is: its traceback on stderr, exit status 1
+        import traceback
+
+        traceback.print_exc()
+    finally:
+        os._exit(code)
