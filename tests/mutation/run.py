@@ -44,6 +44,7 @@ from __future__ import annotations
 
 import argparse
 import concurrent.futures
+import importlib.util
 import json
 import os
 import shutil
@@ -134,7 +135,25 @@ def _copy_tree(dest: Path, files: list[str], root: Path) -> None:
     for rel in files:
         target = dest / rel
         target.parent.mkdir(parents=True, exist_ok=True)
-        shutil.copyfile(root / rel, target)
+        shutil.copy2(root / rel, target)  # its modification time too: the bytecode below is checked against it
+        if rel.endswith(".py"):
+            _copy_bytecode(root / rel, target)
+
+
+def _copy_bytecode(source: Path, target: Path) -> None:
+    """The checkout's compiled ``source`` (``__pycache__``), if any, beside ``target``.
+
+    Each run imports the package from the copy under ``PYTHONDONTWRITEBYTECODE``, so without it every run (and
+    ``check``'s forked child) compiles every module it imports again (measured: ``check``'s imports take 1.1 CPU-s
+    from source, 0.9 from bytecode, in each process).  The
+    interpreter uses the file only while it matches the source's modification time and size (else it compiles
+    the source, as without it); the mutated file's is removed outright (:func:`_mutated_copy`).
+    """
+    cached = Path(importlib.util.cache_from_source(str(source)))
+    if cached.is_file():
+        copied = Path(importlib.util.cache_from_source(str(target)))
+        copied.parent.mkdir(exist_ok=True)
+        shutil.copyfile(cached, copied)
 
 
 def _run(args: list[str], cwd: Path) -> subprocess.CompletedProcess:
@@ -203,6 +222,8 @@ def _mutated_copy(dest: Path, mutant: Mutant | None, files: list[str], root: Pat
             path.write_text(apply(path.read_text(encoding="utf-8"), mutant), encoding="utf-8")
         except DoesNotApply:
             return False
+        # the unmutated module's bytecode: never run in its place, whatever its invalidation mode
+        Path(importlib.util.cache_from_source(str(path))).unlink(missing_ok=True)
     return True
 
 
