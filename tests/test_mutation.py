@@ -60,9 +60,10 @@ def test_fast_subset_is_caught_by_check_or_verify_alone():
 
     ``regenerate=False`` (run.py's :func:`_check_sources`): one ``check --json --no-certificates`` on each copy as
     committed, the baseline passing that very command whole; a mutant counts as caught there only through an
-    obligation or a self-check row, which never read ``proofs/``, so a stale (or regenerated) file cannot be what
-    catches it — the guarantee ``check --write`` first gives the full script, at about a quarter of its cost.  A
-    mutant not decided that way goes through the script's whole pipeline, after that pipeline's own baseline.
+    obligation or a self-check row (the only sections its run decides), which never read ``proofs/``, so a stale (or
+    regenerated) file cannot be what catches it — the guarantee ``check --write`` first gives the full script, at
+    about a quarter of its cost.  A mutant not decided that way goes through the script's whole pipeline, after that
+    pipeline's own baseline.
     """
     files = source_files()
     base = run_one(None, files, regenerate=False)

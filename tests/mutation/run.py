@@ -35,7 +35,8 @@ a cheaper route to the same verdict: one ``check --json --no-certificates`` on
 the mutated copy *as committed*, with only those of its failures counted that
 no file under ``proofs/`` can cause — an obligation that does not hold
 (derived from the code alone) or a self-check row that fails (the verifiers on
-the certificates shipped inside the package).  A stale or regenerated file can
+the certificates shipped inside the package); for a mutant, ``check`` decides
+only those two sections (:data:`COUNTED`), the baseline runs the command whole.  A stale or regenerated file can
 then never be what catches the mutant, which is what step 1 is there to
 ensure; a mutant not caught that way is decided by steps 1-3 as above.
 """
@@ -156,9 +157,18 @@ def _copy_bytecode(source: Path, target: Path) -> None:
         shutil.copyfile(cached, copied)
 
 
-def _run(args: list[str], cwd: Path) -> subprocess.CompletedProcess:
+def _run(args: list[str], cwd: Path, *, sections: tuple[str, ...] | None = None) -> subprocess.CompletedProcess:
+    """``python -m symbolic_friction ARGS`` on the copy ``cwd``; with ``sections``, ``check`` runs only those of its
+    :data:`~symbolic_friction._cli.check.SECTIONS` (by function name, all of them or the run fails)."""
     env = dict(os.environ, PYTHONPATH=str(cwd), PYTHONDONTWRITEBYTECODE="1")
-    return subprocess.run([sys.executable, "-m", "symbolic_friction", *args], cwd=cwd, env=env,
+    command = ["-m", "symbolic_friction"]
+    if sections is not None:
+        command = ["-c", "import sys\nfrom symbolic_friction._cli import check\n"
+                   f"kept = [s for s in check.SECTIONS if s.__name__ in {sections!r}]\n"
+                   f"assert len(kept) == {len(sections)}, kept\n"
+                   "check.SECTIONS[:] = kept\n"
+                   "from symbolic_friction._cli.main import entry_point\nentry_point()"]
+    return subprocess.run([sys.executable, *command, *args], cwd=cwd, env=env,
                           capture_output=True, text=True, timeout=TIMEOUT)
 
 
@@ -200,6 +210,11 @@ def _what_failed(check: subprocess.CompletedProcess, verify: subprocess.Complete
 SOURCES_ONLY = ["check", "--json", "--no-certificates"]
 """The command of :func:`_check_sources` (the certificates section is left out: its verdict reads ``proofs/``)."""
 
+COUNTED = ("obligations_section", "self_check_section")
+"""The sections of ``check`` that decide the payload's ``obligations`` and ``self_check``: all that
+:func:`_failures_without_proofs` reads of a mutant's run, so a mutant's run decides only these (the cross-check
+self-test and the independent checker, which read ``proofs/``, would be decided and then ignored)."""
+
 
 def _failures_without_proofs(payload: dict) -> list[str]:
     """The failures of ``check --json`` that no file under ``proofs/`` can cause.
@@ -231,10 +246,10 @@ def _check_sources(mutant: Mutant | None, files: list[str], root: Path) -> Outco
     """One ``check --json --no-certificates`` on a mutated copy as committed; ``None`` when it does not decide.
 
     The baseline (``mutant=None``) is returned as it ran (its ``check_rc`` must be 0: the very command each mutant
-    must fail passes on the unmutated copy, whole).  A mutant is returned as caught only if
-    :func:`_failures_without_proofs` names something, so a committed file going stale (or being regenerated) can
-    never be what catches it; otherwise (or if the output is not JSON, or on a timeout) ``None``: the caller runs
-    the full pipeline.  ``verify`` is not run (its verdict reads ``proofs/``).
+    must fail passes on the unmutated copy, whole; a mutant's run decides only the :data:`COUNTED` sections).  A mutant
+    is returned as caught only if :func:`_failures_without_proofs` names something, so a committed file going stale
+    (or being regenerated) can never be what catches it; otherwise (or if the output is not JSON, or on a timeout)
+    ``None``: the caller runs the full pipeline.  ``verify`` is not run (its verdict reads ``proofs/``).
     """
     start = time.perf_counter()
     with tempfile.TemporaryDirectory(prefix="sf-mutant-") as tmp:
@@ -242,7 +257,7 @@ def _check_sources(mutant: Mutant | None, files: list[str], root: Path) -> Outco
         if not _mutated_copy(dest, mutant, files, root):
             return Outcome(mutant, None, None, "-", time.perf_counter() - start, "does not apply", regenerated=False)
         try:
-            check = _run(SOURCES_ONLY, dest)
+            check = _run(SOURCES_ONLY, dest, sections=None if mutant is None else COUNTED)
         except subprocess.TimeoutExpired:
             return None
     try:
