@@ -61,6 +61,7 @@ if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
 
 from tests.mutation.mutants import FAST, MUTANTS, Mutant  # noqa: E402
+from tests.mutation.warm import Warm  # noqa: E402
 
 TIMEOUT = 300.0
 SOURCES = ("symbolic_friction", "proofs", "pyproject.toml")
@@ -157,9 +158,11 @@ def _copy_bytecode(source: Path, target: Path) -> None:
         shutil.copyfile(cached, copied)
 
 
-def _run(args: list[str], cwd: Path, *, sections: tuple[str, ...] | None = None) -> subprocess.CompletedProcess:
+def _run(args: list[str], cwd: Path, *, sections: tuple[str, ...] | None = None,
+         warm: Warm | None = None) -> subprocess.CompletedProcess:
     """``python -m symbolic_friction ARGS`` on the copy ``cwd``; with ``sections``, ``check`` runs only those of its
-    :data:`~symbolic_friction._cli.check.SECTIONS` (by function name, all of them or the run fails)."""
+    :data:`~symbolic_friction._cli.check.SECTIONS` (by function name, all of them or the run fails); with ``warm``,
+    in a child forked by that warm interpreter (:mod:`tests.mutation.warm`) instead of a new one."""
     env = dict(os.environ, PYTHONPATH=str(cwd), PYTHONDONTWRITEBYTECODE="1")
     command = ["-m", "symbolic_friction"]
     if sections is not None:
@@ -168,6 +171,8 @@ def _run(args: list[str], cwd: Path, *, sections: tuple[str, ...] | None = None)
                    f"assert len(kept) == {len(sections)}, kept\n"
                    "check.SECTIONS[:] = kept\n"
                    "from symbolic_friction._cli.main import entry_point\nentry_point()"]
+    if warm is not None:
+        return warm.run([*command, *args], cwd=cwd, timeout=TIMEOUT)
     return subprocess.run([sys.executable, *command, *args], cwd=cwd, env=env,
                           capture_output=True, text=True, timeout=TIMEOUT)
 
@@ -242,14 +247,15 @@ def _mutated_copy(dest: Path, mutant: Mutant | None, files: list[str], root: Pat
     return True
 
 
-def _check_sources(mutant: Mutant | None, files: list[str], root: Path) -> Outcome | None:
+def _check_sources(mutant: Mutant | None, files: list[str], root: Path, warm: Warm | None = None) -> Outcome | None:
     """One ``check --json --no-certificates`` on a mutated copy as committed; ``None`` when it does not decide.
 
     The baseline (``mutant=None``) is returned as it ran (its ``check_rc`` must be 0: the very command each mutant
     must fail passes on the unmutated copy, whole; a mutant's run decides only the :data:`COUNTED` sections).  A mutant
     is returned as caught only if :func:`_failures_without_proofs` names something, so a committed file going stale
     (or being regenerated) can never be what catches it; otherwise (or if the output is not JSON, or on a timeout)
-    ``None``: the caller runs the full pipeline.  ``verify`` is not run (its verdict reads ``proofs/``).
+    ``None``: the caller runs the full pipeline.  ``verify`` is not run (its verdict reads ``proofs/``).  ``warm``:
+    the run is a child of that warm interpreter.
     """
     start = time.perf_counter()
     with tempfile.TemporaryDirectory(prefix="sf-mutant-") as tmp:
@@ -257,7 +263,7 @@ def _check_sources(mutant: Mutant | None, files: list[str], root: Path) -> Outco
         if not _mutated_copy(dest, mutant, files, root):
             return Outcome(mutant, None, None, "-", time.perf_counter() - start, "does not apply", regenerated=False)
         try:
-            check = _run(SOURCES_ONLY, dest, sections=None if mutant is None else COUNTED)
+            check = _run(SOURCES_ONLY, dest, sections=None if mutant is None else COUNTED, warm=warm)
         except subprocess.TimeoutExpired:
             return None
     try:
@@ -276,14 +282,15 @@ def _check_sources(mutant: Mutant | None, files: list[str], root: Path) -> Outco
     return Outcome(mutant, check.returncode, None, caught_by, seconds, regenerated=False)
 
 
-def run_one(mutant: Mutant | None, files: list[str], root: Path = ROOT, *, regenerate: bool = True) -> Outcome:
+def run_one(mutant: Mutant | None, files: list[str], root: Path = ROOT, *, regenerate: bool = True,
+            warm: Warm | None = None) -> Outcome:
     """Apply ``mutant`` (``None``: the baseline) to a fresh copy and run ``check --write``, ``check``, ``verify``.
 
-    ``regenerate=False`` tries :func:`_check_sources` first (one ``check``, no ``--write``) and runs the three steps
-    only when that does not decide; the outcome's ``regenerated`` says which decided.
+    ``regenerate=False`` tries :func:`_check_sources` first (one ``check``, no ``--write``; in a child of ``warm`` if
+    given) and runs the three steps only when that does not decide; the outcome's ``regenerated`` says which decided.
     """
     if not regenerate:
-        quick = _check_sources(mutant, files, root)
+        quick = _check_sources(mutant, files, root, warm)
         if quick is not None:
             return quick
     start = time.perf_counter()
