@@ -108,7 +108,7 @@ def test_write_is_deterministic_across_processes(full_run, tmp_path):
     # self-check stays beside the obligations so that `check` still forks its second process, which takes
     # obligations from the back of the list (_parallel.run_sections): the split whose output must not vary either.
     kept = "[check.obligations_section, check.self_check_section]"
-    code = (f"import sys\nfrom symbolic_friction._cli import check\ncheck.SECTIONS[:] = {kept}\n"
+    code = (f"from symbolic_friction._cli import check\ncheck.SECTIONS[:] = {kept}\n"
             "from symbolic_friction._cli.main import entry_point\nentry_point()")
     env = dict(os.environ, PYTHONHASHSEED="12345")
     proc = subprocess.run(

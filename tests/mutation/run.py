@@ -166,11 +166,12 @@ def _run(args: list[str], cwd: Path, *, sections: tuple[str, ...] | None = None,
     env = dict(os.environ, PYTHONPATH=str(cwd), PYTHONDONTWRITEBYTECODE="1")
     command = ["-m", "symbolic_friction"]
     if sections is not None:
-        command = ["-c", "import sys\nfrom symbolic_friction._cli import check\n"
-                   f"kept = [s for s in check.SECTIONS if s.__name__ in {sections!r}]\n"
-                   f"assert len(kept) == {len(sections)}, kept\n"
-                   "check.SECTIONS[:] = kept\n"
-                   "from symbolic_friction._cli.main import entry_point\nentry_point()"]
+        code = ("from symbolic_friction._cli import check\n"
+                f"kept = [s for s in check.SECTIONS if s.__name__ in {sections!r}]\n"
+                f"assert len(kept) == {len(sections)}, kept\n"
+                "check.SECTIONS[:] = kept\n"
+                "from symbolic_friction._cli.main import entry_point\nentry_point()")
+        command = ["-c", code]
     if warm is not None:
         return warm.run([*command, *args], cwd=cwd, timeout=TIMEOUT)
     return subprocess.run([sys.executable, *command, *args], cwd=cwd, env=env,
