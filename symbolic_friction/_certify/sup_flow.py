@@ -290,8 +290,22 @@ def _as(kind: type, x: Any) -> Any:
 def in_fmpq(function: Any, *args: Any) -> Any:
     """``function(*args)`` of the model's forms evaluated on python-flint's fmpq, its result as Fractions: the same
     exact values (the forms are sums of products), several times faster than Fraction arithmetic, which was most of
-    a sup-flow verification's time."""
-    return _as(Fraction, function(*_as(fmpq, args)))
+    a sup-flow verification's time.  Within :data:`shared_decisions` the same function on the same exact arguments
+    (an edited file's unchanged pieces) is evaluated once."""
+    key = _numbers_key(args)
+    compute = lambda: _as(Fraction, function(*_as(fmpq, args)))  # noqa: E731
+    return compute() if key is None else _DECISIONS.get((function, key), compute)
+
+
+def _numbers_key(x: Any) -> Any:
+    """``x`` (nested tuples and lists of exact rationals) as nested tuples of integers (numerator, denominator);
+    None if it holds anything else (a bool, a float: then nothing is kept)."""
+    if type(x) is Fraction or type(x) is int:  # the leaves first: most calls are leaves
+        return x.numerator, x.denominator
+    if isinstance(x, (tuple, list)):
+        out = tuple(map(_numbers_key, x))
+        return None if None in out else out
+    return None
 
 
 def sup_flow_premises(cert: SupFlowCertificate) -> list[Any]:
@@ -344,14 +358,18 @@ def _exact_key(*numbers: Fraction) -> tuple[int, ...]:
 
 
 def _flow_key(premise: FlowNorm | FlowExit) -> tuple[Any, ...]:
-    """Everything :func:`decide_flow` reads of ``premise``, as exact integers (its name and obligation too)."""
+    """Everything :func:`decide_flow` reads of ``premise``, as exact integers (its name and obligation too).
+
+    The tail (``P``, ``p`` and ``T``) is read only by :class:`FlowNorm` and the exit of the last piece (which
+    ends at ``∞``): an exit on a finite piece is keyed without it, so an edit of the tail decides only those again."""
     cert = premise.certificate
+    piece = None if isinstance(premise, FlowNorm) else cert.pieces[premise.index]
+    tail = () if piece is not None and piece.end is not None else _exact_key(
+        *(x for row in premise.p_matrix for x in row), cert.constants["p"], cert.pieces[-1].start)
     common = (type(premise).__name__, premise.obligation, premise.name, _exact_key(cert.k_p, cert.k_i, cert.k_v),
-              tuple((s, _exact_key(*(x for row in d for x in row))) for s, d in cert.drag_maps()),
-              _exact_key(*(x for row in premise.p_matrix for x in row), cert.constants["p"], cert.pieces[-1].start))
-    if isinstance(premise, FlowNorm):
+              tuple((s, _exact_key(*(x for row in d for x in row))) for s, d in cert.drag_maps()), tail)
+    if piece is None:
         return common + (_exact_key(cert.constants["c2"]),)
-    piece = cert.pieces[premise.index]
     return common + (_exact_key(piece.start), piece.end is None or _exact_key(piece.end),
                      tuple((s, _exact_key(*(x for row in k for x in row))) for s, k in piece.signed_forms()))
 

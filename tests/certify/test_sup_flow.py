@@ -377,3 +377,24 @@ def test_a_shared_flow_verdict_is_keyed_by_every_number_its_premise_reads():
     assert keys(moved, "FlowExit")[0] != keys(cert, "FlowExit")[0]
     assert keys(raised, "FlowNorm") != keys(cert, "FlowNorm")
     assert keys(cert, "FlowExit") == keys(sup_flow.load_sup_flow(PROOFS / "case_a.json"), "FlowExit")
+
+
+def test_an_exit_on_a_finite_piece_is_keyed_without_the_tail_and_the_last_one_with_it():
+    """The tail (``P``, ``p``, ``T``) is read only by ``c₂``'s premise and the last piece's exit: an edit of ``p`` keeps
+    the keys of the other exits (their kept verdicts) and changes those two; the same numbers give the same key, and
+    a shared block decides a file with an edited ``p`` as a fresh verification does."""
+    import dataclasses
+
+    cert = sup_flow.load_sup_flow(PROOFS / "case_a.json")
+    edited = dataclasses.replace(cert, constants={**cert.constants, "p": cert.constants["p"] / 2})
+
+    def keys(c, kind):
+        return [sup_flow._flow_key(p) for p in sup_flow.sup_flow_premises(c) if type(p).__name__ == kind]
+
+    assert keys(edited, "FlowExit")[:-1] == keys(cert, "FlowExit")[:-1]
+    assert keys(edited, "FlowExit")[-1] != keys(cert, "FlowExit")[-1]
+    assert keys(edited, "FlowNorm") != keys(cert, "FlowNorm")
+    fresh = [(c.name, c.holds, c.instance) for c in verify_sup_flow(edited).checks]
+    with sup_flow.shared_decisions():
+        verify_sup_flow(cert)
+        assert [(c.name, c.holds, c.instance) for c in verify_sup_flow(edited).checks] == fresh
