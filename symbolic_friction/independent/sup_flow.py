@@ -16,6 +16,7 @@ Undecided is not proved.  Premise names are the main verifier's; its format rule
 
 from __future__ import annotations
 
+import contextlib
 from fractions import Fraction
 
 import flint
@@ -159,11 +160,37 @@ def positive_definite(m) -> bool:
     return bool(m[0, 0] > 0 and m[0, 0] * m[1, 1] - m[0, 1] * m[1, 0] > 0 and m.det() > 0)
 
 
+_KEPT: list[dict] = []
+
+
+@contextlib.contextmanager
+def shared():
+    """Within the block, premises on the same numbers as ones decided before keep their verdicts (the tests decide
+    hundreds of edited copies of a file, most of whose pieces are unchanged); outside it nothing is kept."""
+    _KEPT.append({})
+    try:
+        yield
+    finally:
+        _KEPT.pop()
+
+
+def _kept(key: tuple, compute):
+    """``compute()``, or within :func:`shared` its value for ``key`` from earlier in the block."""
+    if _KEPT and key not in _KEPT[-1]:
+        _KEPT[-1][key] = compute()
+    return _KEPT[-1][key] if _KEPT else compute()
+
+
+def _ints(*xs: Fraction) -> tuple[int, ...]:
+    """Rationals as exact integers (numerator, denominator): a key hashed far faster than Fractions."""
+    return tuple(n for x in xs for n in (x.numerator, x.denominator))
+
+
 class Flow:
     """Enclosures of ``e^{At}`` (cached) and ``G = e^{At}ᵀe^{At}``, and the part budget of one file."""
 
     def __init__(self, a: Matrix) -> None:
-        self.a, self.left = _arb(a), MAX_TOTAL_PARTS
+        self.a, self.left, self.exact = _arb(a), MAX_TOTAL_PARTS, _ints(*(x for row in a for x in row))
         # t ↦ e^{At}; h ↦ e^{Ah}; h ↦ exp(A·[0, h]), which holds e^{Aτ} for every τ ∈ [0, h]
         self.starts, self.steps, self.widths = {}, {}, {}
 
@@ -185,10 +212,22 @@ class Flow:
         e = self.at(lo) * self.widths[hk]
         return e.transpose() * e
 
-    def cover(self, parts: list[tuple[Fraction, Fraction]], test, refute) -> tuple[bool | None, str]:
+    def cover(self, parts: list[tuple[Fraction, Fraction]], test, refute, key: tuple) -> tuple[bool | None, str]:
         """``test(G)`` on parts covering ``parts``, halving where undecided (at most :data:`MAX_DEPTH` times);
         ``refute(G(t))`` at the midpoint of the 1st, 2nd, 4th, 8th … undecided part ends it with False; out of parts
-        (this premise's or the file's) or of depth it is undecided."""
+        (this premise's or the file's) or of depth it is undecided.  Within :func:`shared`, the verdict on the same
+        ``A``, parts and ``key`` (every number ``test`` and ``refute`` read) is kept where the file's budget did not
+        decide it: it never came within 2 parts of its end, and this file has room for as many parts again."""
+        kept = _kept((PRECISION, self.exact, _ints(*(x for part in parts for x in part)), key), list)
+        if kept and self.left - kept[2] >= 2:
+            self.left -= kept[2]
+            return kept[0], kept[1]
+        before, verdict = self.left, self._cover(parts, test, refute)
+        if self.left >= 2:
+            kept[:] = [*verdict, before - self.left]
+        return verdict
+
+    def _cover(self, parts: list[tuple[Fraction, Fraction]], test, refute) -> tuple[bool | None, str]:
         stack, done, undecided = [(lo, hi, 0) for lo, hi in reversed(parts)], 0, 0
         while stack:
             lo, hi, depth = stack.pop()
@@ -221,9 +260,10 @@ def _pieces(raw: object, v2: bool) -> list[tuple[Fraction, Fraction | None, Frac
     return out
 
 
-def _piece_forms(out: Verdict, tag: str, piece: tuple, gains: tuple, ell: tuple, v2: bool) -> None:
+def _piece_forms(tag: str, piece: tuple, gains: tuple, ell: tuple, v2: bool) -> list[tuple[str, bool | None, str]]:
     """The exact premises of one piece's forms, in the main verifier's order and names (in python-flint's fmpq:
     the same exact values, several times faster than Fraction arithmetic, where the checker spent most of its time)."""
+    out = Verdict("")
     (kp, ki, kv, gamma, *ell), forms = (_q(x) for x in (*gains, piece[2], *ell)), [(s, _q(k)) for s, k in piece[3]]
     for s, k in forms[:1 + v2]:
         sign = "+−"[s < 0] if v2 else ""
@@ -242,6 +282,7 @@ def _piece_forms(out: Verdict, tag: str, piece: tuple, gains: tuple, ell: tuple,
     if v2:  # design § c: U⁻ ≤ U⁺ on σ = 0, where σ may change sign (from + to −)
         out.add(f"{tag}: coupling (K+ − K−) on (|dz φ|, |v|) copositive",
                 copositive([[forms[0][1][r][j] - forms[1][1][r][j] for j in (1, 2)] for r in (1, 2)]))
+    return out.premises
 
 
 def check(data: dict) -> Verdict:
@@ -294,15 +335,18 @@ def check(data: dict) -> Verdict:
             out.add(name, False, f"the tail form at T = {shown(horizon)} is not below c2")
         else:
             out.add(name, *flow.cover([(s, e) for s, e, _, _ in pieces[:-1]], below, lambda g: any(
-                (d.transpose() * g * d)[i, i] > mu for d in maps for i in range(3))))
+                (d.transpose() * g * d)[i, i] > mu for d in maps for i in range(3)), ("c2", _ints(c["c2"], *drag or ()))))
         for s, k in pieces[0][3][:1 + v2]:  # sup_flow.bounds: U ≥ |y|² = |x|²_𝒜 on R̂ at t = 0
             out.add(f"K{'+−'[s < 0] if v2 else ''}1 − I copositive (piece 1)", copositive(_minus(k, _eye(ONE))))
-        for i, (start, end, _, forms) in enumerate(pieces):
-            _piece_forms(out, f"piece {i + 1}", pieces[i], (kp, ki, kv), ell, v2)
+        for i, (start, end, gamma, forms) in enumerate(pieces):
+            tag, numbers = f"piece {i + 1}", _ints(*(x for _, k in forms for row in k for x in row), *drag or ())
+            out.premises += _kept(("forms", tag, numbers, _ints(kp, ki, kv, gamma, *ell), v2),
+                                  lambda: _piece_forms(tag, pieces[i], (kp, ki, kv), ell, v2))
             # sup_flow.exit, sup_flow_v2.exit: U^s ≥ |e^(At)w|² where a solution leaves, for every t of the piece
             name = (f"piece {i + 1}: U{'±' * v2} ≥ |e^(At)w|² on the exits of R̂{' and of f > ℓᵀy' * bool(drag)}"
                     f" for t in [{shown(start)}, {'∞' if end is None else shown(end)})")  # shown: str() raises past 4300 digits
-            ex = [(_arb(ke), _arb(d), _arb(d).transpose()) for s, k in forms for ke, d in exit_forms(k, s, drag)]
+            ex = _kept(("exit forms", PRECISION, numbers), lambda: [
+                (_arb(ke), _arb(d), _arb(d).transpose()) for s, k in forms for ke, d in exit_forms(k, s, drag)])
             above = lambda g, ex=ex: all(copositive_lower(ke - dt * g * d) for ke, d, dt in ex)  # noqa: E731
             if flow is None:
                 out.add(name, None, NOT_EVALUATED)
@@ -312,7 +356,7 @@ def check(data: dict) -> Verdict:
                 out.add(name, False, "empty piece")
             else:
                 out.add(name, *flow.cover([(start, end)], above, lambda g, ex=ex: any(
-                    _fails(_ends(ke - dt * g * d, "upper")) for ke, d, dt in ex)))
+                    _fails(_ends(ke - dt * g * d, "upper")) for ke, d, dt in ex), ("exits", numbers)))
     finally:
         flint.ctx.prec = old
     # sup_flow.stability_bound: |x(t)|²_𝒜 ≤ max(c₂, γ_i)|x(0)|²_𝒜 ≤ κ²|x(0)|²_𝒜 (eq. stabState)

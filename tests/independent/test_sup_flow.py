@@ -270,6 +270,23 @@ def test_undecided_is_not_proved(monkeypatch, limit, value):
     assert all(h is not False for _, h, _ in verdict.premises)  # nothing is refuted: it is only not shown
 
 
+def test_a_shared_block_decides_as_fresh_checks_and_keeps_no_verdict_a_smaller_budget_would_change(monkeypatch):
+    """``shared()`` (the tampered corpora's) hands a premise on the same numbers the verdict decided before, but only
+    where the file's budget cannot have changed it: with the budget cut, the kept verdicts give way to undecided."""
+    data = read(COMMITTED[2])
+    edited = copy.deepcopy(data)
+    edited["pieces"][1]["k33"] = str(2 * Fraction(edited["pieces"][1]["k33"]))
+    fresh = [sup_flow.check(d).premises for d in (data, edited)]
+    with monkeypatch.context() as m:
+        m.setattr(sup_flow, "MAX_TOTAL_PARTS", 200)
+        short = sup_flow.check(data).premises
+    assert short != fresh[0] and any(h is None for _, h, _ in short)
+    with sup_flow.shared():
+        assert [sup_flow.check(d).premises for d in (data, edited, data)] == fresh + fresh[:1]
+        monkeypatch.setattr(sup_flow, "MAX_TOTAL_PARTS", 200)
+        assert sup_flow.check(data).premises == short
+
+
 def test_without_its_own_p_the_tail_is_the_papers():
     # case (b) of Table I with the paper's P for its tail: P − pI ⪰ 0 fails for the file's p
     data = read(COMMITTED[1])

@@ -38,12 +38,14 @@ KINDS = tuple(k for k in tampered.KINDS if not k.startswith("sup-flow"))  # sup-
 def check_kind(kind: str) -> None:
     """The default sample of ``kind``: no problem, every class and every type of edit in it (also for sup-flow).
 
-    Every edit is decided by both verifiers; the main one's sup-flow premises and box corners that an edit leaves as
-    they were (most pieces of a file) keep their first verdict within the sample, as in the self-check."""
+    Every edit is decided by both verifiers; the sup-flow premises on the flow (both verifiers') and the main one's
+    copositivity premises and box corners that an edit leaves as they were (most pieces of a file) keep their first
+    verdict within the sample, as in the self-check."""
     from symbolic_friction._certify.box import shared_corners
     from symbolic_friction._certify.sup_flow import shared_decisions
+    from symbolic_friction.independent.sup_flow import shared
 
-    with shared_decisions(), shared_corners():
+    with shared_decisions(), shared_corners(), shared():
         tally, outcomes, found = tampered.default_run(kind)
     assert not found, "\n".join(found[:20])
     assert tally.edits >= 100 and tally.edits == tally.both_refuse + tally.both_accept + tally.disagree
