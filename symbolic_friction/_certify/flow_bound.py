@@ -104,11 +104,17 @@ def _below(mu: Any, S: Any) -> bool:
 
 
 def _norm_at(A: Any, t: float) -> float:
-    """``‖e^{At}‖₂`` in floats (only to choose where to look)."""
+    """``‖e^{At}‖₂`` in floats (only to choose where to look).
+
+    The search calls it a thousand times a κ_lin: a finite double ``t`` is taken into arb directly (exactly, as
+    its Fraction is; a NaN or an infinity still goes through the Fraction, which refuses it), the entries are read
+    in one call, and the largest singular value is what ``np.linalg.norm(·, 2)`` returns, without its generic axis
+    handling (the same LAPACK call, so the same floats)."""
+    import flint
     import numpy as np
 
-    M = (A * _arb(Fraction(t))).exp()
-    return float(np.linalg.norm(np.array([[float(M[i, j].mid()) for j in range(3)] for i in range(3)]), 2))
+    M = (A * (flint.arb(t) if math.isfinite(t) else _arb(Fraction(t)))).exp()
+    return float(np.linalg.svd(np.array([float(x.mid()) for x in M.entries()]).reshape(3, 3), compute_uv=False).max())
 
 
 def _peak(A: Any, horizon: float, near: float | None = None) -> float:
