@@ -131,12 +131,16 @@ def test_the_integral_without_f_c_fails(monkeypatch):
 
 @pytest.mark.slow
 def test_the_shipped_numbers_are_the_references():
-    """kernel_reference.json is what the 50-digit reference computes now (regenerate with reference_data)."""
+    """kernel_reference.json is what the 50-digit reference computes now (regenerate with reference_data).
+
+    Its states, modes, horizons, events and scales; ``integral_v2`` (an mpmath quadrature, half the time) is not
+    computed, as this test never compared it."""
     shipped = _kernel_check.load_reference()
-    fresh = json.loads(json.dumps(_kernel_check.reference_data()))
+    fresh = json.loads(json.dumps(_kernel_check.reference_data(integrals=False)))
     assert fresh.keys() == shipped.keys()
     for name in fresh:
         a, b = fresh[name], shipped[name]
         assert a["mode"] == b["mode"] and a["t_end"] == b["t_end"], name
+        assert np.isclose(a["scale"], b["scale"], rtol=1e-15, atol=0), name
         assert np.allclose(np.array(a["z"], float), np.array(b["z"], float), rtol=0, atol=1e-15 * a["scale"]), name
         assert [e[1:3] for e in a["events"]] == [e[1:3] for e in b["events"]], name
