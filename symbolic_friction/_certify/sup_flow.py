@@ -320,20 +320,38 @@ def sup_flow_premises(cert: SupFlowCertificate) -> list[Any]:
         Copositive("sup_flow.bounds", "K1 − I copositive (piece 1)", _sub(pieces[0].k_matrix(), _scaled_identity(3, zero + 1))),
     ]
     for i, piece in enumerate(pieces):
-        k, tag = piece.k_matrix(), f"piece {i + 1}"
-        for s, sign in ((1, "+"), (-1, "−")):
-            b = quad.slip_rate_entries(k_p, k_i, k_v, zero + s)
-            out.append(Copositive("quadratic.U_rate", f"{tag}: −(K·B{sign} + B{sign}ᵀ·K) copositive",
-                                  in_fmpq(quad.u_rate_entries, k, b)))
-            out.append(Copositive("quadratic.U_rate", f"{tag}: band form (s = {sign}1) copositive",
-                                  in_fmpq(quad.band_rate_entries, k_i, k_v, k, zero + s)))
-        for j in range(3):
-            out.append(Inequality("quadratic.U_rate", f"{tag}: K3{j + 1} ≥ 0", k[2][j], ">=", zero))
-        out.append(Copositive("sup_flow.stability_bound", f"{tag}: gamma·I − K copositive",
-                              _sub(_scaled_identity(3, piece.constants["gamma"]), k)))
+        tag = f"piece {i + 1}"
+        numbers = (k_p, k_i, k_v, *map(piece.constants.get, piece.names))
+        out += piece_premises(TEMPLATE_ID, tag, numbers, lambda piece=piece, tag=tag: _forms_premises(cert, piece, tag))
         out.append(FlowExit("sup_flow.exit", f"{tag}: U ≥ |e^(At)w|² on the exits of R̂ for t in {piece.interval_text()}", cert,
                             p_tail, i))
     return out + bound_premises(cert, "sup_flow.stability_bound")
+
+
+def _forms_premises(cert: SupFlowCertificate, piece: SupFlowPiece, tag: str) -> list[Any]:
+    """A piece's premises on its form ``K`` and ``γ`` (exact; :func:`sup_flow_premises`'s, before its exit)."""
+    k_p, k_i, k_v, k = cert.k_p, cert.k_i, cert.k_v, piece.k_matrix()
+    zero, out = k_i - k_i, []
+    for s, sign in ((1, "+"), (-1, "−")):
+        b = quad.slip_rate_entries(k_p, k_i, k_v, zero + s)
+        out.append(Copositive("quadratic.U_rate", f"{tag}: −(K·B{sign} + B{sign}ᵀ·K) copositive",
+                              in_fmpq(quad.u_rate_entries, k, b)))
+        out.append(Copositive("quadratic.U_rate", f"{tag}: band form (s = {sign}1) copositive",
+                              in_fmpq(quad.band_rate_entries, k_i, k_v, k, zero + s)))
+    for j in range(3):
+        out.append(Inequality("quadratic.U_rate", f"{tag}: K3{j + 1} ≥ 0", k[2][j], ">=", zero))
+    out.append(Copositive("sup_flow.stability_bound", f"{tag}: gamma·I − K copositive",
+                          _sub(_scaled_identity(3, piece.constants["gamma"]), k)))
+    return out
+
+
+def piece_premises(template: str, tag: str, numbers: tuple[Any, ...], build: Any) -> tuple[Any, ...]:
+    """``build()``, a piece's exact premises on its forms (frozen, built from ``numbers`` alone: the gains, ``ℓ``
+    and the piece's constants), kept within :data:`shared_decisions` under the template's id, ``tag`` and the exact
+    ``numbers`` (an edited file's unchanged pieces: most of them)."""
+    if not all(type(x) is Fraction for x in numbers):
+        return tuple(build())
+    return _DECISIONS.get(("piece premises", template, tag, _exact_key(*numbers)), lambda: tuple(build()))
 
 
 def _decide(premise: Any, budget: Budget | None = None) -> Check:

@@ -58,6 +58,7 @@ from .sup_flow import (
     dumps_sup_flow,
     frame_premises,
     in_fmpq,
+    piece_premises,
     verify_sup_flow,
 )
 from .sup_flow_enclosure import FlowExit, FlowNorm
@@ -137,31 +138,41 @@ def sup_flow_v2_premises(cert: SupFlowCertificateV2) -> list[Any]:
     zero = k_i - k_i
     out = frame_premises(cert)
     out += [Inequality("sup_flow_v2.drag_region", f"ell{j + 1} ≥ 0", ell[j], ">=", zero) for j in range(3)]
-    norm = "c2 ≥ ‖e^(At)‖² for every t ≥ 0" + (" and c2 ≥ ‖e^(At)·D_ℓ‖² (both signs)" if cert.drag_maps() else "")
-    out.append(FlowNorm("sup_flow_v2.drag_region" if cert.drag_maps() else "sup_flow.bounds", norm, cert, cert.tail_matrix()))
+    drag, p_tail = bool(cert.drag_maps()), cert.tail_matrix()  # once: the same for every piece
+    norm = "c2 ≥ ‖e^(At)‖² for every t ≥ 0" + (" and c2 ≥ ‖e^(At)·D_ℓ‖² (both signs)" if drag else "")
+    out.append(FlowNorm("sup_flow_v2.drag_region" if drag else "sup_flow.bounds", norm, cert, p_tail))
     eye = _scaled_identity(3, zero + 1)
     for s, sign in ((1, "+"), (-1, "−")):
         out.append(Copositive("sup_flow.bounds", f"K{sign}1 − I copositive (piece 1)", _sub(pieces[0].form(s), eye)))
     for i, piece in enumerate(pieces):
         tag = f"piece {i + 1}"
-        for s, sign in ((1, "+"), (-1, "−")):
-            k = piece.form(s)
-            b = quad.slip_rate_entries(k_p, k_i, k_v, zero + s)
-            out.append(Inequality("sup_flow_v2.U_rate", f"{tag}: {'' if s > 0 else '−'}K{sign}12 ≥ 0", s * k[0][1], ">=", zero))
-            out.append(Copositive("sup_flow_v2.U_rate", f"{tag}: drag rate form of K{sign} (s = {sign}1) copositive",
-                                  in_fmpq(quad.drag_rate_entries, k, b, ell)))
-            out.append(Copositive("sup_flow_v2.U_rate", f"{tag}: drag band form of K{sign} (s = {sign}1) copositive",
-                                  in_fmpq(quad.drag_band_entries, k_i, k_v, k, zero + s, ell)))
-            for j in range(3):
-                out.append(Inequality("sup_flow_v2.U_rate", f"{tag}: K{sign}3{j + 1} ≥ 0", k[2][j], ">=", zero))
-            out.append(Copositive("sup_flow_v2.stability_bound", f"{tag}: gamma·I − K{sign} copositive",
-                                  _sub(_scaled_identity(3, piece.constants["gamma"]), k)))
-        out.append(Copositive("sup_flow_v2.sign_crossing", f"{tag}: coupling (K+ − K−) on (|dz φ|, |v|) copositive",
-                              model.coupling_block(piece.form(1), piece.form(-1))))
-        where = "the exits of R̂" + (" and of f > ℓᵀy" if cert.drag_maps() else "")
+        numbers = (k_p, k_i, k_v, *ell, *map(piece.constants.get, piece.names))
+        out += piece_premises(TEMPLATE_ID, tag, numbers, lambda piece=piece, tag=tag: _forms_premises(cert, piece, tag))
+        where = "the exits of R̂" + (" and of f > ℓᵀy" if drag else "")
         out.append(FlowExit("sup_flow_v2.exit", f"{tag}: U± ≥ |e^(At)w|² on {where} for t in {piece.interval_text()}",
-                            cert, cert.tail_matrix(), i))
+                            cert, p_tail, i))
     return out + bound_premises(cert, "sup_flow_v2.stability_bound")
+
+
+def _forms_premises(cert: SupFlowCertificateV2, piece: SupFlowPieceV2, tag: str) -> list[Any]:
+    """A piece's premises on its forms ``K⁺``, ``K⁻`` and ``γ`` (exact; :func:`sup_flow_v2_premises`'s, before its exit)."""
+    k_p, k_i, k_v, ell = cert.k_p, cert.k_i, cert.k_v, cert.ell
+    zero, out = k_i - k_i, []
+    for s, sign in ((1, "+"), (-1, "−")):
+        k = piece.form(s)
+        b = quad.slip_rate_entries(k_p, k_i, k_v, zero + s)
+        out.append(Inequality("sup_flow_v2.U_rate", f"{tag}: {'' if s > 0 else '−'}K{sign}12 ≥ 0", s * k[0][1], ">=", zero))
+        out.append(Copositive("sup_flow_v2.U_rate", f"{tag}: drag rate form of K{sign} (s = {sign}1) copositive",
+                              in_fmpq(quad.drag_rate_entries, k, b, ell)))
+        out.append(Copositive("sup_flow_v2.U_rate", f"{tag}: drag band form of K{sign} (s = {sign}1) copositive",
+                              in_fmpq(quad.drag_band_entries, k_i, k_v, k, zero + s, ell)))
+        for j in range(3):
+            out.append(Inequality("sup_flow_v2.U_rate", f"{tag}: K{sign}3{j + 1} ≥ 0", k[2][j], ">=", zero))
+        out.append(Copositive("sup_flow_v2.stability_bound", f"{tag}: gamma·I − K{sign} copositive",
+                              _sub(_scaled_identity(3, piece.constants["gamma"]), k)))
+    out.append(Copositive("sup_flow_v2.sign_crossing", f"{tag}: coupling (K+ − K−) on (|dz φ|, |v|) copositive",
+                          model.coupling_block(piece.form(1), piece.form(-1))))
+    return out
 
 
 def load_sup_flow(path: str | Path) -> SupFlowCertificate:

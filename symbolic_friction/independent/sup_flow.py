@@ -341,11 +341,11 @@ def check(data: dict) -> Verdict:
         for i, (start, end, gamma, forms) in enumerate(pieces):
             tag, numbers = f"piece {i + 1}", _ints(*(x for _, k in forms for row in k for x in row), *drag or ())
             out.premises += _kept(("forms", tag, numbers, _ints(kp, ki, kv, gamma, *ell), v2),
-                                  lambda: _piece_forms(tag, pieces[i], (kp, ki, kv), ell, v2))
+                                  lambda tag=tag, i=i: _piece_forms(tag, pieces[i], (kp, ki, kv), ell, v2))
             # sup_flow.exit, sup_flow_v2.exit: U^s ≥ |e^(At)w|² where a solution leaves, for every t of the piece
             name = (f"piece {i + 1}: U{'±' * v2} ≥ |e^(At)w|² on the exits of R̂{' and of f > ℓᵀy' * bool(drag)}"
                     f" for t in [{shown(start)}, {'∞' if end is None else shown(end)})")  # shown: str() raises past 4300 digits
-            ex = _kept(("exit forms", PRECISION, numbers), lambda: [
+            ex = _kept(("exit forms", PRECISION, numbers), lambda forms=forms: [
                 (_arb(ke), _arb(d), _arb(d).transpose()) for s, k in forms for ke, d in exit_forms(k, s, drag)])
             above = lambda g, ex=ex: all(copositive_lower(ke - dt * g * d) for ke, d, dt in ex)  # noqa: E731
             if flow is None:
