@@ -311,3 +311,27 @@ def test_pieces_of_the_wrong_version_are_refused():
         SupFlowPieceV2(start=Fraction(0), end=None, constants={n: Fraction(1) for n in SupFlowPiece.names})
     with pytest.raises(AttributeError, match="two forms"):
         cert.pieces[0].k_matrix()
+
+
+def test_a_pieces_premises_are_kept_under_its_numbers_by_name():
+    """Within ``shared_decisions`` a piece's premises on its forms are built once per exact numbers, read by name:
+    a piece holding the same numbers under other names (here in the reverse order) gets its own premises, as a
+    fresh verification builds them, and the file it is in is decided as a fresh verification decides it."""
+    import dataclasses
+
+    from symbolic_friction._certify.sup_flow import shared_decisions
+
+    cert = SupFlowCertificateV2.from_dict(_data())
+    piece = cert.pieces[0]
+    values = [piece.constants[n] for n in piece.names]
+    other = dataclasses.replace(cert, pieces=(dataclasses.replace(piece, constants=dict(zip(piece.names, values[::-1]))),
+                                              *cert.pieces[1:]))
+
+    def named(c):
+        return [(type(p).__name__, p.name, getattr(p, "matrix", None), getattr(p, "lhs", None)) for p in c.premises()]
+
+    fresh, decided = named(other), [(c.name, c.holds, c.instance) for c in verify_sup_flow(other).checks]
+    with shared_decisions():
+        assert named(cert) != fresh and verify_sup_flow(cert).proved
+        assert named(other) == fresh
+        assert [(c.name, c.holds, c.instance) for c in verify_sup_flow(other).checks] == decided
