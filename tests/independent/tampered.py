@@ -919,7 +919,7 @@ def corpus(per_kind: int | None, seed: int = 0, kinds: tuple[str, ...] = KINDS,
     by_kind: dict[str, list[Edit]] = defaultdict(list)
     for kind, path in sources():
         if kind in kinds:
-            by_kind[kind] += all_edits(kind, path, seed)
+            by_kind[kind] += _listed_edits(kind, path, seed)  # not copied: a drawn edit is copied before made()
     out = {}
     for kind, edits in by_kind.items():
         rng = random.Random(f"{seed}:{kind}")
@@ -953,7 +953,7 @@ def corpus(per_kind: int | None, seed: int = 0, kinds: tuple[str, ...] = KINDS,
                     edit = groups[-1].pop()
                     if caps is not None and taken[edit.source] >= caps.get(edit.source, per_kind or len(edits)):
                         continue
-                    made(edit)
+                    edit = made(copy.copy(edit))
                     key = edit.text if edit.text is not None else json.dumps(edit.data, sort_keys=True)
                     if key not in seen:
                         seen.add(key)
@@ -1072,7 +1072,7 @@ def default_run(kind: str) -> tuple[Tally, list[Outcome], list[str]]:
 
 def edit_types(kind: str) -> set[str]:
     """Every type of edit (``nudge +1e-6``, ``key removed``, …) the generator makes of the kind's files."""
-    return {e.family.partition(" @ ")[0] for k, path in sources() if k == kind for e in all_edits(k, path)}
+    return {e.family.partition(" @ ")[0] for k, path in sources() if k == kind for e in _listed_edits(k, path, 0)}
 
 
 def _rule_name(rule: str | None) -> str:
