@@ -361,14 +361,18 @@ def _decide(premise: Any, budget: Budget | None = None) -> Check:
         # a pure function of the name and the exact matrix (anything else, a bool, a float, is decided, and refused)
         key = (premise.obligation, premise.name, tuple(_exact_key(*row) for row in premise.matrix))
         return _DECISIONS.get(key, lambda: decide_premise(premise))
+    if (type(premise) is Inequality and premise.rhs_text is None and type(premise.lhs) is Fraction
+            and type(premise.rhs) is Fraction):  # likewise a pure function of its name, relation and two numbers
+        key = (premise.obligation, premise.name, premise.op, _exact_key(premise.lhs, premise.rhs))
+        return _DECISIONS.get(key, lambda: decide_premise(premise))
     return decide_premise(premise)
 
 
 _DECISIONS = Memo()
 shared_decisions = _DECISIONS.sharing
-"""Within the block, a premise on the flow or a copositivity premise with the same numbers as one decided before is
-not decided again (the self-check's false files and an edited certificate's copies share most of their pieces with
-a true file)."""
+"""Within the block, a premise on the flow, a copositivity premise or an inequality of two rationals with the same
+numbers as one decided before is not decided again (the self-check's false files and an edited certificate's copies
+share most of their pieces with a true file)."""
 
 
 def _exact_key(*numbers: Fraction) -> tuple[int, ...]:
