@@ -133,13 +133,17 @@ def test_the_integral_without_f_c_fails(monkeypatch):
 def test_the_shipped_numbers_are_the_references():
     """kernel_reference.json is what the 50-digit reference computes now (regenerate with reference_data).
 
-    Its states, modes, horizons, events and scales; ``integral_v2`` (an mpmath quadrature, half the time) is not
-    computed, as this test never compared it."""
+    Its states, modes, horizons, events and scales, and ``integral_v2`` of the uniform grids (the number the
+    cross-check's ∫v² is held to in ``kernel_rows``: an mpmath quadrature, half this test's time)."""
     shipped = _kernel_check.load_reference()
-    fresh = json.loads(json.dumps(_kernel_check.reference_data(integrals=False)))
+    fresh = json.loads(json.dumps(_kernel_check.reference_data()))
     assert fresh.keys() == shipped.keys()
+    assert any("integral_v2" in entry for entry in fresh.values())
     for name in fresh:
         a, b = fresh[name], shipped[name]
+        assert ("integral_v2" in a) == ("integral_v2" in b), name
+        if "integral_v2" in a:
+            assert np.isclose(a["integral_v2"], b["integral_v2"], rtol=1e-15, atol=0), name
         assert a["mode"] == b["mode"] and a["t_end"] == b["t_end"], name
         assert np.isclose(a["scale"], b["scale"], rtol=1e-15, atol=0), name
         assert np.allclose(np.array(a["z"], float), np.array(b["z"], float), rtol=0, atol=1e-15 * a["scale"]), name
