@@ -40,7 +40,11 @@ def test_gramian_integral_matches_mpmath_quadrature(gains, x0, tau):
     def v(t):
         return (mpmath.expm(A * t) * y0)[2]
 
-    ref = mpmath.quad(lambda t: v(t) ** 2, [0, tau / 2, tau])
+    # Gauss-Legendre rather than mpmath's default tanh-sinh: v² is analytic on [0, τ], so its nodes converge in a
+    # quarter of the e^{At} evaluations (0.3 s instead of 0.8-1.3 s a case), to the same 40 digits (the two rules
+    # agree to the last digit on all three cases); the error estimate says the reference is that good
+    ref, error = mpmath.quad(lambda t: v(t) ** 2, [0, tau / 2, tau], method="gauss-legendre", error=True)
+    assert error < mpmath.mpf(10) ** -30 * abs(ref), error
     y_end = mpmath.expm(A * tau) * y0
     ya = np.array([float(q) for q in y0])
     yb = np.array([float(q) for q in y_end])
