@@ -18,6 +18,29 @@ PROOFS = REPO / "proofs"
 FAST = ["--trajectories", "60", "--no-adversarial", "--samples", "101"]
 
 
+@pytest.fixture(scope="module", autouse=True)
+def shared_kappa_lin_lower():
+    """The proven lower end of κ_lin computed once per gains in this module (about 0.1-0.2 s each).
+
+    The tightness table of every report gives it per certificate, and the runs here cross-check Table I's gains fifteen times.  It is a pure function of the parameters (a float search for the
+    peak time, then an arb enclosure at the precision it sets and restores), so a later call with equal parameters
+    gets the first call's value; a call that raises is not kept.
+    """
+    from symbolic_friction._certify import flow_bound
+
+    lower = flow_bound.kappa_lin_lower
+    done: dict = {}
+
+    def shared(params):
+        if params not in done:
+            done[params] = lower(params)
+        return done[params]
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(flow_bound, "kappa_lin_lower", shared)
+        yield
+
+
 def _case(case: str = "a", mode: str = "tightest") -> dict:
     return json.loads((PROOFS / f"case_{case}_{mode}.json").read_text(encoding="utf-8"))
 
