@@ -19,6 +19,29 @@ QUADRATIC_A = PROOFS / "quadratic" / "case_a.json"
 KAPPA_ONLY = ["prop1.stability", "prop1.attractivity", "remark.stick_sigma", "model.modes"]
 
 
+@pytest.fixture(scope="module", autouse=True)
+def shared_kappa_lin_lower():
+    """The proven lower end of κ_lin computed once per gains in this module (about 0.1-0.2 s each).
+
+    The tightness table of every report gives it per certificate, and the tests here format Table I (a)'s eight times.  It is a pure function of the parameters (a float search for the
+    peak time, then an arb enclosure at the precision it sets and restores), so a later call with equal parameters
+    gets the first call's value; a call that raises is not kept.
+    """
+    from symbolic_friction._certify import flow_bound
+
+    lower = flow_bound.kappa_lin_lower
+    done: dict = {}
+
+    def shared(params):
+        if params not in done:
+            done[params] = lower(params)
+        return done[params]
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(flow_bound, "kappa_lin_lower", shared)
+        yield
+
+
 def _quadratic(case: str):
     return read_certificate_file(PROOFS / "quadratic" / f"case_{case}.json")[1]
 
