@@ -60,17 +60,20 @@ def test_the_split_is_the_closed_form_and_its_bounds_hold(k_v):
     model = slip_model(params)
     assert model.modal.stiff
     K = model.K.tolist()
+    taus = (0.0, 3.0 / k_v, 1.0, 7.0)
+    with mpmath.workdps(50):
+        A = mpmath.matrix([[mpmath.mpf(F(e).numerator) / F(e).denominator for e in row] for row in
+                           [[0, 0, -params.k_i], [1, 0, -params.k_p], [0, 1, -params.k_v]]])
+        # e^{Aτ} depends on τ alone: formed once per τ (at 50 digits), not again for each of the five states
+        expms = {tau: mpmath.expm(A * mpmath.mpf(tau)) for tau in taus}
     rng = np.random.default_rng(k_v)
     for _ in range(5):
         y = rng.normal(size=3) * np.array([10.0, 1.0, 0.1])
         c, c1, c2, ac, e1, e2, sqrt_e = _kernel.modal(K, *map(float, y))
         with mpmath.workdps(50):
-            A = mpmath.matrix([[mpmath.mpf(F(e).numerator) / F(e).denominator for e in row] for row in
-                               [[0, 0, -params.k_i], [1, 0, -params.k_p], [0, 1, -params.k_v]]])
             ym = mpmath.matrix([mpmath.mpf(float(v)) for v in y])
-            for tau in (0.0, 3.0 / k_v, 1.0, 7.0):
-                tau_m = mpmath.mpf(tau)
-                E = mpmath.expm(A * tau_m)
+            for tau in taus:
+                E = expms[tau]
                 # v and its derivatives: e₃ᵀ Aʲ e^{Aτ} y
                 state = E * ym
                 v_j = []
