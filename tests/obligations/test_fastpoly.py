@@ -80,11 +80,16 @@ def rational_functions(leaves=None, min_power: int = -2, max_leaves: int = 7):
     return st.recursive(leaves, grow, max_leaves=max_leaves).filter(lambda e: not e.has(sp.zoo, sp.nan))
 
 
+_POLYNOMIALS_3, _POLYNOMIALS_2 = polynomials(max_terms=3), polynomials(max_terms=2)
+"""Built once: hypothesis validates a strategy the first time it draws from it, so one built inside a composite
+is validated again at every example (the same draws either way)."""
+
+
 @st.composite
 def reducible_fractions(draw):
     """``p·r / (±q·r)`` expanded: a fraction whose numerator and denominator share a factor, the denominator's
     leading coefficient of either sign."""
-    p, q, r = draw(polynomials(max_terms=3)), draw(polynomials(max_terms=3)), draw(polynomials(max_terms=2))
+    p, q, r = draw(_POLYNOMIALS_3), draw(_POLYNOMIALS_3), draw(_POLYNOMIALS_2)
     sign = draw(st.sampled_from((1, -1)))
     return sp.expand(p * r) / sp.expand(sign * q * r)
 
@@ -260,6 +265,10 @@ UNKNOWNS = (sp.Symbol("e_x", real=True), sp.Symbol("t", real=True), sp.Symbol("u
 PARAMETERS = st.sampled_from(POSITIVE[:4] + REAL[:2])
 
 
+_COEFFICIENTS = {flag: st.one_of(rationals, polynomials(PARAMETERS, max_terms=2 if flag else 1)) for flag in (True, False)}
+"""A system's coefficients: polynomials of up to two terms in two unknowns or one, of one term in three (built once)."""
+
+
 @st.composite
 def systems(draw):
     """The forms the obligations solve: ``A·u = b`` in two or three unknowns, ``A`` and ``b`` polynomial in the gains
@@ -267,7 +276,7 @@ def systems(draw):
     unknown, alone (a list of values) or as an ``Eq`` with ``dict=True``."""
     n = draw(st.integers(1, 3))
     unknowns = UNKNOWNS[:n]
-    coefficient = st.one_of(rationals, polynomials(PARAMETERS, max_terms=2 if n < 3 else 1))
+    coefficient = _COEFFICIENTS[n < 3]
     if n == 1:
         a, b, c, d = (draw(coefficient) for _ in range(4))
         q = draw(st.sampled_from(POSITIVE[:3] + (sp.Rational(1, 3), sp.Integer(2))))
