@@ -210,6 +210,7 @@ class Reference(SlipMethods):
             term = term / 4 / n
         self.n_terms = n + 1
         self._E_h = None
+        self._expm_cache = {}  # e^{Aτ} by τ (slip.SlipMethods._expm_raw)
         # the adaptive method's Taylor sums run at ‖A‖∞ θ ≤ 1/16
         self._theta0 = ctx.mpf(1) / 16
         n, term = 0, ctx.mpf(1)

@@ -87,9 +87,14 @@ import math
 from dataclasses import dataclass
 from fractions import Fraction
 
+from mpmath.libmp import fone, from_int, fzero, mpf_add, mpf_div, mpf_mul, mpf_neg, mpf_sub
+
 from .._infra.errors import SimulationError
 
 __all__ = ["SlipMethods"]
+
+_EXPM_CACHE_SIZE = 4096
+"""The most ``e^{Aτ}`` one reference remembers (then it forgets them all and starts again)."""
 
 
 @dataclass
@@ -123,58 +128,102 @@ class SlipMethods:
         return E
 
     # -- e^{Aτ} = c₀ I + c₁ A + c₂ A² by scaling and squaring ----------------------
-    def _ring_mul(self, a, b):
-        """Product in ``R[A]``, reduced by ``A³ = -k_v A² - k_p A - k_i I``."""
+    # These loops hold most of the reference's time, so they run on mpmath's raw values
+    # (the ``_mpf_`` tuples) with the very calls ``ctx.mpf`` arithmetic makes (``mpf_mul``,
+    # ``mpf_add``, ``mpf_sub``, ``mpf_div`` at the context's precision and rounding), in the
+    # same order: the results are the same bits, without an mpf object per operation.
+    def _ring_mul(self, a, b, prec, rnd):
+        """Product of raw triples in ``R[A]``, reduced by ``A³ = -k_v A² - k_p A - k_i I``."""
         a0, a1, a2 = a
         b0, b1, b2 = b
-        d0 = a0 * b0
-        d1 = a0 * b1 + a1 * b0
-        d2 = a0 * b2 + a1 * b1 + a2 * b0
-        d3 = a1 * b2 + a2 * b1
-        d4 = a2 * b2
-        d3 -= self.k_v * d4
-        d2 -= self.k_p * d4
-        d1 -= self.k_i * d4
-        d2 -= self.k_v * d3
-        d1 -= self.k_p * d3
-        d0 -= self.k_i * d3
+        d0 = mpf_mul(a0, b0, prec, rnd)
+        d1 = mpf_add(mpf_mul(a0, b1, prec, rnd), mpf_mul(a1, b0, prec, rnd), prec, rnd)
+        d2 = mpf_add(mpf_add(mpf_mul(a0, b2, prec, rnd), mpf_mul(a1, b1, prec, rnd), prec, rnd),
+                     mpf_mul(a2, b0, prec, rnd), prec, rnd)
+        d3 = mpf_add(mpf_mul(a1, b2, prec, rnd), mpf_mul(a2, b1, prec, rnd), prec, rnd)
+        d4 = mpf_mul(a2, b2, prec, rnd)
+        k_p, k_i, k_v = self.k_p._mpf_, self.k_i._mpf_, self.k_v._mpf_
+        d3 = mpf_sub(d3, mpf_mul(k_v, d4, prec, rnd), prec, rnd)
+        d2 = mpf_sub(d2, mpf_mul(k_p, d4, prec, rnd), prec, rnd)
+        d1 = mpf_sub(d1, mpf_mul(k_i, d4, prec, rnd), prec, rnd)
+        d2 = mpf_sub(d2, mpf_mul(k_v, d3, prec, rnd), prec, rnd)
+        d1 = mpf_sub(d1, mpf_mul(k_p, d3, prec, rnd), prec, rnd)
+        d0 = mpf_sub(d0, mpf_mul(k_i, d3, prec, rnd), prec, rnd)
         return (d0, d1, d2)
 
     def _expm_ring(self, tau):
-        """``(c₀, c₁, c₂)`` with ``e^{Aτ} = c₀ I + c₁ A + c₂ A²`` (``τ < 0`` only for a
+        """``(c₀, c₁, c₂)`` (mpf) with ``e^{Aτ} = c₀ I + c₁ A + c₂ A²`` (``τ < 0`` only for a
         time asked for before a piece's start)."""
+        make = self.ctx.make_mpf
+        return tuple(make(c) for c in self._expm_raw(tau))
+
+    def _expm_raw(self, tau):
+        """:meth:`_expm_ring` as raw values, remembered by ``τ`` (the event search asks
+        again for the step ``h`` and for the ends of its brackets)."""
+        key = getattr(tau, "_mpf_", None)
+        cache = self._expm_cache
+        if key in cache:
+            return cache[key]
         ctx = self.ctx
         if tau == 0:
-            return (ctx.mpf(1), ctx.mpf(0), ctx.mpf(0))
-        theta = self.norm * abs(tau)
-        m = 0
-        if theta > self._theta0:
-            m = max(0, int(math.ceil(math.log2(float(theta / self._theta0)))))
-            while ctx.ldexp(theta, -m) > self._theta0:
-                m += 1
-        s = ctx.ldexp(tau, -m)
-        k_p, k_i, k_v = self.k_p, self.k_i, self.k_v
-        t0, t1, t2 = ctx.mpf(1), ctx.mpf(0), ctx.mpf(0)
-        c0, c1, c2 = t0, t1, t2
-        for n in range(1, self._ring_terms):
-            f = s / n
-            t0, t1, t2 = -k_i * t2 * f, (t0 - k_p * t2) * f, (t1 - k_v * t2) * f
-            c0 += t0
-            c1 += t1
-            c2 += t2
-        c = (c0, c1, c2)
-        for _ in range(m):
-            c = self._ring_mul(c, c)
+            c = (fone, fzero, fzero)
+        else:
+            theta = self.norm * abs(tau)
+            m = 0
+            if theta > self._theta0:
+                m = max(0, int(math.ceil(math.log2(float(theta / self._theta0)))))
+                while ctx.ldexp(theta, -m) > self._theta0:
+                    m += 1
+            s = ctx.ldexp(tau, -m)._mpf_
+            prec, rnd = ctx._prec_rounding
+            neg_k_i = mpf_neg(self.k_i._mpf_, prec, rnd)  # -k_i, as the mpf negation forms it
+            k_p, k_v = self.k_p._mpf_, self.k_v._mpf_
+            t0, t1, t2 = fone, fzero, fzero
+            c0, c1, c2 = t0, t1, t2
+            for n in range(1, self._ring_terms):
+                f = mpf_div(s, from_int(n), prec, rnd)
+                t0, t1, t2 = (
+                    mpf_mul(mpf_mul(neg_k_i, t2, prec, rnd), f, prec, rnd),
+                    mpf_mul(mpf_sub(t0, mpf_mul(k_p, t2, prec, rnd), prec, rnd), f, prec, rnd),
+                    mpf_mul(mpf_sub(t1, mpf_mul(k_v, t2, prec, rnd), prec, rnd), f, prec, rnd),
+                )
+                c0 = mpf_add(c0, t0, prec, rnd)
+                c1 = mpf_add(c1, t1, prec, rnd)
+                c2 = mpf_add(c2, t2, prec, rnd)
+            c = (c0, c1, c2)
+            for _ in range(m):
+                c = self._ring_mul(c, c, prec, rnd)
+        if key is not None:
+            if len(cache) >= _EXPM_CACHE_SIZE:
+                cache.clear()
+            cache[key] = c
         return c
 
     def _apply(self, c, y):
-        Ay = self._Ay(y)
-        AAy = self._Ay(Ay)
-        return [c[0] * y[i] + c[1] * Ay[i] + c[2] * AAy[i] for i in range(3)]
+        """``(c₀ I + c₁ A + c₂ A²) y`` for mpf ``c`` and ``y``."""
+        return self._apply_raw(tuple(x._mpf_ for x in c), y)
+
+    def _apply_raw(self, c, y):
+        """:meth:`_apply` with ``c`` raw: ``c₀ y + c₁ Ay + c₂ A(Ay)`` as :meth:`_Ay` forms them."""
+        prec, rnd = self.ctx._prec_rounding
+        neg_k_i = mpf_neg(self.k_i._mpf_, prec, rnd)
+        k_p, k_v = self.k_p._mpf_, self.k_v._mpf_
+
+        def a_times(z):
+            return (mpf_mul(neg_k_i, z[2], prec, rnd), mpf_sub(z[0], mpf_mul(k_p, z[2], prec, rnd), prec, rnd),
+                    mpf_sub(z[1], mpf_mul(k_v, z[2], prec, rnd), prec, rnd))
+
+        y = tuple(x._mpf_ for x in y)
+        Ay = a_times(y)
+        AAy = a_times(Ay)
+        c0, c1, c2 = c
+        make = self.ctx.make_mpf
+        return [make(mpf_add(mpf_add(mpf_mul(c0, y[i], prec, rnd), mpf_mul(c1, Ay[i], prec, rnd), prec, rnd),
+                             mpf_mul(c2, AAy[i], prec, rnd), prec, rnd)) for i in range(3)]
 
     def _flow(self, y, tau):
         """``e^{Aτ} y``."""
-        return self._apply(self._expm_ring(tau), y)
+        return self._apply_raw(self._expm_raw(tau), y)
 
     def _w(self, y):
         """``w = v' - λ_r v`` for ``y' = A y``: the derivative of ``g = e^{-λ_r τ} v`` up to ``e^{-λ_r τ} > 0``."""
