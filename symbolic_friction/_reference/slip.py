@@ -160,11 +160,12 @@ class SlipMethods:
     def _expm_raw(self, tau):
         """:meth:`_expm_ring` as raw values, remembered by ``τ`` (the event search asks
         again for the step ``h`` and for the ends of its brackets)."""
-        key = getattr(tau, "_mpf_", None)
+        ctx = self.ctx
+        # keyed by the working precision too: a value formed at another precision has other bits
+        key = None if getattr(tau, "_mpf_", None) is None else (tau._mpf_, *ctx._prec_rounding)
         cache = self._expm_cache
         if key in cache:
             return cache[key]
-        ctx = self.ctx
         if tau == 0:
             c = (fone, fzero, fzero)
         else:
