@@ -25,9 +25,7 @@ one started as a subprocess.
 from __future__ import annotations
 
 import os
-import pickle
 import signal
-import struct
 import subprocess
 import sys
 import tempfile
@@ -35,22 +33,13 @@ import time
 
 from jupyter_client.manager import AsyncKernelManager
 
+try:  # the wire of tests/forkserver.py: a 4-byte length, then a pickle
+    from tests.forkserver import _receive, _send
+except ImportError:  # the server, started as `import kernel_forks` from this folder
+    from forkserver import _receive, _send
+
 PRELOAD = ("ipykernel_launcher", "ipykernel.kernelapp", "ipykernel.ipkernel", "ipykernel.zmqshell")
 """What the server imports once: the kernel's own start-up (measured: 986 modules before the first cell, 0.6 s of CPU)."""
-
-
-def _send(stream, obj) -> None:
-    data = pickle.dumps(obj)
-    stream.write(struct.pack("!I", len(data)) + data)
-    stream.flush()
-
-
-def _receive(stream):
-    head = stream.read(4)
-    if len(head) < 4:
-        raise EOFError("kernel fork server closed its pipe")
-    (size,) = struct.unpack("!I", head)
-    return pickle.loads(stream.read(size))
 
 
 class KernelForks:

@@ -33,21 +33,14 @@ from symbolic_friction._extremes import (
     run_extremes,
 )
 from symbolic_friction._simulation import Moreau, Status, simulate
+from tests.computed_once import computed_once
 
 
 @pytest.fixture(scope="module", autouse=True)
 def references():
     """Each cell's 50-digit reference computed once for the module (a pure function of the cell; about 0.3 s each):
     the matrix computes them all, and the later runs of a few cells (``only=``) reuse them."""
-    real, known = extremes_module._reference, {}
-
-    def once(cell):
-        if cell not in known:
-            known[cell] = real(cell)
-        return known[cell]
-
-    with pytest.MonkeyPatch.context() as patch:
-        patch.setattr(extremes_module, "_reference", once)
+    with computed_once(extremes_module, "_reference") as known:
         yield known
 
 

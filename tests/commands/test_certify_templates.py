@@ -16,6 +16,7 @@ from symbolic_friction._certify.choose import certify_template, searchable_templ
 from symbolic_friction._certify.templates import read_certificate_file, verify_template_file
 from symbolic_friction._cli.main import main
 from symbolic_friction._infra.errors import CertificateError, CertificateFormatError, ParameterError
+from tests.computed_once import computed_once
 
 CASE_A = ["--k-p", "3", "--k-i", "4", "--k-v", "6.4", "--f-c", "1"]
 STIFF = ["--k-p", "1", "--k-i", "1", "--k-v", "1e6", "--f-c", "1"]
@@ -58,20 +59,10 @@ def shared_sup_flow_searches():
     """
     from symbolic_friction._certify import sup_flow_search
 
-    search = sup_flow_search.certify_sup_flow
-    done: dict = {}
+    def near(options: dict) -> bool:
+        return options.get("deadline") is not None and options["deadline"] - time.monotonic() < 600
 
-    def shared(params, **options):
-        deadline = options.get("deadline")
-        if deadline is not None and deadline - time.monotonic() < 600:
-            return search(params, **options)
-        key = (params, tuple(sorted((k, v) for k, v in options.items() if k != "deadline")))
-        if key not in done:
-            done[key] = search(params, **options)
-        return done[key]
-
-    with pytest.MonkeyPatch.context() as patch:
-        patch.setattr(sup_flow_search, "certify_sup_flow", shared)
+    with computed_once(sup_flow_search, "certify_sup_flow", ignore=("deadline",), fresh=near):
         yield
 
 
@@ -85,16 +76,7 @@ def shared_kappa_lin_lower():
     """
     from symbolic_friction._certify import flow_bound
 
-    lower = flow_bound.kappa_lin_lower
-    done: dict = {}
-
-    def shared(params):
-        if params not in done:
-            done[params] = lower(params)
-        return done[params]
-
-    with pytest.MonkeyPatch.context() as patch:
-        patch.setattr(flow_bound, "kappa_lin_lower", shared)
+    with computed_once(flow_bound, "kappa_lin_lower"):
         yield
 
 
@@ -109,17 +91,7 @@ def shared_one_piece_searches():
     """
     from symbolic_friction._certify import sup_flow_tail
 
-    search = sup_flow_tail.certify_sup_flow_tail
-    done: dict = {}
-
-    def shared(params, **options):
-        key = (params, tuple(sorted(options.items())))
-        if key not in done:
-            done[key] = search(params, **options)
-        return done[key]
-
-    with pytest.MonkeyPatch.context() as patch:
-        patch.setattr(sup_flow_tail, "certify_sup_flow_tail", shared)
+    with computed_once(sup_flow_tail, "certify_sup_flow_tail"):
         yield
 
 

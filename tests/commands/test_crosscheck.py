@@ -12,6 +12,7 @@ from pathlib import Path
 import pytest
 
 from symbolic_friction._cli.main import main
+from tests.computed_once import computed_once
 
 REPO = Path(__file__).resolve().parents[2]
 PROOFS = REPO / "proofs"
@@ -28,16 +29,7 @@ def shared_kappa_lin_lower():
     """
     from symbolic_friction._certify import flow_bound
 
-    lower = flow_bound.kappa_lin_lower
-    done: dict = {}
-
-    def shared(params):
-        if params not in done:
-            done[params] = lower(params)
-        return done[params]
-
-    with pytest.MonkeyPatch.context() as patch:
-        patch.setattr(flow_bound, "kappa_lin_lower", shared)
+    with computed_once(flow_bound, "kappa_lin_lower"):
         yield
 
 

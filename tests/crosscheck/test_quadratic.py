@@ -13,6 +13,7 @@ from symbolic_friction._certify.templates import read_certificate_file
 from symbolic_friction._crosscheck import Claims, crosscheck, format_report
 from symbolic_friction._crosscheck._report import format_tightness
 from symbolic_friction._infra.errors import CertificateFormatError, UnprovedCertificateError
+from tests.computed_once import computed_once
 from tests.crosscheck.helpers import N_SMALL, PROOFS, _result
 
 QUADRATIC_A = PROOFS / "quadratic" / "case_a.json"
@@ -29,16 +30,7 @@ def shared_kappa_lin_lower():
     """
     from symbolic_friction._certify import flow_bound
 
-    lower = flow_bound.kappa_lin_lower
-    done: dict = {}
-
-    def shared(params):
-        if params not in done:
-            done[params] = lower(params)
-        return done[params]
-
-    with pytest.MonkeyPatch.context() as patch:
-        patch.setattr(flow_bound, "kappa_lin_lower", shared)
+    with computed_once(flow_bound, "kappa_lin_lower"):
         yield
 
 
