@@ -259,8 +259,7 @@ def _wait(pid: int, timeout: float, chunks: dict[int, list[bytes]]) -> bool:  # 
 
 
 def _child(argv, cwd, env, memory, out_fd, err_fd) -> None:  # pragma: no cover - the forked child
-    code = 1
-    try:
+    def run() -> int:
         os.setpgid(0, 0)
         null = os.open(os.devnull, os.O_RDONLY)
         os.dup2(null, 0)
@@ -276,7 +275,18 @@ def _child(argv, cwd, env, memory, out_fd, err_fd) -> None:  # pragma: no cover 
         resource.setrlimit(resource.RLIMIT_AS, (memory, memory))
         from symbolic_friction._cli.main import main
 
-        code = main(argv)
+        return main(argv)
+
+    end_as_interpreter(run)
+
+
+def end_as_interpreter(run) -> None:  # pragma: no cover - a forked child
+    """``run()`` in a forked child, ended with the status the interpreter would give: ``run``'s value, ``SystemExit``
+    mapped as the interpreter maps it, an uncaught exception printed with its traceback and 1; both streams
+    flushed, then ``os._exit`` (a fork of a server must not run the server's clean-up)."""
+    code = 1
+    try:
+        code = run()
     except SystemExit as exc:  # as the interpreter maps it
         if exc.code is None:
             code = 0

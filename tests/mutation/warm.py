@@ -24,8 +24,16 @@ import subprocess
 import sys
 import tempfile
 import time
-import traceback
 from pathlib import Path
+
+try:  # the ending of tests/forkserver.py's children: the status the interpreter would give
+    from tests.forkserver import end_as_interpreter
+except ImportError:  # the server, started as `import warm` from this folder (tests/ for a moment on sys.path)
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+    try:
+        from forkserver import end_as_interpreter
+    finally:
+        del sys.path[0]
 
 PRELOAD = ("numpy", "sympy", "mpmath", "flint", "jsonschema")
 """What every ``check`` run imports before it decides anything (measured: the third-party packages in
@@ -115,8 +123,7 @@ def _wait(pid: int, timeout: float) -> bool:  # pragma: no cover - the server pr
 
 
 def _child(command: list[str], cwd: str, out: str, err: str) -> None:  # pragma: no cover - the forked child
-    code = 1
-    try:
+    def run() -> int:
         os.setpgid(0, 0)
         for fd, path, flags in ((0, os.devnull, os.O_RDONLY), (1, out, os.O_WRONLY | os.O_CREAT | os.O_TRUNC),
                                 (2, err, os.O_WRONLY | os.O_CREAT | os.O_TRUNC)):
@@ -142,22 +149,6 @@ def _child(command: list[str], cwd: str, out: str, err: str) -> None:  # pragma:
             exec(compile(target, "<string>", "exec"), {"__name__": "__main__", "__builtins__": __builtins__})
         else:
             raise ValueError(f"unsupported command {command!r}")
-        code = 0
-    except SystemExit as exc:  # as the interpreter maps it
-        if exc.code is None:
-            code = 0
-        elif isinstance(exc.code, int):
-            code = exc.code
-        else:
-            print(exc.code, file=sys.stderr)
-            code = 1
-    except BaseException:
-        traceback.print_exc()
-        code = 1
-    finally:
-        for stream in (sys.stdout, sys.stderr):
-            try:
-                stream.flush()
-            except BaseException:
-                pass
-        os._exit(code if isinstance(code, int) and 0 <= code < 256 else 1)
+        return 0
+
+    end_as_interpreter(run)
