@@ -125,11 +125,10 @@ def _horizon(scenario: Scenario, data: dict) -> float:
     return float(data["t_end"]) if scenario.grid == "after event" else _T
 
 
-def reference_data(scenarios: tuple[Scenario, ...] = SCENARIOS, *, integrals: bool = True) -> dict[str, Any]:
+def reference_data(scenarios: tuple[Scenario, ...] = SCENARIOS) -> dict[str, Any]:
     """What the 50-digit reference computes for each scenario (the content of :data:`DATA_FILE`).
 
-    ``integrals=False`` leaves out ``integral_v2`` (an mpmath quadrature: half the time), for a caller that does
-    not read it.  The uniform and squared grids and the probe of "after event" run the same ``(params, z₀, T)``:
+    The uniform and squared grids and the probe of "after event" run the same ``(params, z₀, T)``:
     one :class:`~symbolic_friction._reference.Reference` (whose answers depend only on those) serves the three.
     """
     import mpmath
@@ -156,11 +155,10 @@ def reference_data(scenarios: tuple[Scenario, ...] = SCENARIOS, *, integrals: bo
         for te, before, after in ref.events:
             x, _ = ref.x_at(te)
             events.append([float(te), int(before), int(after), [float(c) for c in x]])
-        # ref.scale(t), from the samples just taken rather than sampling t again
-        scale = max([max(abs(c) for c in z) for z in zs] + [float(max(abs(c) for c in ref.z0))])
+        scale = ref.scale_of(zs)  # ref.scale(t), from the samples just taken
         entry = {"t_end": repr(t_end), "z": [[repr(float(c)) for c in z] for z in zs], "mode": [int(m) for m in modes],
                  "events": events, "scale": scale}
-        if sc.grid == "uniform" and integrals:
+        if sc.grid == "uniform":
             entry["integral_v2"] = float(_integral_v2(ref, t_end))
         out[sc.name] = entry
     return out

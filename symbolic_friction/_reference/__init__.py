@@ -412,4 +412,8 @@ class Reference(SlipMethods):
     def scale(self, times) -> float:
         """``max |z(t)|∞`` over ``times`` and ``t = 0`` (the size errors are measured relative to)."""
         zs, _ = self.sample(times)
+        return self.scale_of(zs)
+
+    def scale_of(self, zs) -> float:
+        """:meth:`scale` from samples already taken (``zs`` of :meth:`sample`)."""
         return max([max(abs(c) for c in z) for z in zs] + [float(max(abs(c) for c in self.z0))])
