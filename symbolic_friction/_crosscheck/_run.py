@@ -27,6 +27,7 @@ from ._claims import Claims
 from ._outcome import (MAX_CERTIFICATES, MAX_HORIZON, MAX_SAMPLES, MAX_SEED, MAX_TOTAL_SAMPLES, MAX_TRAJECTORIES, CertificateCheck,
                        CrosscheckReport, default_horizon, sample_times, search_mode, SEARCH_MODES)
 from ._property import DEFAULT_RTOL, DEFAULT_THETA
+from ._simulate import simulate
 
 __all__ = ["CertificateCheck", "CrosscheckReport", "crosscheck", "default_horizon", "sample_times", "SEARCH_MODES", "search_mode", "GroupRun"]
 
@@ -326,14 +327,13 @@ class GroupRun:
     ) -> np.ndarray:
         """Simulate and check the states ``X0`` (rows, in ``x``); return their overshoots."""
         from .._model.coordinates import x_to_z
-        from .._simulation.batch import simulate_batch
 
         X0 = np.atleast_2d(np.asarray(X0, dtype=float))
         out = []
         for lo in range(0, X0.shape[0], self.chunk):
             part = X0[lo : lo + self.chunk]
             times = self.t if t is None else t
-            batch = simulate_batch(
+            batch = simulate(
                 self.params, x_to_z(self.params, part), float(times[-1]), t_eval=times,
                 source=np.full(part.shape[0], label, dtype=object), max_events=self.max_events,
             )

@@ -157,6 +157,15 @@ def crosscheck_self_test(certificates: dict[str, Any], *, trajectories: int = 10
         Per gain set and run.
     seed : int, keyword-only
     """
+    from ._simulate import shared_simulations
+
+    # the proved certificate and its wrong variants are checked on the same trajectories: simulated once
+    with shared_simulations():
+        return _self_test(certificates, trajectories=trajectories, seed=seed)
+
+
+def _self_test(certificates: dict[str, Any], *, trajectories: int, seed: int) -> SelfTest:
+    """:func:`crosscheck_self_test`'s rows, inside its block of shared simulations."""
     import time
 
     from ._claims import Claims

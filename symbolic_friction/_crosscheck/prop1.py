@@ -103,8 +103,8 @@ def resolve_attractivity(params: Any, z: np.ndarray, target: np.ndarray, window:
         simulation was incomplete (event limit): neither holds nor fails.
     """
     from .._model.attractor import distance_x
-    from .._simulation.batch import simulate_batch
     from ._outcome import slowest_root
+    from ._simulate import simulate
 
     n = z.shape[0]
     z = np.array(z, dtype=float)
@@ -116,7 +116,7 @@ def resolve_attractivity(params: Any, z: np.ndarray, target: np.ndarray, window:
         if active.size == 0:
             break
         t = np.concatenate([[0.0], np.geomspace(window / samples, window, samples)])
-        b = simulate_batch(params, z[active], float(t[-1]), t_eval=t, max_events=max_events)
+        b = simulate(params, z[active], float(t[-1]), t_eval=t, max_events=max_events)
         d = distance_x(params, b.x)
         still = []
         for row, k in enumerate(active):
