@@ -19,7 +19,7 @@ def independent_section(args: argparse.Namespace) -> Section:
 
     from .._certify.self_check import DIRECTORY
     from .._infra.junit import Case
-    from ..independent import Malformed, check_file
+    from ..independent import Malformed, check_file, shared
     from ._sections import resolve_target
 
     start = time.perf_counter()
@@ -30,15 +30,16 @@ def independent_section(args: argparse.Namespace) -> Section:
     manifest = json.loads((DIRECTORY / "manifest.json").read_text(encoding="utf-8"))["false_certificates"]
     files += [(str(DIRECTORY / entry["file"]), entry["file"], entry["premise"] is None) for entry in manifest]
     results = []
-    for path, shown, must_prove in files:
-        try:
-            verdict = check_file(path)
-            proved, why = verdict.proved, "; ".join(verdict.failing[:4])
-        except Malformed as exc:
-            proved, why = False, f"not readable: {exc}"
-        except Exception as exc:  # noqa: BLE001 - a crash of the second checker is its failure, shown, never a traceback
-            proved, why = False, f"crashed: {type(exc).__name__}: {exc}"
-        results.append((shown, must_prove, proved, why))
+    with shared():  # the known-false files are edited copies of true ones: what they share is decided once
+        for path, shown, must_prove in files:
+            try:
+                verdict = check_file(path)
+                proved, why = verdict.proved, "; ".join(verdict.failing[:4])
+            except Malformed as exc:
+                proved, why = False, f"not readable: {exc}"
+            except Exception as exc:  # noqa: BLE001 - a crash of the second checker is its failure, shown, never a traceback
+                proved, why = False, f"crashed: {type(exc).__name__}: {exc}"
+            results.append((shown, must_prove, proved, why))
     seconds = time.perf_counter() - start
     groups = {"configured certificates": [r for r in results[: len(results) - len(manifest)]],
               "true controls": [r for r in results[len(results) - len(manifest):] if r[1]],

@@ -8,10 +8,9 @@ proved.  Nothing else of the package imports it except the commands that run it 
 from __future__ import annotations
 
 
+from ._core import Malformed, Verdict, load, shared
 
-from ._core import Malformed, Verdict, load
-
-__all__ = ["check_file", "check_data", "KINDS", "Malformed", "Verdict"]
+__all__ = ["check_file", "check_data", "KINDS", "Malformed", "Verdict", "shared"]
 
 KINDS = {
     "lyapunov-pair/v1": "paper",

@@ -7,6 +7,7 @@ rounded outward, where a ball that does not decide counts as *not proved*.
 
 from __future__ import annotations
 
+import contextlib
 import json
 from dataclasses import dataclass, field
 from fractions import Fraction
@@ -179,3 +180,29 @@ def _exact(point) -> Fraction:
         raise Malformed("an enclosure is not finite")
     man, exp = (int(v) for v in point.man_exp())
     return Fraction(man) * (Fraction(2) ** exp)
+
+
+_KEPT: list[dict] = []
+
+
+@contextlib.contextmanager
+def shared():
+    """Within the block, premises and searches on numbers seen before (a key holds every number read, the precision
+    too) keep their verdicts: ``check`` decides edited copies of files, mostly unchanged; outside it nothing is kept."""
+    _KEPT.append({})
+    try:
+        yield
+    finally:
+        _KEPT.pop()
+
+
+def _kept(key: tuple, compute):
+    """``compute()``, or within :func:`shared` its value for ``key`` from earlier in the block."""
+    if _KEPT and key not in _KEPT[-1]:
+        _KEPT[-1][key] = compute()
+    return _KEPT[-1][key] if _KEPT else compute()
+
+
+def _ints(*xs: Fraction) -> tuple[int, ...]:
+    """Rationals as exact integers (numerator, denominator): a key hashed far faster than Fractions."""
+    return tuple(n for x in xs for n in (x.numerator, x.denominator))

@@ -33,7 +33,7 @@ from fractions import Fraction
 
 import flint
 
-from ._core import Malformed, Verdict, ball, q
+from ._core import Malformed, Verdict, _ints, _kept, ball, q
 
 PREMISES = ("box", "krawczyk", "first_zero.start", "first_zero.positive", "first_zero.decreasing", "stick",
             "cycle.sigma", "cycle.slip_time", "cycle.stick_time", "cycle.period", "cycle.multiplier", "cycle.stable",
@@ -155,7 +155,8 @@ def _decide(verdict: Verdict, gains, sigma, tau, ta: Fraction, cycle: dict | Non
     delta = start(lambda a, b: slip(a, b)[1][2, 0], ta)
     started = verdict.add("first_zero.start", delta is not None)
     if zero and started:  # the search runs only where the rest can still prove a cycle (the main verifier's order)
-        verdict.add("first_zero.positive", delta is not None and positive(lambda a, b: slip(a, b)[0][2, 0], delta, ta))
+        verdict.add("first_zero.positive", delta is not None and _kept(("hunting", flint.ctx.prec, _ints(
+            *gains, s_lo, s_hi, delta, ta)), lambda: positive(lambda a, b: slip(a, b)[0][2, 0], delta, ta)))
     verdict.add("first_zero.decreasing", slip(ta, t_hi)[1][2, 0] < 0)
     # step 4: the mass sticks at the end of the slip, φ₁ = f_c + p₁ in (−f_s, f_s), over X
     phi = ball(fc) + yX[1, 0]

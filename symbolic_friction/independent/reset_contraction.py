@@ -26,7 +26,7 @@ from fractions import Fraction
 
 import flint
 
-from ._core import Malformed, Verdict, ball, q
+from ._core import Malformed, Verdict, _ints, _kept, ball, q
 from .hunting import flow, pair, positive, start, system
 
 SHAPE = ("k_i > 0", "k_p > 0", "k_v·k_p > k_i", "f_c > 0", "0 < τ_a < τ_lo < τ_hi", "dwell ≥ 0")
@@ -82,11 +82,11 @@ def check(data: dict) -> Verdict:
 def _flow(gains, fc: Fraction, taus, rho, radius, dwell, cycle) -> dict[str, bool]:
     """Steps 1–4: the premises on ``E``, decided in arb balls, by name."""
     (lo, hi, ta), A = taus, system(*gains)
-    A2 = A * A
     # step 1: E31'' > 0 on [0, δ] (E31 = E31' = 0 at 0), E31 > 0 on [δ, τ_a], E31' < 0 on [τ_a, τ_lo], E31(τ_lo) > 0
-    delta = start(lambda a, b: (A2 * flow(A, a, b))[2, 0], ta)
-    first = delta is not None and positive(lambda a, b: flow(A, a, b)[2, 0], delta, ta) and positive(
-        lambda a, b: -(A * flow(A, a, b))[2, 0], ta, lo) and flow(A, lo, lo)[2, 0] > 0
+    delta = start(lambda a, b: (A * A * flow(A, a, b))[2, 0], ta)
+    first = delta is not None and _kept(("reset", flint.ctx.prec, _ints(*gains, delta, lo, ta)), lambda: positive(
+        lambda a, b: flow(A, a, b)[2, 0], delta, ta) and positive(lambda a, b: -(A * flow(A, a, b))[2, 0], ta, lo)
+        and flow(A, lo, lo)[2, 0] > 0)
     E = flow(A, lo, hi)  # every τ of [τ_lo, τ_hi], τ* among them
     e11, e21 = E[0, 0], E[1, 0]
     wait = rho * max(Fraction(0), dwell - lo)  # the longest stick before the timer allows the reset

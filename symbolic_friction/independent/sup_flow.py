@@ -16,12 +16,11 @@ Undecided is not proved.  Premise names are the main verifier's; its format rule
 
 from __future__ import annotations
 
-import contextlib
 from fractions import Fraction
 
 import flint
 
-from ._core import Malformed, Verdict, ball, copositive, psd, q, shown
+from ._core import Malformed, Verdict, _ints, _kept, ball, copositive, psd, q, shown
 
 PRECISION = 128  # bits of the arb balls
 MAX_PARTS = 2048  # parts one flow premise may be cut into (the main verifier's limits, as the next)
@@ -158,32 +157,6 @@ def copositive_lower(m) -> bool:
 def positive_definite(m) -> bool:
     """Every matrix in the 3×3 ball matrix ``m`` is positive definite (Sylvester: its leading minors ``> 0``)."""
     return bool(m[0, 0] > 0 and m[0, 0] * m[1, 1] - m[0, 1] * m[1, 0] > 0 and m.det() > 0)
-
-
-_KEPT: list[dict] = []
-
-
-@contextlib.contextmanager
-def shared():
-    """Within the block, premises on the same numbers as ones decided before keep their verdicts (the tests decide
-    hundreds of edited copies of a file, most of whose pieces are unchanged); outside it nothing is kept."""
-    _KEPT.append({})
-    try:
-        yield
-    finally:
-        _KEPT.pop()
-
-
-def _kept(key: tuple, compute):
-    """``compute()``, or within :func:`shared` its value for ``key`` from earlier in the block."""
-    if _KEPT and key not in _KEPT[-1]:
-        _KEPT[-1][key] = compute()
-    return _KEPT[-1][key] if _KEPT else compute()
-
-
-def _ints(*xs: Fraction) -> tuple[int, ...]:
-    """Rationals as exact integers (numerator, denominator): a key hashed far faster than Fractions."""
-    return tuple(n for x in xs for n in (x.numerator, x.denominator))
 
 
 class Flow:

@@ -100,6 +100,16 @@ def test_every_false_file_is_refused_naming_its_premises(entry):
     assert set(verdict.failing) == set(entry["fails"])
 
 
+def test_a_shared_block_decides_every_file_as_a_fresh_check():
+    """``shared()`` (``check``'s) hands the searches of a file whose gains and interval were seen before their
+    verdict (the false files are edits of a few true ones): every verdict is the fresh check's, why included."""
+    files = [read(p) for p in PROOFS] + [read(FALSE / e["file"]) for e in TRUE_FILES + FALSE_FILES]
+    fresh = [verdict_of(kind(d), d) for d in files]
+    with independent.shared():
+        kept = [verdict_of(kind(d), d) for d in files + files]
+    assert [v and v.premises for v in kept] == [v and v.premises for v in fresh + fresh]
+
+
 # -- every premise decides ---------------------------------------------------------------------------------------
 
 NON_HURWITZ = {

@@ -281,7 +281,7 @@ def test_a_shared_block_decides_as_fresh_checks_and_keeps_no_verdict_a_smaller_b
         m.setattr(sup_flow, "MAX_TOTAL_PARTS", 200)
         short = sup_flow.check(data).premises
     assert short != fresh[0] and any(h is None for _, h, _ in short)
-    with sup_flow.shared():
+    with independent.shared():
         assert [sup_flow.check(d).premises for d in (data, edited, data)] == fresh + fresh[:1]
         monkeypatch.setattr(sup_flow, "MAX_TOTAL_PARTS", 200)
         assert sup_flow.check(data).premises == short

@@ -43,7 +43,7 @@ def check_kind(kind: str) -> None:
     verdict within the sample, as in the self-check."""
     from symbolic_friction._certify.box import shared_corners
     from symbolic_friction._certify.sup_flow import shared_decisions
-    from symbolic_friction.independent.sup_flow import shared
+    from symbolic_friction.independent import shared
 
     with shared_decisions(), shared_corners(), shared():
         tally, outcomes, found = tampered.default_run(kind)
