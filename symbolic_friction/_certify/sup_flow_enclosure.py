@@ -91,22 +91,22 @@ def _flow(cert: Any, a: Fraction, b: Fraction) -> Any:
     point factor ``e^{Aa}`` first keeps the ball small (the exponential of a
     wide ball ``A·[a, b]`` far from 0 would be needlessly wide).
     """
-    import flint
-
-    a_matrix = _system_of(cert)
     key = _gains_key(cert)
     # A bisection's parts share their left ends with their parents and their widths with their cousins, so
     # both factors repeat; each is the same ball every time it is built, so keeping it changes no decision.
-    # The keys are exact (numerators and denominators: hashing ints is cheap, hashing Fractions is not).
-    start = _cached((key, "start", a.numerator, a.denominator), lambda: (a_matrix * _arb(a)).exp())
+    # The keys are exact (numerators and denominators: hashing ints is cheap, hashing Fractions is not), and
+    # A (the same object for the same gains, :func:`_system_of`) is looked up only to build a missing factor.
+    start = _cached((key, "start", a.numerator, a.denominator), lambda: (_system_of(cert) * _arb(a)).exp())
     if a == b:
         return start
+    width = b - a
 
     def spread() -> Any:
-        half = _arb((b - a) / 2)
-        return (a_matrix * flint.arb(half, half)).exp()
+        import flint
 
-    width = b - a
+        half = _arb(width / 2)
+        return (_system_of(cert) * flint.arb(half, half)).exp()
+
     return start * _cached((key, "width", width.numerator, width.denominator), spread)
 
 
@@ -212,8 +212,6 @@ def _exit_holds(forms: Any, gram: Any, *, end: Any = _lower) -> tuple[bool, str]
     copositive shows that no ``G`` in it is (at a point ``t``: the premise is
     false there).
     """
-    from .copositive import decide_copositive
-
     for s, k, d in forms:
         named = list(zip(model.EXIT_PLANES, exit_forms(k, gram, s)))
         if d is not None:
@@ -230,6 +228,8 @@ def _exit_holds(forms: Any, gram: Any, *, end: Any = _lower) -> tuple[bool, str]
                              for i in range(n))
             except _TooWide as exc:
                 return end is not _lower, f"{plane}: {exc}"  # decides nothing: neither proved nor refuted
+            from .copositive import decide_copositive
+
             decision = decide_copositive(rows)
             if decision.holds is not True:
                 return False, f"{plane}, sign σ = {'+' if s > 0 else '−'}: {decision.reason}"
