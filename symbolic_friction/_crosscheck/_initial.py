@@ -255,9 +255,94 @@ def pointwise_extremes(params: Parameters, claims: list[Claims], *, seed: int, m
     return InitialStates(np.array(out), np.array(labels, dtype=object))
 
 
+class _Spent(Exception):
+    """A Nelder–Mead run asked for an evaluation beyond its budget."""
+
+
+def _nelder_mead(u0: np.ndarray, *, maxfev: int, xatol: float, fatol: float):
+    """scipy's Nelder–Mead (``scipy.optimize.minimize(method="Nelder-Mead")``: its coefficients 1, 2, ½, ½, its
+    initial simplex, its stopping tests and its count of evaluations), unbounded, as a generator: it yields each
+    point it needs the objective at, is sent the value, and returns ``(f, u)``, its best vertex.
+
+    Written as a generator so that :func:`_nelder_mead_many` can evaluate the points of many runs in one vectorised
+    call, where scipy's loop calls the objective on one point at a time; the iterates are scipy's.
+    """
+    n = len(u0)
+    sim = np.empty((n + 1, n))
+    sim[0] = u0
+    for k in range(n):
+        y = np.array(u0, dtype=float)
+        y[k] = (1 + 0.05) * y[k] if y[k] != 0 else 0.00025
+        sim[k + 1] = y
+    fsim = np.full(n + 1, np.inf)
+    calls = [0]
+
+    def value(u: np.ndarray):
+        if calls[0] >= maxfev:
+            raise _Spent
+        calls[0] += 1
+        return (yield np.copy(u))
+
+    try:
+        for k in range(n + 1):
+            fsim[k] = yield from value(sim[k])
+    except _Spent:
+        pass
+    order = np.argsort(fsim)
+    sim, fsim = np.take(sim, order, 0), np.take(fsim, order, 0)
+    while calls[0] < maxfev:
+        try:
+            if np.max(np.abs(sim[1:] - sim[0])) <= xatol and np.max(np.abs(fsim[0] - fsim[1:])) <= fatol:
+                break
+            xbar = np.add.reduce(sim[:-1], 0) / n
+            xr = 2 * xbar - sim[-1]
+            fxr = yield from value(xr)
+            if fxr < fsim[0]:  # expand
+                xe = 3 * xbar - 2 * sim[-1]
+                fxe = yield from value(xe)
+                sim[-1], fsim[-1] = (xe, fxe) if fxe < fxr else (xr, fxr)
+            elif fxr < fsim[-2]:  # reflect
+                sim[-1], fsim[-1] = xr, fxr
+            else:  # contract outside, or inside, else shrink towards the best vertex
+                outside = fxr < fsim[-1]
+                xc = 1.5 * xbar - 0.5 * sim[-1] if outside else 0.5 * xbar + 0.5 * sim[-1]
+                fxc = yield from value(xc)
+                if (fxc <= fxr) if outside else (fxc < fsim[-1]):
+                    sim[-1], fsim[-1] = xc, fxc
+                else:
+                    for j in range(1, n + 1):
+                        sim[j] = sim[0] + 0.5 * (sim[j] - sim[0])
+                        fsim[j] = yield from value(sim[j])
+        except _Spent:
+            pass
+        order = np.argsort(fsim)
+        sim, fsim = np.take(sim, order, 0), np.take(fsim, order, 0)
+    return float(np.min(fsim)), sim[0]
+
+
+def _nelder_mead_many(func: Callable[[np.ndarray], np.ndarray], starts: list[np.ndarray], **options: float) -> list:
+    """:func:`_nelder_mead` from every start, the runs in lockstep: each round evaluates the next point of every
+    unfinished run in one call of the vectorised ``func`` (rows in, values out).  Returns each run's ``(f, u)``."""
+    runs = [_nelder_mead(np.asarray(u0, dtype=float), **options) for u0 in starts]
+    asked = [next(run) for run in runs]
+    found: list = [None] * len(runs)
+    active = list(range(len(runs)))
+    while active:
+        values = func(np.array([asked[i] for i in active]))
+        still = []
+        for i, f in zip(active, values):
+            try:
+                asked[i] = runs[i].send(float(f))
+                still.append(i)
+            except StopIteration as stop:
+                found[i] = stop.value
+        active = still
+    return found
+
+
 def rate_maximisers(params: Parameters, claim: Claims, *, seed: int, count: int = 16, maxiter: int = 60) -> np.ndarray:
-    """Several local maximisers of ``V̂'/V̂`` on ``R̂`` (multistart Nelder–Mead from DE's best)."""
-    from scipy.optimize import minimize
+    """Several local maximisers of ``V̂'/V̂`` on ``R̂`` (multistart Nelder–Mead from DE's best, the starts' runs
+    evaluated together: :func:`_nelder_mead_many`)."""
 
     def obj(U: np.ndarray) -> np.ndarray:
         r = hat_V_rate(params, claim, _to_x(params, U))
@@ -266,10 +351,6 @@ def rate_maximisers(params: Parameters, claim: Claims, *, seed: int, count: int 
     best, _ = _de(obj, seed=seed, maxiter=maxiter, popsize=20)
     rng = np.random.default_rng(seed)
     starts = [best] + [np.array([rng.uniform(*b) for b in _BOUNDS]) for _ in range(count - 1)]
-    found = []
-    for u0 in starts:
-        res = minimize(lambda u: float(obj(u[None, :])[0]), u0, method="Nelder-Mead",
-                       options={"maxfev": 200, "xatol": 1e-9, "fatol": 1e-12})
-        found.append((float(res.fun), res.x))
+    found = _nelder_mead_many(obj, starts, maxfev=200, xatol=1e-9, fatol=1e-12)
     found.sort(key=lambda q: q[0])
     return _to_x(params, np.array([u for _, u in found]))
