@@ -20,8 +20,8 @@ Each (cell, method) is one of
   or stopped early with a status that says so; the reason is kept;
 * ``wrong`` — the run completed, said nothing, and its error exceeds the
   claim: *silently wrong*.  The package's contract is that no cell is;
-* ``no answer`` — the run had not returned after :data:`RUN_LIMIT` seconds and was stopped (each run is
-  made in a forked child process for this): not wrong, but not usable either.
+* ``no answer`` — the run had not returned after :data:`RUN_LIMIT` seconds and was stopped (the runs are
+  made in forked child processes for this): not wrong, but not usable either.
 
 ``certify`` is ``proved`` (the exact verifier proved the certificate *and* its overshoot bound
 ``|x(t)|_𝒜 ≤ κ |x(0)|_𝒜`` holds along the reference solution), ``refused`` (an error with its reason), or
@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from fractions import Fraction as F
 from pathlib import Path
 from typing import Any, Sequence
@@ -200,49 +200,55 @@ def classify_run(method: Any, cell: Cell, ref: _Ref) -> Outcome:
     return Outcome(cell.label, name, OK, err, claim, "", seconds)
 
 
-def classify_run_limited(method: Any, cell: Cell, ref: _Ref, limit: float = RUN_LIMIT) -> Outcome:
-    """:func:`classify_run` in a forked child, stopped after ``limit`` seconds (then ``no answer``)."""
+def classify_runs_limited(methods: Sequence[Any], cell: Cell, ref: _Ref, limit: float = RUN_LIMIT) -> list[Outcome]:
+    """Each method's :func:`classify_run` on ``cell`` in turn, in one forked child (a fork per run cost more than most
+    runs), each run stopped after ``limit`` seconds (then ``no answer``, and a new child makes the runs after it)."""
     import multiprocessing as mp
 
-    # what the methods import when they run, imported here in the parent once: else each forked child imports it
-    # again (scipy.integrate about 0.5 CPU-s, python-flint for the event kernel's roots), half the matrix's CPU
+    # what the runs import, imported once here, not in each child (scipy.integrate 0.5 CPU-s, flint for the roots)
     import flint  # noqa: F401
     import scipy.integrate  # noqa: F401
 
     try:
         ctx = mp.get_context("fork")
     except ValueError:  # no fork on this platform: run in-process, without the limit
-        return classify_run(method, cell, ref)
-    recv, send = ctx.Pipe(duplex=False)
-    child = ctx.Process(target=_child, args=(send, method, cell, ref), daemon=True)
-    t0 = time.perf_counter()
-    child.start()
-    send.close()
-    ready = recv.poll(limit)
-    try:
-        outcome = recv.recv() if ready else None
-    except EOFError:  # the child died without an answer (killed, or it crashed while sending)
-        outcome = Outcome(cell.label, _name(method), HUNG, math.nan, claimed_error(method),
-                          "the child process ended without an answer", time.perf_counter() - t0)
-    child.join(1.0)
-    if child.is_alive():
-        child.kill()
-        child.join()
-    if outcome is None:
-        return Outcome(cell.label, _name(method), HUNG, math.nan, claimed_error(method),
-                       f"no answer within {limit:g} s (stopped)", time.perf_counter() - t0)
-    return outcome
+        return [classify_run(m, cell, ref) for m in methods]
+    outcomes: list[Outcome] = []
+    while len(outcomes) < len(methods):
+        rest = list(methods[len(outcomes):])
+        recv, send = ctx.Pipe(duplex=False)
+        child = ctx.Process(target=_child, args=(send, rest, cell, ref), daemon=True)
+        child.start()
+        send.close()
+        for method in rest:  # each run's time counts from the previous answer, when the child starts it
+            t0 = time.perf_counter()
+            try:
+                if recv.poll(limit):
+                    outcomes.append(recv.recv())
+                    continue
+                reason = f"no answer within {limit:g} s (stopped)"
+            except EOFError:  # the child died without an answer (killed, or it crashed while sending)
+                reason = "the child process ended without an answer"
+            outcomes.append(Outcome(cell.label, _name(method), HUNG, math.nan, claimed_error(method), reason,
+                                    time.perf_counter() - t0))
+            break  # a new child makes the runs after this one
+        recv.close()
+        child.join(1.0)
+        if child.is_alive():
+            child.kill()
+            child.join()
+    return outcomes
 
 
-def _child(send: Any, method: Any, cell: Cell, ref: _Ref) -> None:
-    t0 = time.perf_counter()
-    try:
-        outcome = classify_run(method, cell, ref)
-    except Exception as exc:  # a crash is an answer too: reported, never lost with the cell
-        outcome = Outcome(cell.label, _name(method), HUNG, math.nan, claimed_error(method),
-                          f"crashed: {type(exc).__name__}: {exc}", time.perf_counter() - t0)
-    send.send(outcome)
-    send.close()
+def _child(send: Any, methods: list[Any], cell: Cell, ref: _Ref) -> None:
+    for method in methods:
+        t0 = time.perf_counter()
+        try:
+            outcome = classify_run(method, cell, ref)
+        except Exception as exc:  # a crash is an answer too: reported, never lost with the cell
+            outcome = Outcome(cell.label, _name(method), HUNG, math.nan, claimed_error(method),
+                              f"crashed: {type(exc).__name__}: {exc}", time.perf_counter() - t0)
+        send.send(outcome)
 
 
 def classify_certify(cell: Cell, ref: _Ref, cache: dict) -> Outcome:
@@ -301,10 +307,9 @@ class Extremes:
         return f"Extremes({len(self.cells)} cells × {len(self.methods) + 1} columns: {counts}; {self.seconds:.1f} s)"
 
     def counts(self) -> dict[str, int]:
-        out: dict[str, int] = {}
-        for o in self.outcomes:
-            out[o.outcome] = out.get(o.outcome, 0) + 1
-        return out
+        from collections import Counter
+
+        return dict(Counter(o.outcome for o in self.outcomes))
 
     def get(self, cell: str, method: str) -> Outcome:
         return next(o for o in self.outcomes if o.cell == cell and o.method == method)
@@ -398,8 +403,7 @@ def run_extremes(methods: Sequence[Any] | None = None, *, only: Sequence[str] | 
     for cell in chosen:
         ref = refs[cell.label] = _reference(cell)
         ref_seconds += ref.seconds
-        for m in methods:
-            outcomes.append(classify_run_limited(m, cell, ref, limit))
+        outcomes.extend(classify_runs_limited(methods, cell, ref, limit))
         if certify:
             outcomes.append(classify_certify(cell, ref, cache))
     return Extremes(tuple(chosen), tuple(_name(m) for m in methods), tuple(outcomes), time.perf_counter() - t0, ref_seconds, refs)
@@ -441,11 +445,9 @@ def extremes_figure(result: Extremes, path: Path, formats: Sequence[str] = ("png
                 ax.add_patch(plt.Rectangle((j - 0.5, i - 0.5), 1, 1, color="red", lw=0))
                 txt, color = "WRONG", "white"
             ax.text(j, i, txt, ha="center", va="center", fontsize=6.5, color=color)
-    ax.set_xticks(range(len(cols)))
-    ax.set_xticklabels([c.replace("(", "\n").rstrip(")") for c in cols], fontsize=7.5)
+    ax.set_xticks(range(len(cols)), [c.replace("(", "\n").rstrip(")") for c in cols], fontsize=7.5)
     ax.xaxis.tick_top()
-    ax.set_yticks(range(len(rows)))
-    ax.set_yticklabels([f"{c.group}: {c.label}" for c in result.cells], fontsize=7)
+    ax.set_yticks(range(len(rows)), [f"{c.group}: {c.label}" for c in result.cells], fontsize=7)
     cb = fig.colorbar(im, ax=ax, fraction=0.04, pad=0.02)
     cb.set_label("relative state error vs the 50-digit reference (ok cells)", fontsize=7)
     ax.legend(handles=[Patch(color="tab:green", alpha=0.55, label="certify: proved, bound holds along the reference"),
@@ -461,9 +463,7 @@ def extremes_figure(result: Extremes, path: Path, formats: Sequence[str] = ("png
 
 def _extremes_group(group: str) -> Extremes:
     """The matrix's cells of one ``group`` (a task of the ``extremes`` figure; its references dropped, for pickling)."""
-    import dataclasses
-
-    return dataclasses.replace(run_extremes(only=[group]), references={})
+    return replace(run_extremes(only=[group]), references={})
 
 
 def combine_extremes(parts: Sequence[Extremes]) -> Extremes:

@@ -58,7 +58,7 @@ def runs(tmp_path_factory) -> Path:
 
 @pytest.fixture(scope="module")
 def result(runs):
-    """The whole matrix, once for the module: about a minute alone (each run in a forked child), so the tests that
+    """The whole matrix, once for the module: about a minute alone (each cell's runs in a forked child), so the tests that
     use it are marked slow, which also hands this module out first (tests/conftest.py): started last, it was the
     suite's tail.
 
@@ -165,6 +165,31 @@ def test_a_silently_wrong_method_is_classified_wrong(result):
 
     o = classify_run(Shifted(), cell, ref)
     assert o.outcome == WRONG and "above its claim" in o.reason and o.error > 0.1
+
+
+def test_a_run_without_an_answer_is_stopped_and_the_runs_after_it_are_still_made(monkeypatch):
+    """A cell's runs share one forked child: a run that hangs past ``limit``, or ends its child, is ``no answer``
+    with its reason, and a new child makes the runs after it."""
+    import os
+    import time
+
+    from symbolic_friction._simulation import Regularized
+
+    real = extremes_module.classify_run
+
+    def flaky(method, cell, ref):
+        if isinstance(method, Moreau):
+            time.sleep(60)
+        if isinstance(method, Regularized):
+            os._exit(3)
+        return real(method, cell, ref)
+
+    monkeypatch.setattr(extremes_module, "classify_run", flaky)  # the forked children inherit it
+    cell = next(c for c in cells() if c.label == "case (a), f_c = 1e3")
+    out = extremes_module.classify_runs_limited(default_methods(), cell, extremes_module._reference(cell), limit=0.5)
+    assert [o.outcome for o in out] == [OK, HUNG, HUNG, OK]
+    assert "no answer within 0.5 s" in out[1].reason and "ended without an answer" in out[2].reason
+    assert [o.method for o in out] == [extremes_module._name(m) for m in default_methods()]
 
 
 def test_only_and_bad_group():
