@@ -150,6 +150,9 @@ def pytest_configure(config) -> None:
     # pytest_collection_modifyitems below is the one wanted
     if getattr(config.option, "loadscopereorder", False):
         config.option.loadscopereorder = False
+    from tests.rewrite_once import rewrite_before_workers
+
+    rewrite_before_workers(config, ROOT / "tests")
 
 
 def pytest_collection_modifyitems(config, items: list[pytest.Item]) -> None:
