@@ -229,10 +229,20 @@ def _shared_derivations() -> Any:
 
 def _import_shared() -> None:
     """Import before the fork what both processes would each import after it: ``xml.etree`` for every section's
-    JUnit cases.  Not sympy (about 0.4 s with the obligations' modules): the child's first sections do not
-    need it, so each process imports it after the fork (:func:`._parallel.run_sections` takes the tail as
-    :func:`_decide_tail`, which each process calls there), and this process's import overlaps the child's work."""
+    JUnit cases, and sympy, numpy and the obligations' modules (about 0.5 s).  The child needs them all too:
+    numpy and the certificate modules in its first section, sympy in the self-check, the obligations' modules
+    for the items of the tail it takes (:func:`_decide_tail`); imported once here, the child starts that much
+    later and no longer imports them itself, so neither process finishes later and the pair does the import once."""
     from .._infra import junit  # noqa: F401
+
+    try:
+        import sympy.tensor.tensor  # noqa: F401 - sympy loads it on the first sum it builds: here, not mid-obligation
+
+        from .._obligations import registry
+
+        registry()
+    except Exception:  # noqa: BLE001 - the obligations' section meets the same error and reports it as failing
+        pass
 
 
 def certificates_section(args: argparse.Namespace) -> Section:
