@@ -221,7 +221,8 @@ def _decide_tail() -> list[tuple[str, Callable[[], Any]]]:
 
 
 def _shared_derivations() -> Any:
-    """:func:`~.._obligations._derived_k.shared_derivations`, imported when entered (after the fork: it imports sympy)."""
+    """:func:`~.._obligations._derived_k.shared_derivations`, entered after the fork: one block of shared derivations
+    in each process."""
     from .._obligations._derived_k import shared_derivations
 
     return shared_derivations()
