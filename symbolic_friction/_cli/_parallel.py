@@ -231,10 +231,27 @@ def run_sections(makers: list[Maker], args: argparse.Namespace, *, parallel: boo
     so what building it imports is not waited for before the child starts,
     and is never imported when everything runs here.
     """
+    import gc
+
     if parallel is None:
         parallel = parallel_allowed()
     args.inbox = None
     args.claims = None
+    # The sections build hundreds of thousands of short-lived sympy expressions and Fractions and almost no
+    # reference cycles, so the cyclic collector's passes (over every object sympy's import made) find little and
+    # cost about 7 % of check's CPU (measured: 5.62 -> 5.22 CPU-s, median of 6, for about 16 MB more at the
+    # peak); it is off while they run, in both processes (the child inherits it), and on again after.
+    collecting = gc.isenabled()
+    gc.disable()
+    try:
+        yield from _run(makers, args, parallel, tail, together, context)
+    finally:
+        if collecting:
+            gc.enable()
+
+
+def _run(makers: list[Maker], args: argparse.Namespace, parallel: bool, tail: Any,
+         together: tuple[tuple[str, ...], ...], context: Callable[[], Any] | None) -> Iterator[Section]:
     if not parallel or len(makers) < 2:
         for make in makers:
             yield _safe(make, args)

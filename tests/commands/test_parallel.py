@@ -282,3 +282,22 @@ def test_the_worker_works_through_the_tail_within_the_context(monkeypatch):
     got = list(_parallel.run_sections([_tail_user(["x"], True), _maker("later")], argparse.Namespace(json=False),
                                       parallel=True, tail=[("x", lambda: state["inside"])], context=context))
     assert dict(got[0].rows) == {"x": "True"} and not state["inside"]
+
+
+@pytest.mark.parametrize("parallel", [True, False])
+def test_the_collector_is_off_in_both_processes_while_the_sections_run_and_on_again_after(parallel):
+    import gc
+
+    def collecting(args):
+        return Section("gc", ("enabled",), [(str(gc.isenabled()),)], {}, True, [], summary="gc")
+
+    assert gc.isenabled()
+    got = list(_parallel.run_sections([collecting, collecting], argparse.Namespace(json=False), parallel=parallel))
+    assert [s.rows[0][0] for s in got] == ["False", "False"]
+    assert gc.isenabled()
+    gc.disable()  # a caller that had it off keeps it off
+    try:
+        list(_parallel.run_sections([collecting], argparse.Namespace(json=False), parallel=False))
+        assert not gc.isenabled()
+    finally:
+        gc.enable()
