@@ -109,7 +109,14 @@ def _field_element(expr: sp.Expr) -> _Fraction:
     """``expr`` (a rational function of its free symbols) as a reduced fraction over ``ℤ[symbols]``: the pair of
     :func:`._fastpoly.rational_pair` in the free symbols in sympy's default order (a denominator that is the zero
     polynomial raises :class:`ZeroDivisionError`, anything but a rational function :class:`TypeError`)."""
-    return _Fraction(*fp.rational_pair(expr, sorted(expr.free_symbols, key=sp.default_sort_key)))
+    symbols = fp.rational_symbols(expr)  # its free symbols, if it is a rational function (remembered)
+    return _Fraction(*fp.rational_pair(expr, _default_order(frozenset(expr.free_symbols) if symbols is None else symbols)))
+
+
+@functools.lru_cache(maxsize=1024)
+def _default_order(symbols: frozenset) -> tuple[sp.Symbol, ...]:
+    """``sorted(symbols, key=sp.default_sort_key)``, remembered (the decisions meet the same few sets of symbols)."""
+    return tuple(sorted(symbols, key=sp.default_sort_key))
 
 
 def _coefficient_sign(coefficients: Sequence[Any]) -> int | None:
@@ -167,11 +174,12 @@ def sign_of(expr: Any) -> int | None:
     expr = sp.sympify(expr)
     if expr.is_number:
         return _number_sign(expr)
-    if any(s.is_positive is not True for s in expr.free_symbols):
+    symbols = fp.rational_symbols(expr)  # one pass: its free symbols if it is a rational function, else None
+    if any(s.is_positive is not True for s in (expr.free_symbols if symbols is None else symbols)):
         return None
-    if expr.has(sp.Piecewise, sp.Abs, sp.sign, sp.Max, sp.Min):
+    if symbols is None and expr.has(sp.Piecewise, sp.Abs, sp.sign, sp.Max, sp.Min):
         return None
-    if _is_rational_function(expr):
+    if symbols is not None:
         # numerator and denominator of the reduced fraction in Q(symbols): a
         # polynomial whose coefficients share a sign has that sign on the orthant
         element = _field_element(expr)

@@ -44,18 +44,30 @@ from sympy.polys.polytools import factor as _sympy_factor
 from sympy.polys.polytools import factor_list as _sympy_factor_list
 
 __all__ = ["cancel", "factor", "factor_list", "expand", "expanded_det", "factored_det", "polynomial_gens",
-           "is_rational_function", "rational_pair"]
+           "is_rational_function", "rational_symbols", "rational_pair"]
 
 
 def is_rational_function(expr: sp.Expr) -> bool:
     """Whether ``expr`` is built from symbols and rationals by + - × ÷ and integer powers only."""
-    for node in sp.preorder_traversal(expr):
-        if isinstance(node, (sp.Symbol, sp.Rational, sp.Add, sp.Mul)):
-            continue
-        if isinstance(node, sp.Pow) and node.exp.is_Integer:
-            continue
-        return False
-    return True
+    return rational_symbols(expr) is not None
+
+
+def rational_symbols(expr: sp.Expr) -> frozenset[sp.Symbol] | None:
+    """The symbols of ``expr`` if it is a rational function (:func:`is_rational_function`), ``None`` otherwise.
+
+    One pass over the tree for both (each shared subexpression once), remembered for the last few thousand
+    expressions: a decision asks both of one expression, and the obligations decide many equal ones.
+    """
+    try:
+        return _rational_symbols(expr)
+    except TypeError:  # unhashable (a mutable matrix): not a rational function's expression
+        return _symbols_of_rational(expr)
+
+
+@functools.lru_cache(maxsize=4096)
+def _rational_symbols(expr: sp.Expr) -> frozenset[sp.Symbol] | None:
+    symbols = _symbols_of_rational(expr)
+    return None if symbols is None else frozenset(symbols)
 
 
 def polynomial_gens(expr: sp.Expr) -> tuple[sp.Symbol, ...] | None:
@@ -196,8 +208,8 @@ def _eligible(expr: Any) -> tuple[sp.Expr, tuple[sp.Symbol, ...] | None]:
     expr = sp.sympify(expr)
     if not isinstance(expr, sp.Expr) or expr.is_number:
         return expr, None
-    symbols = _symbols_of_rational(expr)
-    return expr, (None if not symbols else _sorted_gens(frozenset(symbols)))
+    symbols = rational_symbols(expr)
+    return expr, (None if not symbols else _sorted_gens(symbols))
 
 
 def _fast_cancel(expr: Any) -> sp.Expr:
