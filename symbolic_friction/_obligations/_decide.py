@@ -299,9 +299,9 @@ def _convex_quadratic_minimum(f: sp.Expr, var: sp.Symbol, s: sp.Interval) -> sp.
         return None
     vertex = fp.cancel(-beta / (2 * alpha))
     if decide(sp.LessThan(vertex, s.start)) is True:
-        return f.subs(var, s.start)
+        return f.xreplace({var: s.start})  # the value at the end point, as subs gives it
     if decide(sp.GreaterThan(vertex, s.end)) is True:
-        return f.subs(var, s.end)
+        return f.xreplace({var: s.end})
     if decide(sp.And(sp.StrictLessThan(s.start, vertex), sp.StrictLessThan(vertex, s.end))) is True:
         return f.xreplace({var: vertex})  # the value at the vertex, as subs gives it, without subs's bookkeeping
     return None
@@ -326,7 +326,7 @@ def minimum_on(f: sp.Expr, var: sp.Symbol, s: sp.Set) -> sp.Expr:
                 raise Undecided(f"cannot decide whether the stationary point {r} lies in {s}")
             if inside:
                 candidates.append(r)
-    values = [f.subs(var, c) for c in candidates]
+    values = [f.xreplace({var: c}) for c in candidates]  # as subs(var, c) gives them, without its bookkeeping
     for v in values:
         if all(sign_of(w - v) in (0, 1) for w in values):
             return v

@@ -67,11 +67,11 @@ class Lemma1Uniqueness(Obligation):
         # z_{1,v} = a and z_{2,v} = z_{1,v} - δ_v = bb, each of sign 1, 0 or -1
         for (_, s1, a), (_, s2, bb) in itertools.product(sign_classes("p"), sign_classes("q")):
             case = {z1[2]: a, z2[2]: bb}
-            h = friction.subs(case)
+            h = friction.xreplace(case)  # as subs(case) gives it (the values hold no z), without its bookkeeping
             # h is multi-affine in (w_1, w_2), so its maximum over the product of
             # SGN sets is attained at a pair of vertices: checking those is exhaustive.
             try:
-                values = [h.subs({w1: v1, w2: v2}) for v1 in vertices(S.sgn[s1]) for v2 in vertices(S.sgn[s2])]
+                values = [h.xreplace({w1: v1, w2: v2}) for v1 in vertices(S.sgn[s1]) for v2 in vertices(S.sgn[s2])]
             except Undecided as exc:
                 return Outcome.fail(f"case sign(z_1v) = {s1}, sign(z_1v - δ_v) = {s2}: {exc}", tuple(details))
             signs = [sign_of(v) for v in values]

@@ -123,7 +123,7 @@ class Prop1Invariance(Obligation):
             case = f"σ {slab}, {plab}"
             sub = {sb: sval, pb: pval}
             try:
-                verdict = self._classify(S, [e.subs(sub) for e in x_t], sp.expand(w_t.subs(sub)), t, lo, hi)
+                verdict = self._classify(S, [e.xreplace(sub) for e in x_t], sp.expand(w_t.xreplace(sub)), t, lo, hi)
                 in_A = self._in_attractor(S, sval, pval)
             except Undecided as exc:
                 return Outcome.fail(f"class {case}: {exc}", tuple(details))
@@ -137,9 +137,9 @@ class Prop1Invariance(Obligation):
     @staticmethod
     def _classify(S: InvarianceSubject, x0_t, w, t, lo, hi) -> str:
         """'equilibria', or why the class leaves Σ."""
-        x0 = [e.subs(t, 0) for e in x0_t]
+        x0 = [e.xreplace({t: sp.Integer(0)}) for e in x0_t]  # as subs(t, 0), without its bookkeeping
         forced = (S.A * sp.Matrix(x0))[:2]
-        w0 = w.subs(t, 0)
+        w0 = w.xreplace({t: sp.Integer(0)})
         in_range = decide(sp.And(sp.Le(lo, w0), sp.Le(w0, hi)))
         if in_range is None:
             raise Undecided(f"cannot decide whether w(0) = {w0} lies in [{lo}, {hi}]")

@@ -177,7 +177,7 @@ MUTANTS = [
      finds_the_minimum_of_a_quadratic_wherever_its_vertex_lies),
     (_decide, "_convex_quadratic_minimum", [("sign_of(alpha) != 1", "sign_of(alpha) == 0")],
      finds_the_minimum_of_a_quadratic_wherever_its_vertex_lies),
-    (_decide, "_convex_quadratic_minimum", [("return f.subs(var, s.start)", "return f.subs(var, s.end)")],
+    (_decide, "_convex_quadratic_minimum", [("return f.xreplace({var: s.start})", "return f.xreplace({var: s.end})")],
      finds_the_minimum_of_a_quadratic_wherever_its_vertex_lies),
     (_decide, "_convex_quadratic_minimum", [("sp.LessThan(vertex, s.start)", "sp.GreaterThan(vertex, s.start)")],
      finds_the_minimum_of_a_quadratic_wherever_its_vertex_lies),
