@@ -329,7 +329,7 @@ class Claim1Cases(Obligation):
         T = _at(br.T, sub)
         if not all(is_zero(e) for e in (xi.xreplace({t: sp.Integer(0)}) - xb)):
             return f"ξ(0) = {list(xi.xreplace({t: sp.Integer(0)}))} is not the initial condition {list(xb)}"
-        dxi = xi.diff(t)
+        dxi = xi.applyfunc(lambda e: e.diff(t))  # entrywise, as Matrix.diff gives it, without its array machinery
         if not all(is_zero(e) for e in (dxi - f0.xreplace(dict(zip(S.state, xi))))):
             return f"ξ(t) = {list(xi)} does not solve ξ' = f_0(ξ)"
         if not is_zero(xi[2]):

@@ -111,8 +111,9 @@ class VRuntime(_Binding):
         sgn = sgn_sets()
 
         def paper(case: Case) -> sp.Expr:
-            vec = sp.Matrix([case(g.sigma), case(g.phi) - g.f_c * w, case(g.v)])
-            form = fp.expand(case((vec.T * P * vec)[0]))
+            vec = (case(g.sigma), case(g.phi) - g.f_c * w, case(g.v))
+            # vᵀPv written out: the same expanded form as the matrix product, without sympy's matrix arithmetic
+            form = fp.expand(case(sp.Add(*(P[i, j] * vec[i] * vec[j] for i in range(3) for j in range(3)))))
             return minimum_on(form, w, sgn[_sign(case, g.v)])
 
         return _x_subject("V", V, paper)
