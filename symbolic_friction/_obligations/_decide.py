@@ -27,8 +27,9 @@ No floating-point number is used anywhere.
 
 from __future__ import annotations
 
+import contextlib
 import functools
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from typing import Any, NamedTuple
 
 import sympy as sp
@@ -52,6 +53,7 @@ __all__ = [
     "phi_classes",
     "sign_classes",
     "latex",
+    "remembering",
 ]
 
 
@@ -105,12 +107,34 @@ class _Fraction(NamedTuple):
     denom: Any
 
 
+_REMEMBERED: list[dict[sp.Expr, "_Fraction"]] = []
+"""One dict per active :func:`remembering` block (the innermost last): the fractions converted within it."""
+
+
+@contextlib.contextmanager
+def remembering() -> Iterator[None]:
+    """Within the block, :func:`_field_element` converts each expression once (``check`` runs its obligations in one:
+    they decide many equal expressions, ``2f_c > 0`` alone some fifty times); outside it, every call converts."""
+    _REMEMBERED.append({})
+    try:
+        yield
+    finally:
+        _REMEMBERED.pop()
+
+
 def _field_element(expr: sp.Expr) -> _Fraction:
     """``expr`` (a rational function of its free symbols) as a reduced fraction over ``ℤ[symbols]``: the pair of
     :func:`._fastpoly.rational_pair` in the free symbols in sympy's default order (a denominator that is the zero
-    polynomial raises :class:`ZeroDivisionError`, anything but a rational function :class:`TypeError`)."""
+    polynomial raises :class:`ZeroDivisionError`, anything but a rational function :class:`TypeError`); the same
+    pair for an equal expression within a :func:`remembering` block."""
+    memo = _REMEMBERED[-1] if _REMEMBERED else None
+    if memo is not None and expr in memo:
+        return memo[expr]
     symbols = fp.rational_symbols(expr)  # its free symbols, if it is a rational function (remembered)
-    return _Fraction(*fp.rational_pair(expr, _default_order(frozenset(expr.free_symbols) if symbols is None else symbols)))
+    element = _Fraction(*fp.rational_pair(expr, _default_order(frozenset(expr.free_symbols) if symbols is None else symbols)))
+    if memo is not None:
+        memo[expr] = element
+    return element
 
 
 @functools.lru_cache(maxsize=1024)

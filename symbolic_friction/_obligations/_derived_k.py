@@ -15,7 +15,7 @@ from .._model import symbolic as _symbolic
 from .._model.kconditions import Condition, k_conditions
 from . import _fastforms as ff
 from . import _fastpoly as fp
-from ._decide import Undecided, is_zero, resolve_piecewise, sign_of
+from ._decide import Undecided, is_zero, remembering, resolve_piecewise, sign_of
 from ._inequalities import Case, canonical, is_nonneg
 from ._region import pieces_of
 from ._shared import _SHARED as _shared_stack
@@ -124,10 +124,13 @@ _SHARED = _shared_stack  # the blocks of shared_derivations (also what _shared.s
 @contextlib.contextmanager
 def shared_derivations() -> Iterator[None]:
     """Within the block, :func:`derived_k_conditions` derives once per subject (``lemma3.hatV_derivative`` and
-    ``certificate.verifier`` derive from equal subjects in one ``check`` run); outside it, every call derives."""
+    ``certificate.verifier`` derive from equal subjects in one ``check`` run), and the decision procedures convert
+    each expression into its fraction of polynomials once (:func:`._decide.remembering`); outside it, every call
+    derives and converts."""
     _SHARED.append({})
     try:
-        yield
+        with remembering():
+            yield
     finally:
         _SHARED.pop()
 
