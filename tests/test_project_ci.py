@@ -8,15 +8,16 @@ added as a project's ``args:`` would add it: everything passes, the JUnit XML
 has one test case per obligation and certificate.  Editing one constant makes
 the hook (``check``) fail, naming the inequality in its output and its JUnit
 XML.  (``pre-commit try-repo`` would build a fresh environment with cvxpy and
-numba from the network; the hook's entry command is run directly instead, with
-this checkout on ``PYTHONPATH``, and once more, exactly as declared, as the
-console script of a copy installed into a fresh virtual environment.)  The
-command lines run in a child of one warm interpreter (``tests/forkserver.py``:
-its own working directory, the exit status as the interpreter maps it), not
-each in a fresh interpreter that imports numpy, sympy and python-flint again;
-the failing hook and the installed console script run as real processes, and
-the check of a missing listed certificate, whose every assertion is on the
-certificates section, runs that section alone, in this process.
+numba from the network; the package is installed instead into a fresh virtual
+environment, and the passing hook is its console script, run as the hook's
+entry declares it with those arguments; where that environment cannot be
+built, the entry runs from this checkout.)  The other command lines run in a
+child of one warm interpreter (``tests/forkserver.py``: its own working
+directory, the exit status as the interpreter maps it), not each in a fresh
+interpreter that imports numpy, sympy and python-flint again; the failing hook
+and the installed console script run as real processes, and the check of a
+missing listed certificate, whose every assertion is on the certificates
+section, runs that section alone, in this process.
 """
 
 from __future__ import annotations
@@ -105,11 +106,10 @@ def test_certificates_keep_physical_gains_and_label(project):
     assert data["provenance"]["label"] == "fast axis, 2 kg"
 
 
-def test_hook_and_check_pass_then_fail_on_an_edited_constant(project, forks, tmp_path):
-    # One run serves as the hook and as `check --junit-xml`: the hook's entry with the arguments a project's
-    # `args: [--junit-xml, FILE]` appends (the hook's entry alone, as declared, runs in the fresh-environment test)
-    report = tmp_path / "check.xml"
-    hook = _forked(forks, _hook_entry("symbolic-friction-check") + ["--junit-xml", str(report)], project)
+def test_hook_and_check_pass_then_fail_on_an_edited_constant(project, passing_hook, forks, tmp_path):
+    # One run serves as the hook, as `check --junit-xml` and as the installed copy's console script: the hook's entry
+    # with the arguments a project's `args: [--junit-xml, FILE]` appends (:func:`passing_hook`)
+    hook, report = passing_hook
     assert hook.returncode == 0, hook.stdout + hook.stderr
     assert hook.stdout.strip().splitlines()[-1].startswith("check: PASSED")
     assert "2 of 2 certificates proved exactly, 2 of 2 up to date" in hook.stdout
@@ -134,8 +134,8 @@ def test_hook_and_check_pass_then_fail_on_an_edited_constant(project, forks, tmp
     data = json.loads(original)
     data["constants"]["k3"] = data["constants"]["k2"]
     path.write_text(json.dumps(data, indent=2, sort_keys=True) + "\n", encoding="utf-8")
+    report = tmp_path / "check.xml"  # the failing run writes its own
     try:
-        report.unlink()  # the failing run must write its own
         # a real process: the exit status pre-commit sees from a failing hook is the interpreter's own
         hook = _run(_hook_entry("symbolic-friction-check") + ["--junit-xml", str(report)], project)
         assert hook.returncode == 1
@@ -181,14 +181,18 @@ def test_without_configuration_outside_the_checkout_check_refuses(tmp_path):
     assert check.stderr.count("\n") == 1 and "no configuration found" in check.stderr
 
 
-def test_in_a_fresh_virtual_environment_the_installed_hook_passes(project, tmp_path):
-    """The package installed (not imported from this checkout) into a fresh virtual environment: its console
-    script, run exactly as the hook's entry says, passes in the user's repository (the shipped JSON Schema and
-    the configuration search work from an installed copy).  The dependencies come from the running
-    environment through a ``.pth`` file; the build backend is fetched by pip (skipped if it cannot be)."""
+@pytest.fixture(scope="module")
+def installed(project, tmp_path_factory):
+    """The package installed (not imported from this checkout) into a fresh virtual environment: the directory of
+    its console scripts and the environment to run them in, or ``None`` and why it could not be built.
+
+    The dependencies come from the running environment through a ``.pth`` file; the build backend is fetched by
+    pip.
+    """
     import shutil
     import sysconfig
 
+    tmp_path = tmp_path_factory.mktemp("installed")
     source = tmp_path / "src"
     source.mkdir()
     shutil.copytree(REPO / "symbolic_friction", source / "symbolic_friction",
@@ -205,16 +209,41 @@ def test_in_a_fresh_virtual_environment_the_installed_hook_passes(project, tmp_p
     install = subprocess.run([sys.executable, "-m", "pip", "--python", str(python), "install", "--quiet", "--no-deps",
                               str(source)], capture_output=True, text=True, env=env, timeout=600)
     if install.returncode != 0:
-        pytest.skip(f"could not build the package here: {install.stderr.strip().splitlines()[-1:]}")
+        return None, f"could not build the package here: {install.stderr.strip().splitlines()[-1:]}"
     where = subprocess.run([str(python), "-c", "import symbolic_friction; print(symbolic_friction.__file__)"],
                            capture_output=True, text=True, env=env, cwd=project, check=True).stdout
     assert where.startswith(purelib)  # the installed copy, not this checkout
-    entry = _hook_entry("symbolic-friction-check")[3:]  # the arguments after the console script
-    hook = subprocess.run([str(venv / "bin" / "symbolic-friction"), *entry], capture_output=True, text=True,
-                          env=env, cwd=project, timeout=600)
+    return venv / "bin", env
+
+
+@pytest.fixture(scope="module")
+def passing_hook(project, installed, forks, tmp_path_factory):
+    """The check hook in the user's repository before any edit, with the arguments a project's ``args:`` appends
+    (``--junit-xml FILE``): the installed copy's console script, a real process, run as the hook's entry declares
+    it; this checkout's, forked, where the virtual environment could not be built.  The completed process and the
+    JUnit file."""
+    report = tmp_path_factory.mktemp("junit") / "check.xml"
+    argv = _hook_entry("symbolic-friction-check") + ["--junit-xml", str(report)]
+    scripts, env = installed
+    if scripts is None:
+        return _forked(forks, argv, project), report
+    hook = subprocess.run([str(scripts / "symbolic-friction"), *argv[3:]], capture_output=True, text=True, env=env,
+                          cwd=project, timeout=600)
+    return hook, report
+
+
+def test_in_a_fresh_virtual_environment_the_installed_hook_passes(project, installed, passing_hook):
+    """The package installed (not imported from this checkout) into a fresh virtual environment: its console
+    script, run as the hook's entry says (the passing hook's run), passes in the user's repository (the shipped
+    JSON Schema and the configuration search work from an installed copy), and so does the verify hook's
+    (skipped if the package cannot be built here)."""
+    scripts, env = installed
+    if scripts is None:
+        pytest.skip(env)
+    hook, _ = passing_hook
     assert hook.returncode == 0, hook.stdout + hook.stderr
     assert hook.stdout.strip().splitlines()[-1].startswith("check: PASSED")
-    verify = subprocess.run([str(venv / "bin" / "symbolic-friction"), *_hook_entry("symbolic-friction-verify")[3:],
+    verify = subprocess.run([str(scripts / "symbolic-friction"), *_hook_entry("symbolic-friction-verify")[3:],
                              "proofs/fast_axis.json"], capture_output=True, text=True, env=env, cwd=project)
     assert verify.returncode == 0 and "PROVED" in verify.stdout, verify.stderr
 
