@@ -12,11 +12,20 @@ IPython adds back as ``''``).  :class:`ForkedKernelManager` is jupyter_client's
 kernel manager with this one launch step replaced; the connection file,
 the ports, the messages and the shutdown are jupyter_client's own.
 
-The server imports only the kernel's own start-up: what a notebook imports
-(numpy, matplotlib, sympy, the package) the notebook still imports in its
-kernel, as for a user.  The one setting ipykernel reads from the environment
-when imported (``JPY_PARENT_PID``, the kernels' parent) is in the server's
-environment already; the server never starts a thread and never runs a
+The server imports the kernel's own start-up and the libraries and package
+modules the notebooks import (:data:`LIBRARIES`: about 0.7 to 1.3 s of CPU
+less per notebook), never running any of their code: an import only defines
+things, so a notebook that imports one finds what a fresh import gives it.
+Two are left to the kernel, as for a user, because importing them changes
+what a notebook does: matplotlib reads ``MPLBACKEND``, which ipykernel sets
+when the kernel starts, and once numba is imported the package runs small
+simulations with its compiled kernel and ``check`` stops forking.  The
+random states seeded on import (Python's, numpy's, sympy's) are seeded
+again in each kernel, as a fresh interpreter draws its own.  The one setting
+ipykernel reads from the environment when imported (``JPY_PARENT_PID``, the
+kernels' parent) is in the server's environment already, and a kernel whose
+``PYTHONPATH`` differs from the server's (which would have imported other
+modules) is refused; the server never starts a thread and never runs a
 kernel itself, so every child starts from the state a fresh interpreter has
 after the same imports.  ``tests/test_notebooks.py`` holds a forked kernel to
 one started as a subprocess.
@@ -40,6 +49,20 @@ except ImportError:  # the server, started as `import kernel_forks` from this fo
 
 PRELOAD = ("ipykernel_launcher", "ipykernel.kernelapp", "ipykernel.ipkernel", "ipykernel.zmqshell")
 """What the server imports once: the kernel's own start-up (measured: 986 modules before the first cell, 0.6 s of CPU)."""
+
+LIBRARIES = (
+    "numpy", "scipy.integrate", "scipy.linalg", "scipy.optimize", "sympy", "mpmath", "flint", "jsonschema",
+    "symbolic_friction", "symbolic_friction.model", "symbolic_friction.symbolic", "symbolic_friction.studies",
+    "symbolic_friction._obligations", "symbolic_friction._certify.templates", "symbolic_friction._crosscheck",
+    "symbolic_friction._simulation.event", "symbolic_friction._studies.tradeoff", "symbolic_friction._studies.gainmap_run",
+    "symbolic_friction._studies.settling_map", "symbolic_friction._hunting._study",
+)
+"""What several notebooks import besides matplotlib and numba (module doc), imported once by the server too (measured:
+1.2 s of CPU once, 0.4 to 1.0 s less in each notebook's kernel; what a single notebook imports, cvxpy, pandas or
+xarray, would only move its cost to the server).  Only saves time: a kernel imports whatever is missing."""
+
+LEFT_TO_THE_KERNEL = ("matplotlib", "numba")
+"""Never imported by the server (module doc); :func:`serve` fails if :data:`LIBRARIES` would import one."""
 
 
 class KernelForks:
@@ -129,6 +152,7 @@ class ForkedKernelManager(AsyncKernelManager):
 
 def serve() -> None:  # pragma: no cover - runs in the server process
     """Import :data:`PRELOAD`, then answer requests on stdin/stdout until stdin closes."""
+    import gc
     import importlib
     import threading
 
@@ -136,9 +160,17 @@ def serve() -> None:  # pragma: no cover - runs in the server process
     wire_out = os.fdopen(os.dup(1), "wb")
     os.dup2(2, 1)  # a stray print (of the server or a kernel) must not corrupt the wire
     del sys.path[:2]  # '' (python -c) and this folder: a kernel's sys.path is the interpreter's, as the launcher leaves it
-    for name in PRELOAD:
+    for name in PRELOAD + LIBRARIES:
         importlib.import_module(name)
+    from symbolic_friction._obligations import obligation_modules
+
+    obligation_modules()  # imported by name at run time: every notebook that runs an obligation imports them all
+    imported = sorted({name.split(".")[0] for name in sys.modules} & set(LEFT_TO_THE_KERNEL))
+    assert not imported, f"the kernel fork server must leave {imported} to the kernels (module doc)"
     assert threading.active_count() == 1, "the kernel fork server must not start threads (they would not survive a fork)"
+    python_path = os.environ.get("PYTHONPATH")
+    gc.collect()
+    gc.freeze()  # the kernels' collector leaves the server's objects alone: fewer pages copied after each fork
     _send(wire_out, "ready")
     children: dict[int, int | None] = {}
     while True:
@@ -151,7 +183,7 @@ def serve() -> None:  # pragma: no cover - runs in the server process
             if pid == 0:
                 wire_in.close()
                 wire_out.close()
-                _kernel(request["args"], request["env"], request["cwd"])
+                _kernel(request["args"], request["env"], request["cwd"], python_path)
             try:
                 os.setpgid(pid, pid)  # also done by the child: whichever runs first, the group exists before the reply
             except OSError:
@@ -167,10 +199,16 @@ def serve() -> None:  # pragma: no cover - runs in the server process
             _send(wire_out, children[pid])
 
 
-def _kernel(args: list[str], env: dict[str, str], cwd: str) -> None:  # pragma: no cover - runs in a forked child
-    """Become ``python -m ipykernel_launcher ARGS`` in ``cwd`` with ``env``; never returns."""
+def _kernel(args: list[str], env: dict[str, str], cwd: str, python_path: str | None) -> None:  # pragma: no cover
+    """Become ``python -m ipykernel_launcher ARGS`` in ``cwd`` with ``env``, in a forked child; never returns.
+
+    ``python_path``: the server's ``PYTHONPATH``, which its imports were found with.
+    """
     code = 1
     try:
+        if env.get("PYTHONPATH") != python_path:
+            raise RuntimeError(f"a kernel with PYTHONPATH={env.get('PYTHONPATH')!r} cannot be forked from a server that "
+                               f"imported its modules with PYTHONPATH={python_path!r}")
         os.setpgid(0, 0)
         null = os.open(os.devnull, os.O_RDONLY)
         os.dup2(null, 0)
@@ -181,6 +219,9 @@ def _kernel(args: list[str], env: dict[str, str], cwd: str) -> None:  # pragma: 
         import random
 
         random.seed()  # not the server's state: each kernel draws its own, as a fresh interpreter does
+        for name in ("numpy.random", "sympy.core.random"):  # the global states those libraries seed when imported
+            if name in sys.modules:
+                sys.modules[name].seed()
         import ipykernel_launcher
 
         sys.argv = [ipykernel_launcher.__file__, *args]
