@@ -40,7 +40,7 @@ from typing import Sequence
 
 from .._infra.errors import SimulationError, SymbolicFrictionError
 from .._model.parameters import Parameters
-from .slip import SlipMethods, _Piece, _factor
+from .slip import SlipMethods, _Piece, _factor, flow_key
 
 __all__ = ["Reference", "reference_table_mode"]
 
@@ -210,7 +210,7 @@ class Reference(SlipMethods):
             term = term / 4 / n
         self.n_terms = n + 1
         self._E_h = None
-        self._expm_cache = {}  # e^{Aτ} by τ (slip.SlipMethods._expm_raw)
+        self._raw_cache = {}  # the raw loops' constants by precision (slip.SlipMethods._raw_constants)
         # the adaptive method's Taylor sums run at ‖A‖∞ θ ≤ 1/16
         self._theta0 = ctx.mpf(1) / 16
         n, term = 0, ctx.mpf(1)
@@ -218,6 +218,7 @@ class Reference(SlipMethods):
             n += 1
             term = term / 16 / n
         self._ring_terms = n + 1
+        self._flow_key = flow_key(self.k_p, self.k_i, self.k_v, self.norm, self._theta0, self._ring_terms)
         self.lambda_r = ctx.mpf(lam_r)
         self.nu = ctx.mpf(nu)
         self.beta = None if beta is None else ctx.mpf(beta)

@@ -93,8 +93,17 @@ from .._infra.errors import SimulationError
 
 __all__ = ["SlipMethods"]
 
-_EXPM_CACHE_SIZE = 4096
-"""The most ``e^{Aτ}`` one reference remembers (then it forgets them all and starts again)."""
+_EXPM_CACHE_SIZE = 16384
+"""The most ``e^{Aτ}`` remembered (then they are all forgotten and the count starts again)."""
+_EXPM_CACHE: dict = {}
+"""``e^{Aτ}`` (raw) by ``(flow_key, τ, precision, rounding)``, shared by a process's references: the key holds all
+the value is formed from, so a value found is the one that would be formed, bit for bit.  The event search asks
+again for its brackets' ends; a reference made again (another horizon or event budget) for the same ``τ``."""
+
+
+def flow_key(k_p, k_i, k_v, norm, theta0, ring_terms) -> tuple:
+    """What ``e^{Aτ}`` is formed from besides ``τ``: gains, ``‖A‖∞``, scaling threshold (mpf), Taylor terms."""
+    return (k_p._mpf_, k_i._mpf_, k_v._mpf_, norm._mpf_, theta0._mpf_, ring_terms)
 
 
 @dataclass
@@ -132,16 +141,30 @@ class SlipMethods:
     # (the ``_mpf_`` tuples) with the very calls ``ctx.mpf`` arithmetic makes (``mpf_mul``,
     # ``mpf_add``, ``mpf_sub``, ``mpf_div`` at the context's precision and rounding), in the
     # same order: the results are the same bits, without an mpf object per operation.
-    def _ring_mul(self, a, b, prec, rnd):
-        """Product of raw triples in ``R[A]``, reduced by ``A³ = -k_v A² - k_p A - k_i I``."""
+    def _raw_constants(self, prec, rnd):
+        """``(-k_i, k_p, k_v, [n for n < ring_terms])`` raw for the loops at ``prec`` (``-k_i`` as mpf rounds it)."""
+        key = (prec, rnd)
+        consts = self._raw_cache.get(key)
+        if consts is None:
+            consts = (mpf_neg(self.k_i._mpf_, prec, rnd), self.k_p._mpf_, self.k_v._mpf_,
+                      [from_int(n) for n in range(self._ring_terms)])
+            self._raw_cache[key] = consts
+        return consts
+
+    def _ring_square(self, a, prec, rnd):
+        """``a²`` for a raw triple in ``R[A]``, reduced by ``A³ = -k_v A² - k_p A - k_i I`` (a squaring
+        step): each cross product ``a_i a_j = a_j a_i`` (one rounded product, ``mpf_mul`` being symmetric)
+        is formed once and added twice."""
         a0, a1, a2 = a
-        b0, b1, b2 = b
-        d0 = mpf_mul(a0, b0, prec, rnd)
-        d1 = mpf_add(mpf_mul(a0, b1, prec, rnd), mpf_mul(a1, b0, prec, rnd), prec, rnd)
-        d2 = mpf_add(mpf_add(mpf_mul(a0, b2, prec, rnd), mpf_mul(a1, b1, prec, rnd), prec, rnd),
-                     mpf_mul(a2, b0, prec, rnd), prec, rnd)
-        d3 = mpf_add(mpf_mul(a1, b2, prec, rnd), mpf_mul(a2, b1, prec, rnd), prec, rnd)
-        d4 = mpf_mul(a2, b2, prec, rnd)
+        p01 = mpf_mul(a0, a1, prec, rnd)
+        p02 = mpf_mul(a0, a2, prec, rnd)
+        p12 = mpf_mul(a1, a2, prec, rnd)
+        d0 = mpf_mul(a0, a0, prec, rnd)
+        d1 = mpf_add(p01, p01, prec, rnd)
+        d2 = mpf_add(mpf_add(p02, mpf_mul(a1, a1, prec, rnd), prec, rnd), p02, prec, rnd)
+        d3 = mpf_add(p12, p12, prec, rnd)
+        d4 = mpf_mul(a2, a2, prec, rnd)
+        # d₀ + d₁A + … + d₄A⁴ back to a triple
         k_p, k_i, k_v = self.k_p._mpf_, self.k_i._mpf_, self.k_v._mpf_
         d3 = mpf_sub(d3, mpf_mul(k_v, d4, prec, rnd), prec, rnd)
         d2 = mpf_sub(d2, mpf_mul(k_p, d4, prec, rnd), prec, rnd)
@@ -158,12 +181,11 @@ class SlipMethods:
         return tuple(make(c) for c in self._expm_raw(tau))
 
     def _expm_raw(self, tau):
-        """:meth:`_expm_ring` as raw values, remembered by ``τ`` (the event search asks
-        again for the step ``h`` and for the ends of its brackets)."""
+        """:meth:`_expm_ring` as raw values, remembered (:data:`_EXPM_CACHE`)."""
         ctx = self.ctx
         # keyed by the working precision too: a value formed at another precision has other bits
-        key = None if getattr(tau, "_mpf_", None) is None else (tau._mpf_, *ctx._prec_rounding)
-        cache = self._expm_cache
+        key = None if getattr(tau, "_mpf_", None) is None else (self._flow_key, tau._mpf_, *ctx._prec_rounding)
+        cache = _EXPM_CACHE
         if key in cache:
             return cache[key]
         if tau == 0:
@@ -177,23 +199,23 @@ class SlipMethods:
                     m += 1
             s = ctx.ldexp(tau, -m)._mpf_
             prec, rnd = ctx._prec_rounding
-            neg_k_i = mpf_neg(self.k_i._mpf_, prec, rnd)  # -k_i, as the mpf negation forms it
-            k_p, k_v = self.k_p._mpf_, self.k_v._mpf_
+            neg_k_i, k_p, k_v, ints = self._raw_constants(prec, rnd)
+            mul, add, sub, div = mpf_mul, mpf_add, mpf_sub, mpf_div
             t0, t1, t2 = fone, fzero, fzero
             c0, c1, c2 = t0, t1, t2
             for n in range(1, self._ring_terms):
-                f = mpf_div(s, from_int(n), prec, rnd)
+                f = div(s, ints[n], prec, rnd)
                 t0, t1, t2 = (
-                    mpf_mul(mpf_mul(neg_k_i, t2, prec, rnd), f, prec, rnd),
-                    mpf_mul(mpf_sub(t0, mpf_mul(k_p, t2, prec, rnd), prec, rnd), f, prec, rnd),
-                    mpf_mul(mpf_sub(t1, mpf_mul(k_v, t2, prec, rnd), prec, rnd), f, prec, rnd),
+                    mul(mul(neg_k_i, t2, prec, rnd), f, prec, rnd),
+                    mul(sub(t0, mul(k_p, t2, prec, rnd), prec, rnd), f, prec, rnd),
+                    mul(sub(t1, mul(k_v, t2, prec, rnd), prec, rnd), f, prec, rnd),
                 )
-                c0 = mpf_add(c0, t0, prec, rnd)
-                c1 = mpf_add(c1, t1, prec, rnd)
-                c2 = mpf_add(c2, t2, prec, rnd)
+                c0 = add(c0, t0, prec, rnd)
+                c1 = add(c1, t1, prec, rnd)
+                c2 = add(c2, t2, prec, rnd)
             c = (c0, c1, c2)
             for _ in range(m):
-                c = self._ring_mul(c, c, prec, rnd)
+                c = self._ring_square(c, prec, rnd)
         if key is not None:
             if len(cache) >= _EXPM_CACHE_SIZE:
                 cache.clear()
@@ -207,8 +229,7 @@ class SlipMethods:
     def _apply_raw(self, c, y):
         """:meth:`_apply` with ``c`` raw: ``c₀ y + c₁ Ay + c₂ A(Ay)`` as :meth:`_Ay` forms them."""
         prec, rnd = self.ctx._prec_rounding
-        neg_k_i = mpf_neg(self.k_i._mpf_, prec, rnd)
-        k_p, k_v = self.k_p._mpf_, self.k_v._mpf_
+        neg_k_i, k_p, k_v, _ = self._raw_constants(prec, rnd)
 
         def a_times(z):
             return (mpf_mul(neg_k_i, z[2], prec, rnd), mpf_sub(z[0], mpf_mul(k_p, z[2], prec, rnd), prec, rnd),

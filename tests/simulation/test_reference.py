@@ -141,6 +141,25 @@ def recorded(name: str) -> Reference:
     return Reference(params, z0, t_end, dps=40)
 
 
+def test_a_remembered_flow_has_the_bits_of_a_new_one():
+    """``e^{Aτ}`` is remembered across the references of a process, keyed by all it is formed from: a reference
+    made again finds every one, and its events and states are those made with nothing remembered."""
+    from symbolic_friction._reference import slip
+
+    params, z0, t_end = Parameters.table_i("a"), (-1.0, 2.0, -0.5), 6.0
+    times = [t_end * k / 16 for k in range(17)]
+    slip._EXPM_CACHE.clear()
+    fresh = Reference(params, z0, t_end)
+    want = [fresh.x_at(t) for t in times]
+    remembered = len(slip._EXPM_CACHE)
+    again = Reference(params, z0, t_end)
+    assert [again.x_at(t) for t in times] == want and again.events == fresh.events and len(fresh.events) >= 2
+    assert len(slip._EXPM_CACHE) == remembered  # nothing formed again
+    finer = Reference(params, z0, t_end, dps=60)  # another precision: formed anew, not found
+    assert len(slip._EXPM_CACHE) > remembered
+    assert abs(finer.events[-1][0] - fresh.events[-1][0]) <= 1e-45
+
+
 @pytest.mark.parametrize("name", CASES)
 def test_the_regression_cases_agree_with_expm_from_each_event(name):
     params, z0, t_end = CASES[name]
