@@ -5,9 +5,11 @@ simulation methods are measured against (``symbolic-friction tradeoff`` and
 
 Nothing here comes from the package's simulation code (it never calls
 ``_simulation``, nor the closed-form functions of its flow): only the exact
-gains are read from :class:`~symbolic_friction.Parameters`.  Everything is
+gains are read from :class:`~symbolic_friction.Parameters`.  The solution is
 computed with mpmath at a working precision of ``dps`` (default 50) plus
-guard digits, by methods chosen to be *different* from the package's.
+guard digits, by methods chosen to be *different* from the package's; a state
+asked for between its grid points is read from an arb enclosure of the flow
+from the grid point before it (:mod:`.sample`), or from the mpmath flow.
 
 The solution is a chain of pieces, each one of the three affine problems of
 eq. (subcasesAffine): a slip ``k = ±1`` (eqs. subcasesAffine:f1 and
@@ -40,6 +42,7 @@ from typing import Sequence
 
 from .._infra.errors import SimulationError, SymbolicFrictionError
 from .._model.parameters import Parameters
+from .sample import flow_enclosed
 from .slip import SlipMethods, _Piece, _factor, flow_key
 
 __all__ = ["Reference", "reference_table_mode"]
@@ -374,7 +377,9 @@ class Reference(SlipMethods):
         r = tau - j * piece.h
         if piece.taylor:
             return self._poly_state(self._coefficients(piece.grid[j]), r), piece
-        return self._flow(piece.grid[j], r), piece
+        # between grid points from an arb enclosure (.sample), the mpmath flow when it is not tight enough
+        y = None if r == 0 else flow_enclosed(self.ctx, self._fr, piece.grid[j], r)
+        return (self._flow(piece.grid[j], r) if y is None else y), piece
 
     def z_mpf_at(self, t):
         """``(e_i, s, v)`` as mpf and the mode at time ``t`` (eq. CoC inverted).

@@ -160,6 +160,29 @@ def test_a_remembered_flow_has_the_bits_of_a_new_one():
     assert abs(finer.events[-1][0] - fresh.events[-1][0]) <= 1e-45
 
 
+def test_a_state_between_grid_points_is_the_enclosure_or_the_mpmath_flow(monkeypatch):
+    """Between grid points a state is the midpoint of an arb enclosure of ``e^{Ar} y(jh)``, agreeing with the mpmath
+    flow far beyond the digits asked for; when the enclosure is not tight enough, the mpmath flow itself."""
+    from symbolic_friction._reference import sample
+
+    ref = Reference(Parameters.table_i("a"), (-1.0, 2.0, -0.5), 6.0)
+    times, inside = [], []
+    for t in (0.37 * k for k in range(1, 17)):
+        piece = [p for p in ref.pieces if p.t0 <= t][-1]
+        if piece.mode != 0:
+            tau = ref.ctx.mpf(t) - piece.t0
+            j = max(0, min(int(tau / piece.h), len(piece.grid) - 1))
+            times.append(t)
+            inside.append((piece, j, tau - j * piece.h))
+    got = [ref._offset_at(t)[0] for t in times]
+    flows = [ref._flow(p.grid[j], r) for p, j, r in inside]
+    for a, b in zip(got, flows):  # both well inside the guard digits above the 50 asked for
+        assert max(abs(u - v) for u, v in zip(a, b)) <= ref.ctx.mpf(10) ** -58 * max(abs(v) for v in b)
+    assert sum(a != b for a, b in zip(got, flows)) >= 4  # the enclosure is used, not the flow
+    monkeypatch.setattr(sample, "_SLACK_BITS", -64)  # no ball is that tight: every state from the mpmath flow
+    assert [ref._offset_at(t)[0] for t in times] == flows
+
+
 @pytest.mark.parametrize("name", CASES)
 def test_the_regression_cases_agree_with_expm_from_each_event(name):
     params, z0, t_end = CASES[name]

@@ -1,0 +1,77 @@
+"""A state of the reference between its grid points, ``e^{Ar} y(jh)``, from a rigorous enclosure.
+
+The reference's grid values ``y(jh)`` and its events come from the mpmath flow of :mod:`.slip`; a state asked
+for between two grid points (:meth:`~symbolic_friction._reference.Reference.x_at`) is ``e^{Ar}`` applied to the
+grid value before it, and most of a reference's cost is in these, one ``e^{Ar}`` per time asked for.  Here
+``e^{Ar} y`` is enclosed in arb balls (python-flint): ``A`` of eq. xDot from the exact gains, ``r`` and ``y``
+taken exactly from their mpf values, so the ball holds the exact ``e^{Ar} y``.  Its midpoint, rounded once to
+the working precision, is the state when the ball's radius is below ``2^{8-prec}`` times the state's size (the
+working precision's rounding level, guard digits above the digits asked for); otherwise, or when flint cannot
+be used, ``None`` and the caller uses the mpmath flow.
+"""
+
+from __future__ import annotations
+
+import functools
+from fractions import Fraction
+
+__all__ = ["flow_enclosed"]
+
+_EXTRA_BITS = 32
+"""Bits carried by the arb evaluation above the working precision (the squarings of its ``exp`` lose some)."""
+_SLACK_BITS = 8
+"""The radius accepted: ``2^{slack - prec}`` times the state's size."""
+
+
+def flow_enclosed(ctx, gains: dict, y, tau):
+    """``e^{Aτ} y`` (three mpf of ``ctx``) from an arb enclosure, or ``None`` when its radius is too large.
+
+    Parameters
+    ----------
+    ctx : mpmath context of the reference (its precision is the working precision)
+    gains : dict
+        The exact gains ``k_p``, ``k_i``, ``k_v`` (Fractions) of ``A`` in eq. xDot.
+    y : sequence of 3 mpf
+        The offset at the start (a grid value).
+    tau : mpf
+        The time from it.
+    """
+    import flint
+    from mpmath.libmp import from_man_exp
+
+    prec = ctx.prec
+    old = flint.ctx.prec
+    flint.ctx.prec = prec + _EXTRA_BITS
+    try:
+        A = _matrix(*(Fraction(gains[k]) for k in ("k_p", "k_i", "k_v")), prec + _EXTRA_BITS)
+        z = (A * _arb(tau)).exp() * flint.arb_mat([[_arb(c)] for c in y])
+        balls = [z[i, 0] for i in range(3)]
+        mids = [b.mid() for b in balls]
+        size = max(abs(m) for m in mids)
+        bound = flint.arb(size) * flint.arb(2) ** (_SLACK_BITS - prec)
+        if not all(b.rad() <= bound for b in balls) or not all(b.is_finite() for b in balls):
+            return None
+        out = []
+        for m in mids:
+            man, exp = m.man_exp()
+            out.append(ctx.make_mpf(from_man_exp(int(man), int(exp), prec, ctx._prec_rounding[1])))
+        return out
+    finally:
+        flint.ctx.prec = old
+
+
+@functools.lru_cache(maxsize=64)
+def _matrix(k_p: Fraction, k_i: Fraction, k_v: Fraction, bits: int):
+    """``A`` of eq. xDot in arb balls at ``bits`` (the caller's flint precision), each holding the exact gain."""
+    import flint
+
+    k_p, k_i, k_v = (flint.arb(flint.fmpq(q.numerator, q.denominator)) for q in (k_p, k_i, k_v))
+    return flint.arb_mat([[0, 0, -k_i], [1, 0, -k_p], [0, 1, -k_v]])
+
+
+def _arb(x):
+    """An mpf as the arb point holding exactly its value."""
+    import flint
+
+    sign, man, exp, _ = x._mpf_
+    return flint.arb(flint.arf((-man if sign else man, exp)))
