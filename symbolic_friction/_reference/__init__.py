@@ -194,6 +194,7 @@ class Reference(SlipMethods):
         self.f_s = q(fr["f_s"])
         self._fs_minus_fc = q(fr["f_s"] - fr["f_c"])  # exact difference, then rounded once
         self._fr = fr
+        self._gains_q = tuple((fr[k].numerator, fr[k].denominator) for k in ("k_p", "k_i", "k_v"))  # for .sample
         # reset PID (Parameters.reset_dwell): the law written again from its definition, not from the kernel
         self.dwell = None if params.reset_dwell is None else q(params.reset_dwell)
         self._last_reset = None
@@ -378,7 +379,7 @@ class Reference(SlipMethods):
         if piece.taylor:
             return self._poly_state(self._coefficients(piece.grid[j]), r), piece
         # between grid points from an arb enclosure (.sample), the mpmath flow when it is not tight enough
-        y = None if r == 0 else flow_enclosed(self.ctx, self._fr, piece.grid[j], r)
+        y = None if r == 0 else flow_enclosed(self.ctx, self._gains_q, piece.grid[j], r)
         return (self._flow(piece.grid[j], r) if y is None else y), piece
 
     def z_mpf_at(self, t):

@@ -13,7 +13,6 @@ be used, ``None`` and the caller uses the mpmath flow.
 from __future__ import annotations
 
 import functools
-from fractions import Fraction
 
 __all__ = ["flow_enclosed"]
 
@@ -23,14 +22,14 @@ _SLACK_BITS = 8
 """The radius accepted: ``2^{slack - prec}`` times the state's size."""
 
 
-def flow_enclosed(ctx, gains: dict, y, tau):
+def flow_enclosed(ctx, gains: tuple, y, tau):
     """``e^{Aτ} y`` (three mpf of ``ctx``) from an arb enclosure, or ``None`` when its radius is too large.
 
     Parameters
     ----------
     ctx : mpmath context of the reference (its precision is the working precision)
-    gains : dict
-        The exact gains ``k_p``, ``k_i``, ``k_v`` (Fractions) of ``A`` in eq. xDot.
+    gains : tuple
+        The exact gains ``k_p``, ``k_i``, ``k_v`` of ``A`` in eq. xDot, each as ``(numerator, denominator)``.
     y : sequence of 3 mpf
         The offset at the start (a grid value).
     tau : mpf
@@ -43,7 +42,7 @@ def flow_enclosed(ctx, gains: dict, y, tau):
     old = flint.ctx.prec
     flint.ctx.prec = prec + _EXTRA_BITS
     try:
-        A = _matrix(*(Fraction(gains[k]) for k in ("k_p", "k_i", "k_v")), prec + _EXTRA_BITS)
+        A = _matrix(gains, prec + _EXTRA_BITS)
         z = (A * _arb(tau)).exp() * flint.arb_mat([[_arb(c)] for c in y])
         balls = [z[i, 0] for i in range(3)]
         mids = [b.mid() for b in balls]
@@ -61,11 +60,11 @@ def flow_enclosed(ctx, gains: dict, y, tau):
 
 
 @functools.lru_cache(maxsize=64)
-def _matrix(k_p: Fraction, k_i: Fraction, k_v: Fraction, bits: int):
+def _matrix(gains: tuple, bits: int):
     """``A`` of eq. xDot in arb balls at ``bits`` (the caller's flint precision), each holding the exact gain."""
     import flint
 
-    k_p, k_i, k_v = (flint.arb(flint.fmpq(q.numerator, q.denominator)) for q in (k_p, k_i, k_v))
+    k_p, k_i, k_v = (flint.arb(flint.fmpq(*q)) for q in gains)
     return flint.arb_mat([[0, 0, -k_i], [1, 0, -k_p], [0, 1, -k_v]])
 
 
