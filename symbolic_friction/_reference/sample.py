@@ -64,8 +64,10 @@ def _matrix(gains: tuple, bits: int):
     """``A`` of eq. xDot in arb balls at ``bits`` (the caller's flint precision), each holding the exact gain."""
     import flint
 
+    from .._model.coordinates import system_matrix_entries
+
     k_p, k_i, k_v = (flint.arb(flint.fmpq(*q)) for q in gains)
-    return flint.arb_mat([[0, 0, -k_i], [1, 0, -k_p], [0, 1, -k_v]])
+    return flint.arb_mat([list(row) for row in system_matrix_entries(k_p, k_i, k_v)])  # the model's A, not a copy
 
 
 def _arb(x):
