@@ -221,7 +221,7 @@ def refine_peak(params: Parameters, X0: np.ndarray, *, t_eval: np.ndarray | None
 
     from .._model.attractor import squared_distance_x
     from .._model.coordinates import x_to_z
-    from .._simulation.affine import MatrixExponential
+    from .._simulation.affine import MatrixExponential, slip_flow, stick_flow
     from .._simulation.batch import simulate_batch
     from ._along import along
     from ._outcome import default_horizon, sample_times
@@ -252,7 +252,10 @@ def refine_peak(params: Parameters, X0: np.ndarray, *, t_eval: np.ndarray | None
                 continue
             h = a.ch.t[i, los + 1] - a.ch.t[i, los]
             taus = h[:, None] * grid[None, :]
-            X = np.stack([_flow(expm, f_c, a.xs[i, lo], taus[m], k) for m, lo in enumerate(los)])
+            if k:  # the mode's segments in one call: row m is the flow from xs[i, los[m]] (the same numbers)
+                X = slip_flow(expm, f_c, a.xs[i, los][:, None, :], taus, k)
+            else:
+                X = np.stack([stick_flow(a.xs[i, lo], taus[m]) for m, lo in enumerate(los)])
             d2 = squared_distance_x(params, X)
             m, j = np.unravel_index(int(np.argmax(d2)), d2.shape)
             if found is None or d2[m, j] > found[0]:
