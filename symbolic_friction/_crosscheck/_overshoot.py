@@ -216,12 +216,15 @@ def refine_peak(params: Parameters, X0: np.ndarray, *, t_eval: np.ndarray | None
     (samples and events merged) the solution is one affine mode
     (Claim 1): each segment is scanned on its closed form (65 points) and the
     best interior point polished by a bounded Brent search on ``-|x(t)|²_𝒜``.
+    Slip segments that cannot reach the largest sampled ``|x|²_𝒜`` are not
+    scanned (:func:`_scan`), which leaves the result the same.
     """
     from scipy.optimize import minimize_scalar
 
     from .._model.attractor import squared_distance_x
     from .._model.coordinates import x_to_z
-    from .._simulation.affine import MatrixExponential, slip_flow, stick_flow
+    from .._model.lyapunov import lyapunov_matrix
+    from .._simulation.affine import MatrixExponential
     from .._simulation.batch import simulate_batch
     from ._along import along
     from ._outcome import default_horizon, sample_times
@@ -233,6 +236,9 @@ def refine_peak(params: Parameters, X0: np.ndarray, *, t_eval: np.ndarray | None
     a = along(b)
     expm = MatrixExponential.from_params(params)
     f_c = float(params.f_c)
+    # λ_min(P) of eq. (lyapLikeP), used only where the float eigenvalue is accurate (P not too ill-conditioned)
+    eig = np.linalg.eigvalsh(lyapunov_matrix(params))
+    lam = float(eig[0]) if eig[0] > 1e-8 * eig[-1] else 0.0
     n = X0.shape[0]
     ratio, t_peak, x_peak = np.full(n, np.nan), np.full(n, np.nan), np.full((n, 3), np.nan)
     grid = np.linspace(0.0, 1.0, 65)
@@ -244,22 +250,10 @@ def refine_peak(params: Parameters, X0: np.ndarray, *, t_eval: np.ndarray | None
         best = (float(dd[p]), float(a.ch.t[i, p]), a.xs[i, p])
         # every segment between consecutive points is one affine mode (Claim 1): scan it on the
         # closed form, then polish the best interior point with a bounded Brent search
-        seg = np.flatnonzero(a.dt_pos[i])
-        found = None
-        for k in (-1, 0, 1):
-            los = seg[a.k_int[i, seg] == k]
-            if los.size == 0:
-                continue
-            h = a.ch.t[i, los + 1] - a.ch.t[i, los]
-            taus = h[:, None] * grid[None, :]
-            if k:  # the mode's segments in one call: row m is the flow from xs[i, los[m]] (the same numbers)
-                X = slip_flow(expm, f_c, a.xs[i, los][:, None, :], taus, k)
-            else:
-                X = np.stack([stick_flow(a.xs[i, lo], taus[m]) for m, lo in enumerate(los)])
-            d2 = squared_distance_x(params, X)
-            m, j = np.unravel_index(int(np.argmax(d2)), d2.shape)
-            if found is None or d2[m, j] > found[0]:
-                found = (float(d2[m, j]), int(los[m]), k, float(h[m]), int(j))
+        floor = float(dd[p]) ** 2 * (1.0 - 1e-9) if lam > 0.0 else -math.inf
+        found = _scan(params, a, i, expm, grid, lam, floor)
+        if found is None or not found[0] >= floor:  # nothing reached the samples' maximum: scan every segment
+            found = _scan(params, a, i, expm, grid, lam, -math.inf)
         if found is not None:
             _, lo, k, h, j = found
             xa = a.xs[i, lo]
@@ -274,6 +268,44 @@ def refine_peak(params: Parameters, X0: np.ndarray, *, t_eval: np.ndarray | None
         ratio[i] = best[0] / a.d0[i]
         t_peak[i], x_peak[i] = best[1], best[2]
     return ratio, t_peak, x_peak, a.d0
+
+
+def _scan(params: Parameters, a: Any, i: int, expm: Any, grid: np.ndarray, lam: float,
+          floor: float) -> tuple[float, int, int, float, int] | None:
+    """``(|x|²_𝒜, segment, mode, length, grid index)`` of the largest scanned point of trajectory ``i``.
+
+    Along a slip of mode ``k``, ``V_k = |x − x*_k|²_P`` does not increase
+    (``dV_k/dt = −c v²``, Lemma 2's identity behind eq. dVdt) and ``x*_k`` lies
+    in 𝒜, so from a point ``x_a`` on, ``|x|²_𝒜 ≤ |x − x*_k|² ≤ V_k(x_a)/λ_min(P)``.
+    A slip segment whose bound, doubled (far beyond the closed form's rounding),
+    is below ``floor`` holds only points below it and is not scanned.  When the
+    maximum found is at least ``floor``, no segment left out could have held it
+    or tied with it: the result is the full scan's (segments in order, the
+    first maximum kept).
+    """
+    from .._model.attractor import squared_distance_x
+    from .._model.lyapunov import V_k
+    from .._simulation.affine import slip_flow, stick_flow
+
+    f_c, seg = float(params.f_c), np.flatnonzero(a.dt_pos[i])
+    found = None
+    for k in (-1, 0, 1):
+        los = seg[a.k_int[i, seg] == k]
+        if k and los.size and floor > -math.inf:
+            los = los[2.0 * V_k(params, a.xs[i, los], k) / lam >= floor]
+        if los.size == 0:
+            continue
+        h = a.ch.t[i, los + 1] - a.ch.t[i, los]
+        taus = h[:, None] * grid[None, :]
+        if k:  # the mode's segments in one call: row m is the flow from xs[i, los[m]] (the same numbers)
+            X = slip_flow(expm, f_c, a.xs[i, los][:, None, :], taus, k)
+        else:
+            X = np.stack([stick_flow(a.xs[i, lo], taus[m]) for m, lo in enumerate(los)])
+        d2 = squared_distance_x(params, X)
+        m, j = np.unravel_index(int(np.argmax(d2)), d2.shape)
+        if found is None or d2[m, j] > found[0]:
+            found = (float(d2[m, j]), int(los[m]), k, float(h[m]), int(j))
+    return found
 
 
 @dataclass(frozen=True)

@@ -59,3 +59,34 @@ def test_refined_peak_beats_the_sample_grid_and_matches_dense_sampling():
     assert ratio[0] >= dense - 1e-12 and ratio[0] - dense < 1e-7
     assert ratio[0] > sampled
     assert abs(distance_x(p, x_peak[0]) / d0[0] - ratio[0]) < 1e-12 and 0 < t_peak[0] < 20.0
+
+
+@pytest.mark.parametrize("case", ["a", "b"])
+def test_slips_that_cannot_reach_the_sampled_peak_are_left_out_and_nothing_changes(case, monkeypatch):
+    """The scan skips slip segments whose Lyapunov bound lies below the sampled maximum: the same peaks, bit for bit,
+    as scanning every segment, from fewer closed-form states."""
+    import math
+
+    from symbolic_friction._crosscheck import _overshoot
+    from symbolic_friction._simulation import affine
+
+    p = Parameters.table_i(case)
+    t = sample_times(default_horizon(p), 101)
+    rng = np.random.default_rng(5)
+    X = rng.standard_normal((12, 3)) * float(p.f_c) * np.logspace(-3, 3, 12)[:, None]
+    scanned = []
+    slip_flow = affine.slip_flow
+
+    def counted(expm, f_c, x0, tau, k):
+        scanned.append(np.size(tau))
+        return slip_flow(expm, f_c, x0, tau, k)
+
+    monkeypatch.setattr(affine, "slip_flow", counted)
+    left_out = refine_peak(p, X, t_eval=t)
+    n_left_out, scanned[:] = sum(scanned), []
+    scan = _overshoot._scan
+    monkeypatch.setattr(_overshoot, "_scan", lambda *args: scan(*args[:-1], -math.inf))
+    every = refine_peak(p, X, t_eval=t)
+    for u, v in zip(left_out, every):
+        assert np.array_equal(u, v, equal_nan=True)
+    assert n_left_out < 0.5 * sum(scanned)
