@@ -150,9 +150,9 @@ def pytest_configure(config) -> None:
     # pytest_collection_modifyitems below is the one wanted
     if getattr(config.option, "loadscopereorder", False):
         config.option.loadscopereorder = False
-    from tests.rewrite_once import rewrite_before_workers
+    from tests.rewrite_once import compile_before_workers
 
-    rewrite_before_workers(config, ROOT / "tests")
+    compile_before_workers(config, ROOT)
 
 
 def pytest_collection_modifyitems(config, items: list[pytest.Item]) -> None:
