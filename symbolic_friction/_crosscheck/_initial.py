@@ -8,7 +8,8 @@ Radii are in units of ``f_c``: the dynamics are homogeneous far from 𝒜
 radii straddle ``f_c``.
 
 Adversarial initial states: optimisers that try to break the certified
-inequalities (scipy.optimize, imported lazily).
+inequalities (scipy's differential evolution, imported lazily, then scipy's Nelder–Mead
+step for step with the starts evaluated together).
 
 * **Overshoot** (Proposition 1, eq. stabState): see :mod:`._overshoot`
   (direction and scale of ``x(0)``, peaks refined on the closed form).
@@ -181,7 +182,7 @@ def sampled_rate_maximisers(params: Parameters, claim: Claims, *, seed: int, cou
     then ``rounds`` of ``per_point`` Gaussian samples around each of the
     ``count`` best so far, the width halved each round; every evaluation is
     vectorised.  The cross-check itself uses :func:`rate_maximisers`
-    (scipy's optimisers); ``check`` avoids importing scipy.optimize and
+    (scipy's differential evolution and Nelder–Mead); ``check`` avoids importing scipy.optimize and
     scipy.linalg (about 0.45 s) for what this finds as well: the wrong ``k₄``
     of the self-test was caught from these starts for each of 24 seeds.
     """
