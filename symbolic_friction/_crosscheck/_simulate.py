@@ -10,6 +10,7 @@ initial states, simulates them once.
 
 from __future__ import annotations
 
+import functools
 from typing import Any
 
 import numpy as np
@@ -18,17 +19,13 @@ from .._model.parameters import Parameters
 
 __all__ = ["simulate", "shared_simulations"]
 
-_SIMULATIONS: list[Any] = []
-"""The :class:`~.._certify._memo.Memo` of :func:`simulate`, made on first use (importing ``_certify`` here would
-load its verifiers with the cross-check)."""
-
-
+@functools.cache
 def _simulations() -> Any:
-    if not _SIMULATIONS:
-        from .._certify._memo import Memo
+    """The :class:`~.._certify._memo.Memo` of :func:`simulate`, made on first use (importing ``_certify`` at module
+    level would load its verifiers with the cross-check)."""
+    from .._certify._memo import Memo
 
-        _SIMULATIONS.append(Memo())
-    return _SIMULATIONS[0]
+    return Memo()
 
 
 def shared_simulations() -> Any:
