@@ -29,7 +29,8 @@ from pathlib import Path
 
 import pytest
 
-NOTEBOOK_DIR = Path(__file__).resolve().parents[1] / "notebooks"
+ROOT = Path(__file__).resolve().parents[1]
+NOTEBOOK_DIR = ROOT / "notebooks"
 NOTEBOOKS = sorted(NOTEBOOK_DIR.glob("*.ipynb"))
 CELL_TIMEOUT = 300  # seconds for one cell (nbclient's timeout)
 TIME_LIMIT = 240.0  # seconds for one whole notebook, kernel start included
@@ -125,12 +126,21 @@ def execute(path: Path, forks=None):
 
 @pytest.fixture(scope="module")
 def kernel_forks():
-    """The warm interpreter the notebooks' kernels are forked from (started on first use)."""
+    """The warm interpreter the notebooks' kernels are forked from (started on first use).
+
+    Its kernels (and a kernel started as its spec says, in this module) import the package from this checkout, as
+    every other test does (``PYTHONPATH``): after a non-editable install the installed copy is a second tree of the
+    same files, for which numba would compile the simulation kernel a second time (about 13 s of CPU on a fresh
+    install, measured in ``.ci/run``)."""
+    import os
+
     from tests.kernel_forks import KernelForks
 
-    forks = KernelForks()
-    yield forks
-    forks.close()
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setenv("PYTHONPATH", os.pathsep.join(filter(None, (str(ROOT), os.environ.get("PYTHONPATH")))))
+        forks = KernelForks()
+        yield forks
+        forks.close()
 
 
 def test_there_are_five_notebooks():
@@ -203,6 +213,7 @@ def test_a_forked_kernel_is_the_kernel_its_spec_starts(kernel_forks, tmp_path):
     assert forked == started
     assert started[-1] == ["error: ZeroDivisionError: division by zero"]
     assert started[0][0].startswith(f"stdout: {tmp_path} {sys.executable} ")
+    assert repr(str(ROOT)) in started[0][0]  # the package of this checkout (kernel_forks)
     assert started[1] == ["stdout: []\n"]
     assert "('MPLBACKEND', 'module://matplotlib_inline.backend_inline')" in started[2][0]
 
