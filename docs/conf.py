@@ -95,6 +95,9 @@ nb_merge_streams = True
 autosummary_generate = False
 autodoc_default_options = {"member-order": "bysource"}  # a module with __all__: in __all__'s order
 autodoc_typehints = "none"  # numpydoc's Parameters sections carry the types
+# the package writes its annotations in the code, never as type comments ("# type: (int) -> str"), and the
+# signatures show none: autodoc need not read each function's source again looking for such comments
+autodoc_use_type_comments = False
 numpydoc_show_class_members = False
 numpydoc_class_members_toctree = False
 numpydoc_validation_checks: set[str] = set()
