@@ -103,35 +103,52 @@ def _below(mu: Any, S: Any) -> bool:
     return bool(m1 > 0 and m2 > 0 and m3 > 0)
 
 
-def _norm_at(A: Any, t: float) -> float:
-    """``‖e^{At}‖₂`` in floats (only to choose where to look).
+def _flow_entries(A: Any, t: float) -> list[float]:
+    """The nine entries of ``e^{At}`` (arb's enclosure at :data:`PRECISION`, its midpoints) in floats, row by row.
 
-    The search calls it a thousand times a κ_lin: a finite double ``t`` is taken into arb directly (exactly, as
-    its Fraction is; a NaN or an infinity still goes through the Fraction, which refuses it), the entries are read
-    in one call, and the largest singular value is what ``np.linalg.norm(·, 2)`` returns, without its generic axis
-    handling (the same LAPACK call, so the same floats)."""
+    A finite double ``t`` is taken into arb directly (exactly, as its Fraction is; a NaN or an infinity still goes
+    through the Fraction, which refuses it), and the entries are read in one call."""
     import flint
-    import numpy as np
 
     M = (A * (flint.arb(t) if math.isfinite(t) else _arb(Fraction(t)))).exp()
-    return float(np.linalg.svd(np.array([float(x.mid()) for x in M.entries()]).reshape(3, 3), compute_uv=False).max())
+    return [float(x.mid()) for x in M.entries()]
+
+
+def _norms_at(A: Any, ts: list[float]) -> list[float]:
+    """``‖e^{At}‖₂`` in floats at each time of ``ts`` (only to choose where to look).
+
+    The largest singular value is what ``np.linalg.norm(·, 2)`` returns, without its generic axis handling: numpy's
+    ``svd`` of the stack of matrices runs the same LAPACK call on each matrix as on that matrix alone (the same
+    floats), in one call instead of one per time."""
+    import numpy as np
+
+    if not ts:
+        return []
+    stack = np.array([_flow_entries(A, t) for t in ts]).reshape(-1, 3, 3)
+    return np.linalg.svd(stack, compute_uv=False).max(axis=1).tolist()
 
 
 def _peak(A: Any, horizon: float, near: float | None = None) -> float:
     """A time of nearly largest ``‖e^{At}‖₂``: a logarithmic and a linear grid (or around ``near``), then
-    golden-section search around the best point."""
+    golden-section search around the best point.
+
+    The search asks about a thousand times per κ_lin; a time asked again (the section's new inner point is now and
+    then, to the last bit, the one it kept) is answered from the value found before."""
     if near is None:
         ts = sorted({0.0, *(horizon * 10.0 ** (-12 + 12 * k / 600) for k in range(601)),
                      *(horizon * k / 400 for k in range(401))})
     else:
         ts = [near * 2.0 ** ((k - 50) / 50) for k in range(101)]  # [near/2, 2·near]
-    values = [_norm_at(A, t) for t in ts]
+    values = _norms_at(A, ts)
     k = max(range(len(ts)), key=values.__getitem__)
     a, b = ts[max(k - 1, 0)], ts[min(k + 1, len(ts) - 1)]
     g = (math.sqrt(5) - 1) / 2
+    known: dict[float, float] = {}
     for _ in range(60):
         c, d = b - g * (b - a), a + g * (b - a)
-        if _norm_at(A, c) >= _norm_at(A, d):
+        new = [t for t in dict.fromkeys((c, d)) if t not in known]
+        known.update(zip(new, _norms_at(A, new)))
+        if known[c] >= known[d]:
             b = d
         else:
             a = c
