@@ -10,6 +10,7 @@ exactly, so no solver tolerance reaches the verifier's premise.
 
 from __future__ import annotations
 
+import functools
 from fractions import Fraction
 from typing import Any
 
@@ -69,8 +70,7 @@ def exact_lyapunov(k: tuple[Fraction, Fraction, Fraction], p_float: Any) -> tupl
 
     p0 = tuple(tuple(Fraction(float(p_float[min(i, j), max(i, j)])) for j in range(3)) for i in range(3))
     q0 = tuple(tuple(-x for x in row) for row in _rate(k, p0))
-    eye = tuple(tuple(Fraction(int(i == j)) for j in range(3)) for i in range(3))
-    x = _solve_lyapunov(k, eye)
+    x = _unit_solution(tuple(k)) if all(type(q) is Fraction for q in k) else _solve_lyapunov(k, _EYE)
     low = float(np.linalg.eigvalsh(np.array(q0, dtype=float))[0])
     delta = Fraction(max(-low, 0.0)) * Fraction(11, 10)
     step = max(delta, Fraction(abs(float(q0[2][2])) or 1.0) * Fraction(1, 10**15))
@@ -80,6 +80,17 @@ def exact_lyapunov(k: tuple[Fraction, Fraction, Fraction], p_float: Any) -> tupl
             return tuple(tuple(p0[i][j] + delta * x[i][j] for j in range(3)) for i in range(3))
         delta, step = delta + step, step * 2
     raise CertificateError("cannot make −(AᵀP + PA) positive semidefinite exactly")
+
+
+@functools.lru_cache(maxsize=16)
+def _unit_solution(k: tuple[Fraction, Fraction, Fraction]) -> tuple[tuple[Fraction, ...], ...]:
+    """``X`` with ``AᵀX + XA = −I`` (:func:`_solve_lyapunov`) for exact gains, kept for the last gains asked: a
+    one-piece search makes six candidate ``P`` exact for the same gains, each with this ``X`` (a value of the gains
+    alone, immutable)."""
+    return _solve_lyapunov(k, _EYE)
+
+
+_EYE = tuple(tuple(Fraction(int(i == j)) for j in range(3)) for i in range(3))
 
 
 def _rate(k: tuple[Fraction, Fraction, Fraction], p: Any) -> Any:
