@@ -101,11 +101,15 @@ fractions_ = st.one_of(rational_functions(), reducible_fractions())
 # a polynomial over a sum, expanded (terms each over the same sum): a form expand leaves as it is
 quotients = st.tuples(polynomials(), polynomials(max_terms=2)).map(lambda t: sp.expand(t[0] / t[1]))
 sizes = st.sampled_from((2, 3, 2, 3, 1))
+# the entries' strategies built once, not inside the flatmap (hypothesis validates a new strategy at its first draw,
+# which here was every matrix drawn; the same draws either way)
+_ENTRIES = rational_functions(max_leaves=3)
+_LAURENT_ENTRIES = rational_functions(st.one_of(symbols, rationals, symbols.map(lambda s: 1 / s)), min_power=0,
+                                      max_leaves=3)
 matrices = sizes.flatmap(lambda n: st.lists(
-    st.lists(rational_functions(max_leaves=3), min_size=n, max_size=n), min_size=n, max_size=n)).map(sp.Matrix)
+    st.lists(_ENTRIES, min_size=n, max_size=n), min_size=n, max_size=n)).map(sp.Matrix)
 laurent_matrices = sizes.flatmap(lambda n: st.lists(st.lists(
-    rational_functions(st.one_of(symbols, rationals, symbols.map(lambda s: 1 / s)), min_power=0, max_leaves=3),
-    min_size=n, max_size=n), min_size=n, max_size=n)).map(sp.Matrix)
+    _LAURENT_ENTRIES, min_size=n, max_size=n), min_size=n, max_size=n)).map(sp.Matrix)
 outside = st.tuples(rational_functions(max_leaves=4), st.sampled_from((
     sp.sqrt(GAINS.k_p), sp.sqrt(2), sp.Abs(GAINS.sigma), sp.Float("0.5"), sp.exp(GAINS.k_i),
     sp.Piecewise((GAINS.v, GAINS.v > 0), (-GAINS.v, True)), GAINS.k_p ** sp.Rational(1, 3),
@@ -127,9 +131,40 @@ def _srepr(value):
     return [_srepr(v) for v in value] if isinstance(value, (list, tuple)) else sp.srepr(value)
 
 
+_SYMPYS: dict = {}
+"""sympy's side of the comparisons, by call and arguments: each mutant's examples are its property's own (derandomized,
+the same draws), and sympy's answer does not depend on the fast path a mutant breaks, so it is computed once."""
+
+
+def _tree(value):
+    """A key for arguments: equal exactly when they are the same trees (sympy's ``==`` compares trees; a matrix by
+    its class, shape and entries; lists, tuples and dicts item by item)."""
+    if isinstance(value, (list, tuple)):
+        return type(value), tuple(_tree(v) for v in value)
+    if isinstance(value, dict):
+        return dict, tuple((_tree(k), _tree(v)) for k, v in value.items())
+    if isinstance(value, sp.MatrixBase):
+        return type(value), value.shape, tuple(value)
+    return type(value), value
+
+
+def _once(key, compute):
+    if key not in _SYMPYS:
+        _SYMPYS[key] = compute()
+    return _SYMPYS[key]
+
+
+def _sympys(call, *args):
+    """``_outcome(call, *args)`` for one of sympy's own calls (or a lambda around them without free variables: a
+    new function object per check, keyed by its code), computed once per arguments."""
+    code = getattr(call, "__code__", None)
+    return _once((_outcome, code if code is not None and not call.__closure__ else call, _tree(args)),
+                 lambda: _outcome(call, *args))
+
+
 def _same(fast, reference, *args):
     """``fast(*args)`` is ``reference(*args)``: the same tree (``==`` and ``srepr``), or the same exception type."""
-    got, want = _outcome(fast, *args), _outcome(reference, *args)
+    got, want = _outcome(fast, *args), _sympys(reference, *args)
     assert got[:2] == want[:2], (args, got, want)
     if want[0] == "value":
         assert got[2] == want[2], (args, got[2], want[2])
@@ -151,6 +186,12 @@ def check_expand(e):
 
 
 def _factor_multiset(call, e):
+    if call is sp.factor_list:  # sympy's side: once per expression (:data:`_SYMPYS`)
+        return _once((_factor_multiset, _tree(e)), lambda: _factor_multiset_of(call, e))
+    return _factor_multiset_of(call, e)
+
+
+def _factor_multiset_of(call, e):
     try:
         c, factors = call(e)
     except Exception as exc:  # noqa: BLE001 - sympy refuses a rational function: so must the fast path
