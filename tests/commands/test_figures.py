@@ -43,10 +43,11 @@ def test_all_figures_are_written(tmp_path, capsys):
     assert {"fig2", "fig3a", "fig3b", "fig4"} <= set(available_figures())
 
 
-def test_files_are_deterministic(tmp_path):
+def test_files_are_deterministic(tmp_path, sequential):
     first = make_figures(tmp_path / "1", ["fig2", "fig4"])
-    second = make_figures(tmp_path / "2", ["fig2", "fig4"])
-    assert [p.name for p in first] == ["fig2_region_R.png", "fig4_stribeck.png"]
+    # the second drawing of Fig. 2 and Fig. 4: the sequential run's, compared with the parallel run's below too
+    second = sorted((p for p in sequential if p.name in ("fig2_region_R.png", "fig4_stribeck.png")), key=lambda p: p.name)
+    assert [p.name for p in first] == ["fig2_region_R.png", "fig4_stribeck.png"] == [p.name for p in second]
     for a, b in zip(first, second):
         assert a.read_bytes() == b.read_bytes()
 
@@ -196,10 +197,27 @@ class _Notes:
         self.notes.append(text)
 
 
-def test_parallel_run_writes_the_files_of_the_sequential_run(tmp_path, split_figure):
+PARALLEL_NAMES = ["fig4", "test-split", "fig2"]
+
+
+@pytest.fixture(scope="module")
+def sequential(tmp_path_factory):
+    """The files of :data:`PARALLEL_NAMES` drawn one after the other (``test-split``: the squares of 1, 2, 3), once for
+    the module: the parallel run must write the same files, and a second drawing of Fig. 2 and Fig. 4 the same bytes."""
+    from symbolic_friction._studies.figures import Task, register_split
+
+    register_split("test-split", "a split figure for the tests",
+                   tasks=lambda: [Task(f"test-split {a}", _square, (a,), cost=1.0) for a in (1, 2, 3)], draw=_draw_numbers)
+    try:
+        return make_figures(tmp_path_factory.mktemp("sequential"), PARALLEL_NAMES, jobs=1)
+    finally:
+        FIGURES.pop("test-split", None)
+
+
+def test_parallel_run_writes_the_files_of_the_sequential_run(tmp_path, split_figure, sequential):
     split_figure("test-split", _square, (1, 2, 3))
-    names = ["fig4", "test-split", "fig2"]
-    seq = make_figures(tmp_path / "1", names, jobs=1)
+    names = PARALLEL_NAMES
+    seq = sequential
     bar = _Notes()
     par = make_figures(tmp_path / "2", names, jobs=2, progress=bar)
     assert [p.name for p in seq] == [p.name for p in par] == ["fig4_stribeck.png", "numbers.txt", "fig2_region_R.png"]
