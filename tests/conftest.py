@@ -165,3 +165,31 @@ def pytest_collection_modifyitems(config, items: list[pytest.Item]) -> None:
         return EARLY.index(module) if module in EARLY else len(EARLY) + (module not in slow_modules)
 
     items.sort(key=rank)
+
+
+# The trusted base's process-wide memos: what each holds is a value of its key alone, so a run shares them across tests.
+# mutmut, though, runs the tests once in its own process and forks each mutant's run from it: inherited full, they
+# would answer for a mutated builder, which then never runs (a flow enclosure replaced by ``None`` survived so).
+_MEMOS = {
+    "symbolic_friction._certify.sup_flow_enclosure": ("_FLOWS", "_SYSTEMS"),
+    "symbolic_friction._certify.sup_flow_forms": ("_PLANS", "_SIGNS"),
+    "symbolic_friction._obligations._decide": ("_PRINTED",),
+    "symbolic_friction._obligations._fastpoly": (),
+}
+
+
+@pytest.fixture(autouse=bool(os.environ.get("MUTANT_UNDER_TEST")))
+def _fresh_memos_under_mutmut():
+    """Under mutmut (``MUTANT_UNDER_TEST`` set), each test starts with the memos of :data:`_MEMOS` and the
+    ``functools`` caches of those modules empty; otherwise this fixture is not used."""
+    import importlib
+    import sys
+
+    for name, memos in _MEMOS.items():
+        module = sys.modules.get(name) or importlib.import_module(name)
+        for memo in memos:
+            getattr(module, memo).clear()
+        for value in list(vars(module).values()):
+            if callable(getattr(value, "cache_clear", None)):
+                value.cache_clear()
+    yield

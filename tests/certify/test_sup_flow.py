@@ -398,3 +398,20 @@ def test_an_exit_on_a_finite_piece_is_keyed_without_the_tail_and_the_last_one_wi
     with sup_flow.shared_decisions():
         verify_sup_flow(cert)
         assert [(c.name, c.holds, c.instance) for c in verify_sup_flow(edited).checks] == fresh
+
+
+def test_the_kept_flow_enclosures_are_those_of_the_certificates_gains():
+    """``_flow`` keeps its balls per gains and precision: the same interval for other gains is another enclosure,
+    and each is the one a fresh computation gives (a key without the gains would hand one gain set's ``e^{At}``
+    to another's premises)."""
+    from types import SimpleNamespace
+
+    a, b = Fraction(1, 4), Fraction(3, 4)
+    table_a = SimpleNamespace(k_p=Fraction(3), k_i=Fraction(4), k_v=Fraction(32, 5))
+    stiff = SimpleNamespace(k_p=Fraction(100), k_i=Fraction(1), k_v=Fraction(1, 2))
+    first = sup_flow_enclosure._flow(table_a, a, b)
+    second = sup_flow_enclosure._flow(stiff, a, b)
+    sup_flow_enclosure._FLOWS.clear()
+    assert str(sup_flow_enclosure._flow(stiff, a, b)) == str(second)
+    assert str(sup_flow_enclosure._flow(table_a, a, b)) == str(first)
+    assert str(first) != str(second)
