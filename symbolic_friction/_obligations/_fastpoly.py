@@ -60,8 +60,9 @@ def rational_symbols(expr: sp.Expr) -> frozenset[sp.Symbol] | None:
     """
     try:
         return _rational_symbols(expr)
-    except TypeError:  # unhashable (a mutable matrix): not a rational function's expression
-        return _symbols_of_rational(expr)
+    except TypeError:  # unhashable (a mutable matrix): decided without the memo, with the memo's answer type
+        symbols = _symbols_of_rational(expr)
+        return None if symbols is None else frozenset(symbols)
 
 
 @functools.lru_cache(maxsize=4096)

@@ -38,6 +38,8 @@ def flow_enclosed(ctx, gains: tuple, y, tau):
     import flint
     from mpmath.libmp import from_man_exp
 
+    if not all(ctx.isfinite(c) for c in (*y, tau)):  # an infinity's or NaN's raw mantissa is 0: never read it as 0
+        return None
     prec = ctx.prec
     old = flint.ctx.prec
     flint.ctx.prec = prec + _EXTRA_BITS

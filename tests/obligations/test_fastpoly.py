@@ -546,3 +546,13 @@ def test_each_comparison_finds_its_mutant(mutant, monkeypatch):
         _finds_a_difference(test)
     finally:
         ff.together.cache_clear()
+
+
+def test_rational_symbols_of_an_unhashable_expression_is_decided_without_the_memo():
+    """A mutable matrix cannot key the memo: it is decided directly (not a rational function's expression), never
+    a ``TypeError``; its entries, hashable, are decided through the memo."""
+    x, y = sp.symbols("x y", positive=True)
+    m = sp.Matrix([[x / y]])
+    assert fp.rational_symbols(m) is None
+    assert fp.rational_symbols(m[0, 0]) == frozenset({x, y})
+    assert fp.rational_symbols(sp.sqrt(x)) is None

@@ -295,3 +295,20 @@ def test_creeping_stick_slip_cycles_keep_exact_stick_durations():
     sticks = [b[0] - a[0] for a, b in zip(ref.events, ref.events[1:]) if a[2] == 0]
     assert len(sticks) >= 6
     assert max(sticks) - min(sticks) <= 1e-45
+
+
+def test_an_enclosed_state_is_never_read_from_an_infinity_or_a_nan():
+    """``flow_enclosed`` reads each mpf's raw mantissa and exponent; an infinity's or a NaN's mantissa is 0, which
+    would be the state 0: such an input gets ``None`` (the caller's mpmath flow), a finite one a state."""
+    import mpmath
+
+    from symbolic_friction._reference.sample import flow_enclosed
+
+    ctx = mpmath.mp.clone()
+    ctx.prec = 180
+    gains = ((3, 1), (4, 1), (32, 5))
+    y, tau = [ctx.mpf(1), ctx.mpf(-2), ctx.mpf("0.5")], ctx.mpf("0.25")
+    assert flow_enclosed(ctx, gains, y, tau) is not None
+    for bad in (ctx.inf, -ctx.inf, ctx.nan):
+        assert flow_enclosed(ctx, gains, [bad, y[1], y[2]], tau) is None
+        assert flow_enclosed(ctx, gains, y, bad) is None
